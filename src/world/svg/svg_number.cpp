@@ -1,0 +1,1 @@
+#include "world/svg/svg_parse.h"

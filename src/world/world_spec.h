@@ -1,0 +1,152 @@
+#pragma once
+/// WorldSpec: the world as a user authors it (from SVG, the maze generator or YAML). Plain
+/// data with no behaviour and no physics or graphics types; `validate()` checks it and the
+/// simulation compiles it into a World. Frames: world x east, y north, z up (REP-103), metres;
+/// the floor is the plane z = 0.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/polygon.h"
+#include "core/pose.h"
+
+namespace rescuesim {
+
+/// Surface properties shared by geometry of one kind: looks, heat and contact.
+struct MaterialSpec {
+  std::string name;                          ///< unique key, referenced by geometry
+  Vec3 color{0.5, 0.5, 0.5};                 ///< base colour, sRGB components in [0, 1]
+  double roughness = 0.8;                    ///< 0 mirror-like .. 1 matte
+  std::string texture = "none";              ///< procedural pattern: none, tiles, concrete, wood, fabric, skin
+  double temperature = -1;                   ///< surface temperature (K); < 0 means "at ambient"
+  double emissivity = 0.95;                  ///< thermal emissivity in (0, 1]
+  double friction = 0.8;                     ///< Coulomb friction coefficient
+  double restitution = 0.05;                 ///< bounce, 0..1
+};
+
+/// A straight wall: a box of `thickness` centred on segment a→b, standing on the floor.
+struct WallSpec {
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  ///< centre line end points (m)
+  double thickness = 0.05;                   ///< m
+  double height = 1.0;                       ///< m
+  std::string material = "wall";
+  SourceRef source;
+};
+
+/// A static obstacle: a simple polygon extruded from the floor to `height`.
+struct BlockSpec {
+  Polygon2 outline;  ///< counter-clockwise, m
+  double height = 1.0;
+  std::string material = "obstacle";
+  SourceRef source;
+};
+
+/// A raised area: a flat platform `height` above the floor with ramps down to the floor on
+/// chosen edges. Edge i runs from outline[i] to outline[i+1]; its ramp extends outward by
+/// `ramp_length`.
+struct RaisedAreaSpec {
+  Polygon2 outline;             ///< platform top, counter-clockwise, m
+  double height = 0.12;         ///< m
+  std::vector<int> ramp_edges;  ///< indices of edges that have a ramp
+  double ramp_length = 0.5;     ///< horizontal run of each ramp (m)
+  std::string material = "raised";
+  SourceRef source;
+};
+
+/// A loose obstacle (rubble): a dynamic box or upright cylinder resting on the ground.
+struct RubbleSpec {
+  enum class Shape { box, cylinder };
+  Shape shape = Shape::box;
+  Pose2 pose;                   ///< centre on the ground plane and heading
+  Vec3 size{0.2, 0.2, 0.1};     ///< box: length x, width y, height z; cylinder: diameter, diameter, height
+  double mass = 2.0;            ///< kg
+  std::string material = "rubble";
+  SourceRef source;
+};
+
+/// A victim lying or sitting on the floor; the thermal camera sees skin warmer than clothes.
+struct VictimSpec {
+  enum class Posture { lying, sitting };
+  std::string name;
+  Pose2 pose;                         ///< body centre; yaw points from feet to head
+  Posture posture = Posture::lying;
+  double length = 1.6;                ///< head-to-feet extent when lying (m)
+  double width = 0.45;                ///< shoulder width (m)
+  double skin_temperature = 307.15;   ///< exposed skin surface (K)
+  double clothes_temperature = 301.15;  ///< clothed body surface (K)
+  SourceRef source;
+};
+
+/// A light source for rendering.
+struct LightSpec {
+  enum class Type { directional, point };
+  Type type = Type::directional;
+  Vec3 position{0, 0, 3};     ///< point lights (m)
+  Vec3 direction{-0.3, -0.2, -1.0};  ///< directional lights: direction the light travels
+  Vec3 color{1, 1, 1};
+  double intensity = 1.0;
+  bool casts_shadows = true;
+};
+
+/// Where a robot starts and what it is.
+struct RobotPlacement {
+  std::string name = "robot";
+  std::string model = "rescue_robot";
+  Pose2 start;
+  SourceRef source;
+};
+
+/// The authored world.
+struct WorldSpec {
+  std::string name;                 ///< short name for outputs
+  std::string source_file;          ///< where it came from, "" when generated in memory
+  std::uint64_t seed = 0;           ///< seed of a generated world (recorded in outputs)
+  Vec2 floor_min = Vec2::Zero();    ///< floor rectangle, south-west corner (m)
+  Vec2 floor_max{10, 10};           ///< north-east corner (m)
+  std::string floor_material = "floor";
+  double ambient_temperature = 293.15;  ///< K: air and surfaces without their own temperature
+  double gravity = 9.81;            ///< m/s^2, pointing down -z
+
+  std::vector<MaterialSpec> materials;  ///< in declaration order; names unique
+  std::vector<WallSpec> walls;
+  std::vector<BlockSpec> blocks;
+  std::vector<RaisedAreaSpec> raised_areas;
+  std::vector<RubbleSpec> rubble;
+  std::vector<VictimSpec> victims;
+  std::vector<LightSpec> lights;
+  std::vector<RobotPlacement> robots;
+  std::map<std::string, std::string> metadata;  ///< generator parameters and the like
+
+  /// The material with this name, or nullptr.
+  const MaterialSpec* find_material(const std::string& name) const;
+  /// Adds or replaces a material by name.
+  void set_material(const MaterialSpec& m);
+  /// Footprint of a wall as a polygon (m).
+  static Polygon2 wall_outline(const WallSpec& w);
+  /// Footprint of a raised area's ramp on edge i (a quadrilateral, m).
+  static Polygon2 ramp_outline(const RaisedAreaSpec& r, int edge);
+  /// Footprint of a victim (m).
+  static Polygon2 victim_outline(const VictimSpec& v);
+  /// Bounding box of everything in the world.
+  Box2 content_bounds() const;
+};
+
+/// Materials every world starts with: floor, wall, obstacle, raised, rubble, victim_skin,
+/// victim_clothes.
+std::vector<MaterialSpec> default_materials();
+
+/// Options for validation.
+struct ValidateOptions {
+  double robot_radius = 0.40;     ///< clearance a start pose needs from walls and obstacles (m)
+  double max_extent = 10000.0;    ///< largest sane world size (m)
+};
+
+/// Checks a WorldSpec and returns every problem found (errors and warnings), each naming the
+/// element it concerns. Catches non-positive sizes, non-finite numbers, empty worlds, start
+/// poses overlapping walls or obstacles, victims inside walls and unknown materials.
+Diagnostics validate(const WorldSpec& world, const ValidateOptions& options = {});
+
+}  // namespace rescuesim
