@@ -32,7 +32,7 @@ test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 bench: build
-	$(BUILD)/bin/rescuesim bench
+	$(BUILD)/bin/world_bench
 
 clean:
 	rm -rf $(BUILD) runs

@@ -32,6 +32,9 @@ SourceRef ref(const SourceRef& s, const std::string& fallback) {
   return r;
 }
 
+/// How far (m) geometry may overhang the floor before it is worth a warning.
+constexpr double kFloorSlack = 0.25;
+
 class Validator {
  public:
   Validator(const WorldSpec& w, const ValidateOptions& o) : w_(w), o_(o) {}
@@ -99,9 +102,11 @@ class Validator {
 
   void check_extent(const Box2& b, const SourceRef& where) {
     if (b.empty()) return;
-    const Box2 floor{w_.floor_min, w_.floor_max};
+    // walls drawn along the page edge overhang it by half their width: that is fine
+    const Vec2 slack(kFloorSlack, kFloorSlack);
+    const Box2 floor{w_.floor_min - slack, w_.floor_max + slack};
     if (!floor.contains(b.min) || !floor.contains(b.max)) {
-      d_.warn(where, "lies (partly) outside the floor, which spans (" + num(w_.floor_min.x()) + ", " + num(w_.floor_min.y()) +
+      d_.warn(where, "lies more than 0.25 m outside the floor, which spans (" + num(w_.floor_min.x()) + ", " + num(w_.floor_min.y()) +
                          ") to (" + num(w_.floor_max.x()) + ", " + num(w_.floor_max.y()) + ") m");
     }
   }

@@ -20,6 +20,8 @@ struct SvgLoadOptions {
   double ramp_length = 0.5;         ///< m
   double rubble_height = 0.15;      ///< m
   double rubble_density = 400.0;    ///< kg/m^3, when an element gives no data-mass
+  double victim_length = 1.2;       ///< m, for victims drawn as markers (squares, circles)
+  double victim_width = 0.4;        ///< m, likewise
   double curve_tolerance = 0.005;   ///< m, largest deviation of flattened curves
   double ambient_temperature = 293.15;  ///< K
   std::size_t max_file_bytes = std::size_t(32) << 20;  ///< larger files are refused

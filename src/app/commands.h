@@ -1,0 +1,30 @@
+#pragma once
+/// The `rescuesim` command-line tool: one function per subcommand registers its options on
+/// the CLI11 app and returns the action to run after parsing.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+#include "world/world_spec.h"
+
+namespace rescuesim::app {
+
+/// Exit codes: 0 success, 1 a run failed, 2 bad usage or bad input.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitBadInput = 2;
+
+using Action = std::function<int()>;
+
+void add_check_command(CLI::App& app, Action& action);
+void add_maze_command(CLI::App& app, Action& action);
+void add_run_command(CLI::App& app, Action& action);
+
+/// Several lines describing a world: size, counts of each kind, starts.
+std::string world_summary(const WorldSpec& world);
+/// Prints diagnostics to stderr, one per line, indented.
+void print_diagnostics(const Diagnostics& d);
+
+}  // namespace rescuesim::app

@@ -1,0 +1,102 @@
+#include "world/scenario/scenario.h"
+
+#include <cmath>
+
+#include "core/atomic_file.h"
+#include "world/scenario/yaml_reader.h"
+
+namespace rescuesim {
+
+extern const char* const kDefaultScenarioYaml;
+
+namespace {
+
+MazeOptions read_maze(const YamlNode& m, std::uint64_t run_seed) {
+  MazeOptions o;
+  o.cols = static_cast<int>(m.integer("cols", o.cols, 1, 500));
+  o.rows = static_cast<int>(m.integer("rows", o.rows, 1, 500));
+  o.cell_size = m.number("cell_size", o.cell_size, 0.2, 100);
+  o.wall_thickness = m.number("wall_thickness", o.wall_thickness, 0.001, 10);
+  o.wall_height = m.number("wall_height", o.wall_height, 0.01, 100);
+  o.loop_fraction = m.number("loop_fraction", o.loop_fraction, 0, 1);
+  o.rubble = static_cast<int>(m.integer("rubble", o.rubble, 0, 10000));
+  o.raised_fraction = m.number("raised_fraction", o.raised_fraction, 0, 1);
+  o.raised_height = m.number("raised_height", o.raised_height, 0.001, 10);
+  o.ramp_length = m.number("ramp_length", o.ramp_length, 0.01, 100);
+  o.victims = static_cast<int>(m.integer("victims", o.victims, 0, 10000));
+  const auto start = m.numbers("start_cell", {0, 0}, 2);
+  if (start[0] != std::floor(start[0]) || start[1] != std::floor(start[1]) || start[0] < 0 || start[1] < 0 ||
+      start[0] >= o.cols || start[1] >= o.rows) {
+    throw Error(m.where("start_cell"), "start cell [" + std::to_string(start[0]) + ", " + std::to_string(start[1]) +
+                                           "] is not a cell of a " + std::to_string(o.cols) + " x " + std::to_string(o.rows) + " maze");
+  }
+  o.start_cell = {static_cast<int>(start[0]), static_cast<int>(start[1])};
+  o.seed = m.uint64("seed", run_seed);
+  m.finish();
+  return o;
+}
+
+void read_svg_defaults(const YamlNode& d, SvgLoadOptions& o) {
+  o.wall_height = d.number("wall_height", o.wall_height, 0.001, 100);
+  o.obstacle_height = d.number("obstacle_height", o.obstacle_height, 0.001, 100);
+  o.raised_height = d.number("raised_height", o.raised_height, 0.001, 10);
+  o.ramp_length = d.number("ramp_length", o.ramp_length, 0.01, 100);
+  o.rubble_height = d.number("rubble_height", o.rubble_height, 0.001, 10);
+  o.rubble_density = d.number("rubble_density", o.rubble_density, 1, 20000);
+  o.victim_length = d.number("victim_length", o.victim_length, 0.1, 3);
+  o.victim_width = d.number("victim_width", o.victim_width, 0.05, 2);
+  o.curve_tolerance = d.number("curve_tolerance", o.curve_tolerance, 1e-4, 1);
+  d.finish();
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& yaml_text, const std::string& file) {
+  const YamlNode root = YamlNode::parse(yaml_text, file);
+  Scenario s;
+  s.source_file = file;
+  s.name = root.string("name", s.name);
+  if (s.name.empty() || s.name.find('/') != std::string::npos || s.name == "." || s.name == "..") {
+    throw Error(root.where("name"), "name '" + s.name + "' cannot name an output folder; use letters, digits, '-' and '_'");
+  }
+  s.seed = root.uint64("seed", s.seed);
+  s.duration = root.number("duration", s.duration, 1e-3, 1e7);
+
+  const YamlNode w = root.map("world");
+  s.svg_options.units_per_metre = w.number("svg_scale", s.svg_options.units_per_metre, 1e-6, 1e9);
+  s.svg_options.ambient_temperature = w.number("ambient_temperature", s.svg_options.ambient_temperature, 1, 2000);
+  read_svg_defaults(w.map("defaults"), s.svg_options);
+  const bool has_svg = w.has("svg"), has_maze = w.has("maze");
+  if (has_svg && has_maze) throw Error(w.where("svg"), "give either world.svg or world.maze, not both");
+  if (has_svg) {
+    std::filesystem::path p = w.string("svg", "");
+    if (p.is_relative() && !file.empty() && file != "<built-in>") p = std::filesystem::path(file).parent_path() / p;
+    s.svg = p;
+  } else {
+    s.maze = read_maze(w.map("maze"), s.seed);
+  }
+  w.finish();
+  root.finish();
+  return s;
+}
+
+Scenario load_scenario(const std::filesystem::path& file) {
+  return parse_scenario(read_file(file, std::size_t(4) << 20), file.string());
+}
+
+Scenario default_scenario() { return parse_scenario(kDefaultScenarioYaml, "<built-in>"); }
+
+WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
+  if (scenario.svg) {
+    SvgLoadResult r = load_svg_world(*scenario.svg, scenario.svg_options);
+    if (diagnostics) diagnostics->append(r.diagnostics);
+    r.world.ambient_temperature = scenario.svg_options.ambient_temperature;
+    return std::move(r.world);
+  }
+  const MazeOptions opts = scenario.maze ? *scenario.maze : MazeOptions{};
+  WorldSpec w = maze_to_world(generate_maze(opts));
+  w.ambient_temperature = scenario.svg_options.ambient_temperature;
+  return w;
+}
+
+}  // namespace rescuesim
