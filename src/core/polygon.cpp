@@ -192,30 +192,33 @@ OrientedExtent oriented_extent(const Polygon2& poly) {
   // rotating calipers, simplified: try each hull edge direction
   double best_area = 1e300;
   for (std::size_t i = 0; i < hull.size(); ++i) {
-    const Vec2 e = (hull[(i + 1) % hull.size()] - hull[i]).normalized();
-    const Vec2 nrm(-e.y(), e.x());
-    double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
-    for (const auto& p : hull) {
-      lo_u = std::min(lo_u, p.dot(e));
-      hi_u = std::max(hi_u, p.dot(e));
-      lo_v = std::min(lo_v, p.dot(nrm));
-      hi_v = std::max(hi_v, p.dot(nrm));
-    }
-    const double area = (hi_u - lo_u) * (hi_v - lo_v);
+    const Vec2 e = hull[(i + 1) % hull.size()] - hull[i];
+    const double yaw = std::atan2(e.y(), e.x());
+    const AxisExtent x = extent_along(hull, yaw);
+    const double area = x.along * x.across;
     if (area < best_area - 1e-12) {
       best_area = area;
-      best.center = e * 0.5 * (lo_u + hi_u) + nrm * 0.5 * (lo_v + hi_v);
-      const double du = hi_u - lo_u, dv = hi_v - lo_v;
-      Vec2 axis = du >= dv ? e : nrm;
-      best.length = std::max(du, dv);
-      best.width = std::min(du, dv);
-      double a = std::atan2(axis.y(), axis.x());
-      if (a < 0) a += M_PI;
-      if (a >= M_PI) a -= M_PI;
+      best.center = x.centre;
+      best.length = std::max(x.along, x.across);
+      best.width = std::min(x.along, x.across);
+      double a = x.along >= x.across ? yaw : yaw + M_PI / 2;
+      a = std::fmod(a + 2 * M_PI, M_PI);
       best.angle = a;
     }
   }
   return best;
+}
+
+AxisExtent extent_along(const std::vector<Vec2>& pts, double yaw) {
+  const Vec2 u(std::cos(yaw), std::sin(yaw)), v(-std::sin(yaw), std::cos(yaw));
+  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
+  for (const auto& p : pts) {
+    lo_u = std::min(lo_u, p.dot(u));
+    hi_u = std::max(hi_u, p.dot(u));
+    lo_v = std::min(lo_v, p.dot(v));
+    hi_v = std::max(hi_v, p.dot(v));
+  }
+  return {u * 0.5 * (lo_u + hi_u) + v * 0.5 * (lo_v + hi_v), hi_u - lo_u, hi_v - lo_v};
 }
 
 Polygon2 rectangle(const Pose2& c, double length, double width) {

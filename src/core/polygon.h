@@ -62,6 +62,12 @@ struct OrientedExtent {
   double width = 0;   ///< short side (m)
 };
 OrientedExtent oriented_extent(const Polygon2& poly);
+/// Centre and extents of points measured along heading `yaw` and across it (m).
+struct AxisExtent {
+  Vec2 centre = Vec2::Zero();
+  double along = 0, across = 0;
+};
+AxisExtent extent_along(const std::vector<Vec2>& points, double yaw);
 /// Polygon of the rectangle of the given length and width around a pose.
 Polygon2 rectangle(const Pose2& center, double length, double width);
 /// True when the two simple polygons overlap (share interior or an edge crossing).

@@ -11,18 +11,18 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "world/maze/maze.h"
+#include "world/maze/maze_limits.h"
 
 namespace rescuesim {
 
 namespace {
 
+using maze_limits::kMinPlatform;
+using maze_limits::kMinVictimInterior;
+
 /// Largest grid side and rubble count accepted.
 constexpr int kMaxCells = 500;
 constexpr int kMaxRubble = 10000;
-/// Smallest platform side left between ramps (m); maze_world.cpp checks against the same value.
-constexpr double kMinPlatform = 0.10;
-/// A victim lies 0.05 m from a wall and is 0.4 m wide: the interior must hold both with room.
-constexpr double kMinVictimInterior = 0.50;
 
 std::string num(double v) {
   char buf[64];

@@ -12,15 +12,16 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "world/maze/maze.h"
+#include "world/maze/maze_limits.h"
 
 namespace rescuesim {
 
 namespace {
 
+using maze_limits::kMinPlatform;
+
 /// Gap between a platform and a closed wall face (m).
 constexpr double kPlatformClearance = 0.02;
-/// Smallest platform side left between ramps (m); generate_maze checks the same bound.
-constexpr double kMinPlatform = 0.10;
 /// Victim body: width, longest length and gap to the wall it lies against (m).
 constexpr double kVictimWidth = 0.40;
 constexpr double kVictimMaxLength = 1.20;

@@ -80,23 +80,6 @@ std::vector<Vec2> all_points(const Shape& s) {
   return pts;
 }
 
-/// Centre and extents of points along a given heading.
-struct Extent {
-  Vec2 centre = Vec2::Zero();
-  double along = 0, across = 0;
-};
-Extent extent_along(const std::vector<Vec2>& pts, double yaw) {
-  const Vec2 u(std::cos(yaw), std::sin(yaw)), v(-std::sin(yaw), std::cos(yaw));
-  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
-  for (const auto& p : pts) {
-    lo_u = std::min(lo_u, p.dot(u));
-    hi_u = std::max(hi_u, p.dot(u));
-    lo_v = std::min(lo_v, p.dot(v));
-    hi_v = std::max(hi_v, p.dot(v));
-  }
-  return {u * 0.5 * (lo_u + hi_u) + v * 0.5 * (lo_v + hi_v), hi_u - lo_u, hi_v - lo_v};
-}
-
 /// A material for a shape: data-material, else the kind's default, with data-temperature applied.
 std::string material_for(const Shape& s, const std::string& fallback, WorldSpec& world) {
   std::string name = fallback;
@@ -263,7 +246,7 @@ void add_victim(const Shape& s, const SvgLoadOptions& o, WorldSpec& world) {
   const bool has_yaw = data(s, "yaw") != nullptr;
   // a round marker has no direction of its own: east unless data-yaw says otherwise
   const double yaw = has_yaw ? data_number(s, "yaw", 0) * M_PI / 180.0 : (s.is_round ? 0.0 : ext.angle);
-  const Extent along = extent_along(pts, yaw);
+  const AxisExtent along = extent_along(pts, yaw);
   Vec2 centre = s.is_round ? s.centre : along.centre;
   // an elongated shape is the body itself; a square or round one only marks the place
   const bool body_shape = !s.is_round && along.along >= 1.5 * along.across;
@@ -296,7 +279,7 @@ void add_rubble(const Shape& s, const SvgLoadOptions& o, WorldSpec& world) {
   const double height = data_metres(s, "height", o.rubble_height);
   const bool has_yaw = data(s, "yaw") != nullptr;
   const double yaw = has_yaw ? data_number(s, "yaw", 0) * M_PI / 180.0 : oriented_extent(pts).angle;
-  const Extent e = extent_along(pts, yaw);
+  const AxisExtent e = extent_along(pts, yaw);
   if (cylinder) {
     const double d = s.is_round ? 2 * s.radius : 0.5 * (e.along + e.across);
     const Vec2 c = s.is_round ? s.centre : e.centre;
