@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "robots/rescue_robot.h"
 #include "world/scenario/scenario.h"
 #include "world/svg/svg_world.h"
 
@@ -26,7 +27,7 @@ bool check_one(const std::string& file, const CheckOptions& o) {
   std::string scale_note;
   try {
     if (ext == ".yaml" || ext == ".yml") {
-      const Scenario s = load_scenario(p);
+      const Scenario s = load_scenario(p, builtin_models());
       world = build_world(s, &diag);
       scale_note = "scenario '" + s.name + "', seed " + std::to_string(s.seed);
     } else {

@@ -1,19 +1,22 @@
-// rescuesim run: the main job. Builds the scenario's world and writes the run's outputs.
+// rescuesim run: the main job. Runs a scenario headless and writes its outputs.
 
-#include <chrono>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "core/atomic_file.h"
-#include "viz/world_plot.h"
-#include "world/scenario/scenario.h"
-#include "world/svg/svg_world.h"
+#include "robots/rescue_robot.h"
+#include "session/session.h"
 
 namespace rescuesim::app {
 
 namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_sigint(int) { g_interrupted.store(true); }
 
 struct RunCommand {
   std::string scenario;
@@ -21,50 +24,73 @@ struct RunCommand {
   std::string out;
   std::optional<std::uint64_t> seed;
   std::optional<double> duration;
+  bool realtime = false;
+  std::optional<double> rate;
+  bool quiet = false;
 };
+
+/// One line of progress: a bar, sim time, real-time factor, victims.
+void print_progress(const RunResult& r, double duration, bool tty) {
+  const double f = duration > 0 ? std::min(1.0, r.sim_time / duration) : 0;
+  char bar[31];
+  const int filled = static_cast<int>(f * 30);
+  for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '-';
+  bar[30] = 0;
+  std::fprintf(stderr, "%s[%s] %6.1f/%.0f s  %5.1fx real time  victims %d/%zu  collisions %d%s", tty ? "\r" : "", bar, r.sim_time,
+               duration, r.real_time_factor, r.victims_found, r.victims.size(), r.collisions, tty ? "  " : "\n");
+  std::fflush(stderr);
+}
 
 int run(const RunCommand& c) {
   namespace fs = std::filesystem;
-  Scenario s = c.scenario.empty() ? default_scenario() : load_scenario(c.scenario);
+  const ModelMap models = builtin_models();
+  Scenario s = c.scenario.empty() ? default_scenario(models) : load_scenario(c.scenario, models);
   if (c.seed) {
     s.seed = *c.seed;
     if (s.maze) s.maze->seed = *c.seed;
   }
   if (c.duration) s.duration = *c.duration;
+  if (c.realtime) s.realtime = true;
+  if (c.rate) s.rate = *c.rate;
   if (!c.world_svg.empty()) {
     s.svg = c.world_svg;
     s.maze.reset();
   }
-  Diagnostics diag;
-  const WorldSpec world = build_world(s, &diag);
-  diag.append(validate(world));
-  if (diag.has_errors()) {
-    std::fprintf(stderr, "rescuesim: error: the world has errors:\n");
-    print_diagnostics(diag);
-    return kExitBadInput;
-  }
-  print_diagnostics(diag);
+  Session session(s, models);
+  print_diagnostics(session.diagnostics());
   const fs::path out = c.out.empty() ? fs::path("runs") / s.name : fs::path(c.out);
-  std::printf("scenario %s (seed %llu): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
-              world.name.c_str(), world_summary(world).c_str());
+  const WorldSpec& w = session.world_spec();
+  std::printf("scenario %s (seed %llu, %s, %.0f s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
+              s.realtime ? "realtime" : "lockstep", s.duration, w.name.c_str(), world_summary(w).c_str());
+  std::fflush(stdout);
 
-  write_file_atomic(out / "world.svg", world_to_svg(world));
-  WorldPlotOptions po;
-  po.title = s.name + " - " + world.name + ", seed " + std::to_string(s.seed);
-  plot_world(world, po).write_png(out / "overview.png");
-  nlohmann::ordered_json j;
-  j["scenario"] = s.name;
-  j["seed"] = s.seed;
-  j["world"] = {{"name", world.name},
-                {"size_m", {world.floor_max.x() - world.floor_min.x(), world.floor_max.y() - world.floor_min.y()}},
-                {"walls", world.walls.size()},
-                {"obstacles", world.blocks.size()},
-                {"raised_areas", world.raised_areas.size()},
-                {"victims", world.victims.size()},
-                {"rubble", world.rubble.size()}};
-  write_file_atomic(out / "summary.json", j.dump(2) + "\n");
-  std::printf("wrote %s/{world.svg, overview.png, summary.json}\n", out.string().c_str());
-  return kExitOk;
+  // Ctrl-C stops the run cleanly: the outputs of what ran are still written
+  g_interrupted = false;
+  std::signal(SIGINT, on_sigint);
+  const bool tty = ::isatty(STDERR_FILENO);
+  double next_line = 0;
+  const RunResult r = session.run(&g_interrupted, [&](const RunResult& p) {
+    if (c.quiet) return;
+    if (tty || p.sim_time >= next_line) {
+      print_progress(p, s.duration, tty);
+      next_line = p.sim_time + s.duration / 10;
+    }
+  });
+  std::signal(SIGINT, SIG_DFL);
+  if (!c.quiet) {
+    print_progress(r, s.duration, tty);
+    if (tty) std::fprintf(stderr, "\n");
+  }
+  session.write_outputs(out, r);
+  std::printf("%.1f s simulated in %.2f s (%.1fx real time); stopped: %s\n", r.sim_time, r.wall_time, r.real_time_factor,
+              r.stop_reason.c_str());
+  std::printf("victims found %d/%zu", r.victims_found, r.victims.size());
+  for (const auto& v : r.victims) {
+    if (v.found) std::printf(", %s at %.1f s", v.name.c_str(), v.time);
+  }
+  std::printf("\ncoverage %.0f%%, distance %.1f m, collisions %d\n", 100 * r.coverage, r.distance, r.collisions);
+  std::printf("wrote %s/{summary.json, overview.png, trajectory.csv, world.svg, sensors/}\n", out.string().c_str());
+  return r.trouble ? kExitFailure : kExitOk;
 }
 
 }  // namespace
@@ -73,17 +99,24 @@ void add_run_command(CLI::App& app, Action& action) {
   auto c = std::make_shared<RunCommand>();
   CLI::App* cmd = app.add_subcommand("run", "Run a scenario headless and write its outputs to runs/<name>/");
   cmd->footer(
-      "Without SCENARIO, runs the built-in default (worlds/default.yaml: a seeded 8x8 maze with\n"
-      "victims, rubble and raised areas).\n\n"
+      "Without SCENARIO, runs the built-in default (worlds/default.yaml): a seeded 8x8 maze with\n"
+      "victims, rubble and raised areas, the rescue robot with laser, sonars, IMU and odometry,\n"
+      "exploring on its own (wall following + A* to frontiers) for 180 s of sim time.\n\n"
+      "Outputs: summary.json (victims found, coverage, collisions, distance, real-time factor,\n"
+      "message counts), overview.png (map, path, laser map, victims), trajectory.csv, world.svg,\n"
+      "sensors/laser.png. Ctrl-C stops early and still writes them.\n\n"
       "Examples:\n"
       "  rescuesim run\n"
       "  rescuesim run worlds/arena.yaml --seed 3\n"
-      "  rescuesim run --world worlds/office.svg --out runs/office");
+      "  rescuesim run --world worlds/office.svg --duration 60 --out runs/office");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
   cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
-  cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's)");
+  cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
   cmd->add_option("--duration", c->duration, "sim time in seconds")->check(CLI::PositiveNumber);
+  cmd->add_flag("--realtime", c->realtime, "pace the run to the wall clock (default: lockstep, as fast as possible)");
+  cmd->add_option("--rate", c->rate, "realtime pace: sim seconds per wall second")->check(CLI::PositiveNumber);
   cmd->add_option("--out,-o", c->out, "output folder (default runs/<scenario name>)");
+  cmd->add_flag("--quiet,-q", c->quiet, "no progress bar");
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }
 

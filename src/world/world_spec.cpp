@@ -73,6 +73,9 @@ std::vector<MaterialSpec> default_materials() {
   m.push_back({"rubble", {0.55, 0.45, 0.38}, 0.9, "concrete", -1, 0.93, 0.7, 0.1});
   m.push_back({"victim_skin", {0.87, 0.68, 0.55}, 0.6, "skin", 307.15, 0.98, 0.8, 0.0});
   m.push_back({"victim_clothes", {0.20, 0.30, 0.55}, 0.9, "fabric", 301.15, 0.95, 0.8, 0.0});
+  m.push_back({"robot_body", {0.95, 0.55, 0.10}, 0.5, "none", -1, 0.90, 0.5, 0.05});
+  m.push_back({"robot_wheel", {0.08, 0.08, 0.08}, 0.9, "none", -1, 0.95, 1.0, 0.0});
+  m.push_back({"robot_sensor", {0.15, 0.15, 0.17}, 0.4, "none", -1, 0.90, 0.5, 0.05});
   return m;
 }
 

@@ -135,7 +135,7 @@ struct WorldSpec {
 };
 
 /// Materials every world starts with: floor, wall, obstacle, raised, rubble, victim_skin,
-/// victim_clothes.
+/// victim_clothes, robot_body, robot_wheel, robot_sensor.
 std::vector<MaterialSpec> default_materials();
 
 /// Options for validation.

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/atomic_file.h"
+#include "world/scenario/scenario_robots.h"
 #include "world/scenario/yaml_reader.h"
 
 namespace rescuesim {
@@ -51,7 +52,7 @@ void read_svg_defaults(const YamlNode& d, SvgLoadOptions& o) {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& yaml_text, const std::string& file) {
+Scenario parse_scenario(const std::string& yaml_text, const std::string& file, const ModelMap& models) {
   const YamlNode root = YamlNode::parse(yaml_text, file);
   Scenario s;
   s.source_file = file;
@@ -61,6 +62,13 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file) {
   }
   s.seed = root.uint64("seed", s.seed);
   s.duration = root.number("duration", s.duration, 1e-3, 1e7);
+  s.realtime = root.choice("mode", "lockstep", {"lockstep", "realtime"}) == "realtime";
+  s.rate = root.number("rate", s.rate, 1e-3, 1e4);
+  s.stop_when_all_found = root.boolean("stop_when_all_found", s.stop_when_all_found);
+  const YamlNode physics = root.map("physics");
+  s.physics_dt = physics.number("dt", s.physics_dt, 1e-4, 0.05);
+  s.solver_iterations = static_cast<int>(physics.integer("solver_iterations", s.solver_iterations, 1, 1000));
+  physics.finish();
 
   const YamlNode w = root.map("world");
   s.svg_options.units_per_metre = w.number("svg_scale", s.svg_options.units_per_metre, 1e-6, 1e9);
@@ -76,27 +84,80 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file) {
     s.maze = read_maze(w.map("maze"), s.seed);
   }
   w.finish();
+  const auto robots = root.sequence("robots");
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    s.robots.push_back(read_robot(robots[i], static_cast<int>(i), models));
+    for (std::size_t k = 0; k < i; ++k) {
+      if (s.robots[k].name == s.robots[i].name) throw Error(robots[i].where("name"), "two robots are named '" + s.robots[i].name + "'");
+    }
+  }
   root.finish();
   return s;
 }
 
-Scenario load_scenario(const std::filesystem::path& file) {
-  return parse_scenario(read_file(file, std::size_t(4) << 20), file.string());
+Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models) {
+  return parse_scenario(read_file(file, std::size_t(4) << 20), file.string(), models);
 }
 
-Scenario default_scenario() { return parse_scenario(kDefaultScenarioYaml, "<built-in>"); }
+Scenario default_scenario(const ModelMap& models) { return parse_scenario(kDefaultScenarioYaml, "<built-in>", models); }
 
 WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
+  WorldSpec w;
   if (scenario.svg) {
     SvgLoadResult r = load_svg_world(*scenario.svg, scenario.svg_options);
     if (diagnostics) diagnostics->append(r.diagnostics);
-    r.world.ambient_temperature = scenario.svg_options.ambient_temperature;
-    return std::move(r.world);
+    w = std::move(r.world);
+  } else {
+    const MazeOptions opts = scenario.maze ? *scenario.maze : MazeOptions{};
+    w = maze_to_world(generate_maze(opts));
   }
-  const MazeOptions opts = scenario.maze ? *scenario.maze : MazeOptions{};
-  WorldSpec w = maze_to_world(generate_maze(opts));
   w.ambient_temperature = scenario.svg_options.ambient_temperature;
+  // the scenario's robots take the world's starts in order, unless they bring their own
+  if (!scenario.robots.empty()) {
+    std::vector<RobotPlacement> placed;
+    for (std::size_t i = 0; i < scenario.robots.size(); ++i) {
+      const RobotConfig& c = scenario.robots[i];
+      RobotPlacement p;
+      p.name = c.name;
+      p.model = c.model;
+      if (c.start) {
+        p.start = *c.start;
+        p.source = {scenario.source_file, 0, "robots[" + std::to_string(i) + "].start"};
+      } else if (i < w.robots.size()) {
+        p.start = w.robots[i].start;
+        p.source = w.robots[i].source;
+      } else {
+        throw Error({scenario.source_file, 0, "robots[" + std::to_string(i) + "]"},
+                    "robot '" + c.name + "' has no start: the world has " + std::to_string(w.robots.size()) +
+                        " start(s); give robots[" + std::to_string(i) + "].start");
+      }
+      placed.push_back(std::move(p));
+    }
+    w.robots = std::move(placed);
+  }
   return w;
+}
+
+std::vector<RobotConfig> robot_configs(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models) {
+  if (!scenario.robots.empty()) return scenario.robots;
+  std::vector<RobotConfig> out;
+  for (const auto& p : spec.robots) {
+    RobotConfig c;
+    c.name = p.name;
+    c.model = p.model;
+    const auto it = models.find(p.model);
+    if (it == models.end()) throw Error(p.source, "unknown robot model '" + p.model + "'");
+    c.spec = it->second;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+World compile_scenario(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models) {
+  World world = compile_world(spec, models);
+  const auto configs = robot_configs(scenario, spec, models);
+  for (std::size_t i = 0; i < world.robots.size() && i < configs.size(); ++i) world.robots[i].spec = configs[i].spec;
+  return world;
 }
 
 }  // namespace rescuesim

@@ -1,44 +1,77 @@
 #pragma once
-/// A scenario: which world (an SVG drawing or a generated maze), the run's seed and length,
-/// and the settings that importers need. Read from YAML (worlds/default.yaml is the built-in
-/// default); every key is checked, and errors name the file, line and key path.
+/// A scenario: which world (an SVG drawing or a generated maze), which robots with which
+/// sensors and controllers, the physics step, the run's seed, length and pace. Read from YAML
+/// (worlds/default.yaml is the built-in default); every key is checked, and errors name the
+/// file, line and key path.
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "world/maze/maze.h"
+#include "world/robot_spec.h"
 #include "world/svg/svg_world.h"
+#include "world/world.h"
 #include "world/world_spec.h"
 
 namespace rescuesim {
 
+/// One robot of a scenario.
+struct RobotConfig {
+  std::string name;                 ///< unique; topics are namespaced by it when there are several robots
+  std::string model = "rescue_robot";
+  std::optional<Pose2> start;       ///< overrides the world's start of the same index
+  std::string controller = "explorer";  ///< explorer, wall_follower, none (driven from outside, e.g. ROS)
+  RobotSpec spec;                   ///< the model with this scenario's sensor and head settings applied
+};
+
 /// A scenario as authored.
 struct Scenario {
   std::string name = "default";     ///< names the output folder runs/<name>
-  std::string source_file;          ///< the YAML it came from ("" = built in)
+  std::string source_file;          ///< the YAML it came from ("<built-in>" for the default)
   std::uint64_t seed = 1;           ///< run seed: maze, noise streams
   double duration = 180.0;          ///< s of sim time
+  bool realtime = false;            ///< paced to the wall clock (else lockstep, as fast as possible)
+  double rate = 1.0;                ///< realtime pace: sim seconds per wall second
+  double physics_dt = 0.005;        ///< s
+  int solver_iterations = 10;
+  bool stop_when_all_found = false; ///< end the run once every victim has been seen
 
   /// The world comes from exactly one of these.
   std::optional<std::filesystem::path> svg;  ///< resolved against the scenario file's folder
   std::optional<MazeOptions> maze;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
+
+  /// Robots; empty means one robot per start in the world, with default settings.
+  std::vector<RobotConfig> robots;
 };
 
-/// Parses scenario YAML; `file` names it in messages and resolves relative paths.
-/// Throws Error naming the key path for unknown keys, wrong types and impossible values.
-Scenario parse_scenario(const std::string& yaml_text, const std::string& file);
+/// The robot models a scenario may name, by model name.
+using ModelMap = std::map<std::string, RobotSpec>;
+
+/// Parses scenario YAML; `file` names it in messages and resolves relative paths; `models`
+/// are the robot models it may use. Throws Error naming the key path for unknown keys, wrong
+/// types and impossible values (fov 0, negative range, rate 0, ...).
+Scenario parse_scenario(const std::string& yaml_text, const std::string& file, const ModelMap& models);
 
 /// Reads a scenario file.
-Scenario load_scenario(const std::filesystem::path& file);
+Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models);
 
 /// The built-in default scenario (worlds/default.yaml, compiled in).
-Scenario default_scenario();
+Scenario default_scenario(const ModelMap& models);
 
-/// Builds the scenario's world: loads the SVG or generates the maze (seeded from the
-/// scenario seed unless the maze sets its own), and adds diagnostics from the import.
+/// Builds the scenario's world: loads the SVG or generates the maze (seeded from the scenario
+/// seed unless the maze sets its own), places the scenario's robots, and adds diagnostics from
+/// the import.
 WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics = nullptr);
+
+/// Compiles a built world with the scenario's robots (their sensor settings applied).
+World compile_scenario(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models);
+
+/// The robot configurations in force: the scenario's, or defaults for each start of `spec`.
+std::vector<RobotConfig> robot_configs(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models);
 
 }  // namespace rescuesim

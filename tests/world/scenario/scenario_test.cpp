@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include "robots/rescue_robot.h"
+
 namespace rescuesim {
 namespace {
 
 std::string error_of(const std::string& yaml) {
   try {
-    parse_scenario(yaml, "s.yaml");
+    parse_scenario(yaml, "s.yaml", builtin_models());
   } catch (const Error& e) {
     return e.what();
   }
@@ -18,7 +20,7 @@ std::string error_of(const std::string& yaml) {
 }
 
 TEST(Scenario, BuiltInDefaultIsAMazeWithVictims) {
-  const Scenario s = default_scenario();
+  const Scenario s = default_scenario(builtin_models());
   EXPECT_EQ(s.name, "default");
   ASSERT_TRUE(s.maze.has_value());
   EXPECT_GT(s.maze->victims, 0);
@@ -29,7 +31,7 @@ TEST(Scenario, BuiltInDefaultIsAMazeWithVictims) {
 }
 
 TEST(Scenario, SvgPathIsRelativeToTheScenarioFile) {
-  const Scenario s = parse_scenario("world:\n  svg: arena.svg\n  svg_scale: 50\n", "/data/worlds/s.yaml");
+  const Scenario s = parse_scenario("world:\n  svg: arena.svg\n  svg_scale: 50\n", "/data/worlds/s.yaml", builtin_models());
   ASSERT_TRUE(s.svg.has_value());
   EXPECT_EQ(s.svg->string(), "/data/worlds/arena.svg");
   EXPECT_DOUBLE_EQ(s.svg_options.units_per_metre, 50);
@@ -38,7 +40,7 @@ TEST(Scenario, SvgPathIsRelativeToTheScenarioFile) {
 
 TEST(Scenario, ShippedWorldsLoadAndValidate) {
   for (const char* f : {"default.yaml", "arena.yaml", "office.yaml"}) {
-    const Scenario s = load_scenario(std::string(RESCUESIM_SOURCE_DIR) + "/worlds/" + f);
+    const Scenario s = load_scenario(std::string(RESCUESIM_SOURCE_DIR) + "/worlds/" + f, builtin_models());
     Diagnostics d;
     const WorldSpec w = build_world(s, &d);
     d.append(validate(w));
@@ -90,7 +92,7 @@ TEST(Scenario, EmptyAndNonMappingFiles) {
 TEST(Scenario, NegativeSeedIsRejected) { EXPECT_NE(error_of("seed: -4\n").find("seed"), std::string::npos); }
 
 TEST(Scenario, MissingSvgFileNamesThePath) {
-  const Scenario s = parse_scenario("world:\n  svg: /nonexistent/world.svg\n", "s.yaml");
+  const Scenario s = parse_scenario("world:\n  svg: /nonexistent/world.svg\n", "s.yaml", builtin_models());
   try {
     build_world(s);
     FAIL();

@@ -1,0 +1,302 @@
+#include "autonomy/explorer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rescuesim::autonomy {
+
+namespace {
+
+// odometry kept for placing scans: enough for several seconds at usual rates
+constexpr std::size_t kOdomHistory = 256;
+
+ExplorerConfig with_shared_settings(ExplorerConfig c, const Pose2& X_BS) {
+  c.wall.X_BS = X_BS;
+  c.wall.robot_radius = c.robot_radius;
+  c.planner.cost.robot_radius = c.robot_radius;
+  return c;
+}
+
+}  // namespace
+
+Explorer::Explorer(const Pose2& X_BS, ExplorerConfig config)
+    : X_BS_(X_BS),
+      config_(with_shared_settings(std::move(config), X_BS)),
+      mapper_(config_.map),
+      planner_(config_.planner),
+      wall_(config_.wall),
+      follower_(config_.path) {
+  path_msg_.header.frame_id = config_.frame_id;
+}
+
+void Explorer::on_odometry(const msg::Odometry& odom) {
+  // a stamp going backwards means the run restarted: forget the old poses
+  if (!odom_.empty() && odom.header.stamp < odom_.back().first) odom_.clear();
+  odom_.emplace_back(odom.header.stamp, odom.pose.to_pose2());
+  if (odom_.size() > kOdomHistory) odom_.pop_front();
+}
+
+std::optional<Pose2> Explorer::pose_at(SimTime t) const {
+  if (odom_.empty()) return std::nullopt;
+  if (t <= odom_.front().first) return odom_.front().second;
+  if (t >= odom_.back().first) return odom_.back().second;
+  // interpolate between the poses either side of t
+  auto after = std::lower_bound(odom_.begin(), odom_.end(), t, [](const auto& e, SimTime s) { return e.first < s; });
+  auto before = std::prev(after);
+  const double span = (after->first - before->first).seconds();
+  const double a = span > 0 ? (t - before->first).seconds() / span : 1.0;
+  const Pose2& p = before->second;
+  const Pose2& q = after->second;
+  return Pose2{p.x + a * (q.x - p.x), p.y + a * (q.y - p.y), wrap_angle(p.yaw + a * wrap_angle(q.yaw - p.yaw))};
+}
+
+void Explorer::on_scan(const msg::LaserScan& scan) {
+  // the reactive controllers see every scan; the map only those with a pose
+  points_B_ = scan_points_in_base(scan, X_BS_);
+  scan_stamp_ = scan.header.stamp;
+  have_scan_ = true;
+  const auto X_OB = pose_at(scan.header.stamp);
+  if (!X_OB) return;
+  const int learned = mapper_.integrate(scan, *X_OB * X_BS_);
+  ++stats_.scans;
+  stats_.cells_learned += learned;
+  novelty_.emplace_back(scan.header.stamp, learned);
+  while (!novelty_.empty() && (scan.header.stamp - novelty_.front().first).seconds() > config_.novelty_window) {
+    novelty_.pop_front();
+  }
+}
+
+msg::OccupancyGrid Explorer::map(SimTime stamp) const {
+  if (mapper_.allocated()) return mapper_.to_message(config_.frame_id, stamp);
+  msg::OccupancyGrid m;
+  m.header = {stamp, config_.frame_id};
+  m.map_load_time = stamp;
+  m.resolution = static_cast<float>(mapper_.resolution());
+  return m;
+}
+
+void Explorer::set_goal(const Vec2& p_O) {
+  goal_O_ = p_O;
+  goal_needs_plan_ = true;
+  tries_ = 0;
+  follower_.clear();
+  path_msg_.poses.clear();
+  mode_ = ExplorerMode::to_goal;
+}
+
+void Explorer::clear_goal() {
+  goal_O_.reset();
+  goal_needs_plan_ = false;
+  follower_.clear();
+  path_msg_.poses.clear();
+  mode_ = ExplorerMode::wall_following;
+  started_ = false;  // progress tracking restarts at the next command
+}
+
+void Explorer::reset_progress(const Pose2& X_OB, SimTime now) {
+  anchor_ = X_OB;
+  anchor_time_ = now;
+  mode_since_ = now;
+  blocked_times_.clear();
+}
+
+msg::Twist Explorer::command(SimTime now) {
+  if (odom_.empty() || !have_scan_) return {};
+  const Pose2 X_OB = odom_.back().second;
+  if (!started_) {
+    reset_progress(X_OB, now);
+    started_ = true;
+  }
+  // progress: any move of stuck_distance from the anchor restarts the stuck clock
+  if ((X_OB.position() - anchor_.position()).norm() > config_.stuck_distance) {
+    anchor_ = X_OB;
+    anchor_time_ = now;
+  }
+  switch (mode_) {
+    case ExplorerMode::wall_following: return wall_follow(X_OB, now);
+    case ExplorerMode::to_frontier: return drive_to_frontier(X_OB, now);
+    case ExplorerMode::to_goal: return drive_to_goal(X_OB, now);
+    case ExplorerMode::at_goal: return {};
+  }
+  return {};
+}
+
+StuckReason Explorer::stuck_reason(SimTime now) const {
+  if ((now - anchor_time_).seconds() > config_.stuck_window) return StuckReason::no_progress;
+  if (static_cast<int>(blocked_times_.size()) >= config_.blocked_limit) return StuckReason::blocked;
+  // looping: a whole novelty window of wall following that taught the map almost nothing
+  if ((now - mode_since_).seconds() >= config_.novelty_window) {
+    int learned = 0;
+    for (const auto& [stamp, cells] : novelty_) {
+      if ((now - stamp).seconds() <= config_.novelty_window) learned += cells;
+    }
+    const double cell_area = mapper_.resolution() * mapper_.resolution();
+    if (learned * cell_area < config_.novelty_min_area) return StuckReason::looping;
+  }
+  return StuckReason::none;
+}
+
+bool Explorer::may_plan(SimTime now) const {
+  return !planned_ || (now - last_plan_).seconds() >= config_.replan_period;
+}
+
+std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_OB, SimTime now) {
+  planned_ = true;
+  last_plan_ = now;
+  ++stats_.plans;
+  return planner_.plan_to_nearest_frontier(mapper_, X_OB.position(), excluded_O_);
+}
+
+bool Explorer::still_frontier(const Vec2& p_O) const {
+  const auto c = mapper_.world_to_cell(p_O);
+  if (!c) return false;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const Cell n{c->x + dx, c->y + dy};
+      if (mapper_.contains(n) && is_frontier(mapper_, n)) return true;
+    }
+  }
+  return false;
+}
+
+void Explorer::start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now) {
+  mode_ = mode;
+  target_O_ = path.back();
+  // the path message: each pose faces the next point
+  path_msg_.header = {now, config_.frame_id};
+  path_msg_.poses.clear();
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Vec2 d = i + 1 < path.size() ? Vec2(path[i + 1] - path[i]) : (i > 0 ? Vec2(path[i] - path[i - 1]) : Vec2(1, 0));
+    msg::PoseStamped p;
+    p.header = path_msg_.header;
+    p.pose = Pose3::from_pose2({path[i].x(), path[i].y(), std::atan2(d.y(), d.x())});
+    path_msg_.poses.push_back(p);
+  }
+  follower_.set_path(std::move(path), now);
+}
+
+void Explorer::start_wall_following(SimTime now) {
+  mode_ = ExplorerMode::wall_following;
+  follower_.clear();
+  path_msg_.poses.clear();
+  path_msg_.header.stamp = now;
+  tries_ = 0;
+  reset_progress(odom_.back().second, now);
+}
+
+msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
+  const msg::Twist twist = wall_.command(points_B_, scan_stamp_);
+  // count blocked episodes (their starts) within the window
+  if (wall_.state() == WallFollowerState::blocked && last_wall_state_ != WallFollowerState::blocked) {
+    blocked_times_.push_back(now);
+  }
+  last_wall_state_ = wall_.state();
+  while (!blocked_times_.empty() && (now - blocked_times_.front()).seconds() > config_.blocked_window) {
+    blocked_times_.pop_front();
+  }
+
+  // stuck: plan a trip to new terrain (at most once per replan period)
+  const StuckReason reason = stuck_reason(now);
+  if (reason == StuckReason::none || !may_plan(now)) return twist;
+  last_stuck_ = reason;
+  if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
+  if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
+  if (reason == StuckReason::looping) ++stats_.stuck_looping;
+  std::vector<Vec2> path = plan_frontier(X_OB, now);
+  reset_progress(X_OB, now);
+  if (path.empty()) {
+    ++stats_.no_frontier;
+    complete_ = true;
+    return twist;
+  }
+  complete_ = false;
+  ++stats_.frontier_trips;
+  tries_ = 0;
+  start_path(std::move(path), ExplorerMode::to_frontier, now);
+  return follow_path(X_OB, now);
+}
+
+msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
+  // arrived: new terrain is in view, back to wall following; a frontier that is still one
+  // after arriving cannot be resolved from here and is not visited again
+  if (follower_.status() == PathStatus::reached) {
+    ++stats_.frontiers_reached;
+    if (still_frontier(target_O_)) excluded_O_.push_back(target_O_);
+    start_wall_following(now);
+    return wall_follow(X_OB, now);
+  }
+  // replan when stuck on the path, when the target is explored on the way, or when the map
+  // shows an obstacle on what is left of the path
+  bool replan = false;
+  if (follower_.status() == PathStatus::stuck) {
+    ++stats_.path_stuck;
+    if (++tries_ >= config_.max_tries) {
+      ++stats_.abandoned;
+      excluded_O_.push_back(target_O_);
+      start_wall_following(now);
+      return wall_follow(X_OB, now);
+    }
+    replan = true;
+  } else if (may_plan(now)) {
+    if (!still_frontier(target_O_)) {
+      replan = true;
+    } else if (path_blocked(mapper_, follower_.path(), follower_.next_index(), X_OB.position(),
+                            config_.blocked_clearance_factor * config_.robot_radius)) {
+      ++stats_.path_blocked;
+      replan = true;
+    }
+  }
+  if (replan) {
+    if (!may_plan(now)) return {};
+    std::vector<Vec2> path = plan_frontier(X_OB, now);
+    if (path.empty()) {
+      start_wall_following(now);
+      return wall_follow(X_OB, now);
+    }
+    start_path(std::move(path), ExplorerMode::to_frontier, now);
+  }
+  return follow_path(X_OB, now);
+}
+
+msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
+  if (follower_.status() == PathStatus::reached) {
+    mode_ = ExplorerMode::at_goal;
+    return {};
+  }
+  // plan on request, then on a period (the map grows), when stuck, or when blocked
+  bool replan = goal_needs_plan_ || follower_.status() == PathStatus::idle;
+  if (follower_.status() == PathStatus::stuck) {
+    ++stats_.path_stuck;
+    replan = true;
+  } else if (!replan && (now - last_plan_).seconds() >= config_.goal_replan_period) {
+    replan = true;
+  }
+  if (replan && (goal_needs_plan_ || may_plan(now))) {
+    goal_needs_plan_ = false;
+    planned_ = true;
+    last_plan_ = now;
+    ++stats_.plans;
+    std::vector<Vec2> path = planner_.plan(mapper_, X_OB.position(), *goal_O_);
+    if (path.empty()) {
+      follower_.clear();
+      path_msg_.poses.clear();
+      return {};
+    }
+    // end exactly on the goal rather than its cell's centre
+    path.back() = *goal_O_;
+    start_path(std::move(path), ExplorerMode::to_goal, now);
+  }
+  return follow_path(X_OB, now);
+}
+
+msg::Twist Explorer::follow_path(const Pose2& X_OB, SimTime now) {
+  msg::Twist twist = follower_.command(X_OB, now);
+  // the laser overrules the map: slow, then stop forward motion, when something is close ahead
+  const double ahead = free_distance_ahead(points_B_, config_.robot_radius + 0.05);
+  const double span = std::max(config_.safety_slow_distance - config_.safety_stop_distance, 1e-6);
+  const double scale = std::clamp((ahead - config_.safety_stop_distance) / span, 0.0, 1.0);
+  twist.linear.x() = std::min(twist.linear.x(), scale * config_.path.max_linear);
+  return twist;
+}
+
+}  // namespace rescuesim::autonomy

@@ -1,0 +1,155 @@
+#pragma once
+/// The built-in exploring controller (the seed's navigation demo, sections 4.1-4.2): it maps
+/// with the laser, follows a wall by default, and when it gets stuck (no progress, blocked
+/// again and again, or circling ground it already knows) it plans with A* to the nearest
+/// frontier, drives there and resumes wall following. A goal mode drives to a set point.
+/// It talks only in messages and reads time only from their stamps and the `now` it is
+/// given, so the same object runs in-process and inside a ROS node, deterministically.
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "autonomy/astar.h"
+#include "autonomy/occupancy_grid.h"
+#include "autonomy/path_follower.h"
+#include "autonomy/scan_points.h"
+#include "autonomy/wall_follower.h"
+#include "msgs/messages.h"
+
+namespace rescuesim::autonomy {
+
+/// What the explorer is doing.
+enum class ExplorerMode {
+  wall_following,  ///< reactive wall following (the default)
+  to_frontier,     ///< following an A* path to the nearest frontier
+  to_goal,         ///< following an A* path to the goal set by set_goal
+  at_goal,         ///< arrived at the goal: standing still
+};
+
+/// Why the explorer last decided it was stuck.
+enum class StuckReason { none, no_progress, blocked, looping };
+
+/// Settings of an Explorer. The constructor copies robot_radius into the planner's and the
+/// wall follower's settings.
+struct ExplorerConfig {
+  double robot_radius = 0.35;        ///< m, the robot as a disc
+  std::string frame_id = "odom";     ///< frame of the map and paths
+  OccupancyMapperConfig map;         ///< mapping (auto-sized around the first scan by default)
+  PlannerConfig planner;             ///< A* and frontier search
+  WallFollowerConfig wall;           ///< the reactive controller (its X_BS is set by the constructor)
+  PathFollowerConfig path;           ///< pure pursuit
+  double stuck_window = 8.0;         ///< s; moving less than stuck_distance in this long is stuck
+  double stuck_distance = 0.3;       ///< m
+  int blocked_limit = 3;             ///< this many blocked episodes (stop and turn on the spot) ...
+  double blocked_window = 20.0;      ///< s ... within this long is stuck
+  double novelty_window = 30.0;      ///< s; wall following this long while learning ...
+  double novelty_min_area = 0.5;     ///< m^2 ... less than this much new map is looping
+  double replan_period = 1.0;        ///< s; least sim time between two plans
+  double goal_replan_period = 2.0;   ///< s; the goal path is replanned this often on the growing map
+  int max_tries = 3;                 ///< a frontier whose path got stuck this often is given up
+  double safety_stop_distance = 0.1;  ///< m of free travel ahead below which a path is not driven forward
+  double safety_slow_distance = 0.6;  ///< m of free travel ahead below which path driving slows
+  double blocked_clearance_factor = 0.8;  ///< an occupied cell within this x robot_radius of the path blocks it
+};
+
+/// Counters of what the explorer did, for tests, logs and run summaries.
+struct ExplorerStats {
+  int scans = 0;              ///< scans integrated into the map
+  long cells_learned = 0;     ///< map cells observed for the first time
+  int plans = 0;              ///< planner calls
+  int frontier_trips = 0;     ///< paths to a frontier started
+  int frontiers_reached = 0;  ///< frontier paths driven to their end
+  int stuck_no_progress = 0;  ///< stuck triggers by reason
+  int stuck_blocked = 0;
+  int stuck_looping = 0;
+  int no_frontier = 0;        ///< stuck, but no reachable frontier was left
+  int path_blocked = 0;       ///< replans because the map showed an obstacle on the path
+  int path_stuck = 0;         ///< replans because the path follower made no progress
+  int abandoned = 0;          ///< frontiers given up after max_tries
+};
+
+/// Wall following plus A* frontier trips on a laser-built map.
+class Explorer {
+ public:
+  /// `X_BS` is the laser's mounting pose (laser frame in base_link), used to place scans.
+  explicit Explorer(const Pose2& X_BS, ExplorerConfig config = {});
+
+  /// Integrates a scan into the map at the odom pose interpolated to its stamp (scans before
+  /// the first odometry only feed the reactive controller).
+  void on_scan(const msg::LaserScan& scan);
+  /// Records the pose of base_link in the odom frame (header.frame_id) at the stamp.
+  void on_odometry(const msg::Odometry& odom);
+  /// The velocity command (base_link: linear.x m/s, angular.z rad/s) at sim time `now`;
+  /// zero until both a scan and odometry have arrived.
+  msg::Twist command(SimTime now);
+
+  /// Drives to `p_O` (m, odom frame) by A* over the map (unknown cells allowed per the
+  /// planner settings), replanning as the map grows; stops there (mode at_goal).
+  void set_goal(const Vec2& p_O);
+  /// Drops the goal and goes back to exploring.
+  void clear_goal();
+
+  /// The path being followed (odom frame), empty when wall following.
+  const msg::Path& current_path() const { return path_msg_; }
+  /// The map so far (frame_id, `stamp`); an empty grid before the first scan.
+  msg::OccupancyGrid map(SimTime stamp) const;
+  const OccupancyMapper& mapper() const { return mapper_; }
+
+  ExplorerMode mode() const { return mode_; }
+  StuckReason last_stuck_reason() const { return last_stuck_; }
+  /// True after a stuck trigger found no reachable frontier (cleared when one is found).
+  bool exploration_complete() const { return complete_; }
+  const ExplorerStats& stats() const { return stats_; }
+  const ExplorerConfig& config() const { return config_; }
+
+ private:
+  std::optional<Pose2> pose_at(SimTime t) const;
+  msg::Twist wall_follow(const Pose2& X_OB, SimTime now);
+  msg::Twist drive_to_frontier(const Pose2& X_OB, SimTime now);
+  msg::Twist drive_to_goal(const Pose2& X_OB, SimTime now);
+  msg::Twist follow_path(const Pose2& X_OB, SimTime now);
+  StuckReason stuck_reason(SimTime now) const;
+  bool may_plan(SimTime now) const;
+  std::vector<Vec2> plan_frontier(const Pose2& X_OB, SimTime now);
+  bool still_frontier(const Vec2& p_O) const;
+  void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
+  void start_wall_following(SimTime now);
+  void reset_progress(const Pose2& X_OB, SimTime now);
+
+  Pose2 X_BS_;
+  ExplorerConfig config_;
+  OccupancyMapper mapper_;
+  AStarPlanner planner_;
+  WallFollower wall_;
+  PathFollower follower_;
+
+  std::deque<std::pair<SimTime, Pose2>> odom_;   // recent poses of base_link in odom
+  std::vector<ScanPoint> points_B_;               // latest scan in base_link
+  SimTime scan_stamp_;
+  bool have_scan_ = false;
+  std::deque<std::pair<SimTime, int>> novelty_;  // cells learned per scan, by stamp
+  std::deque<SimTime> blocked_times_;             // starts of blocked episodes
+  WallFollowerState last_wall_state_ = WallFollowerState::no_data;
+
+  ExplorerMode mode_ = ExplorerMode::wall_following;
+  SimTime mode_since_;
+  bool started_ = false;
+  Pose2 anchor_;                                  // where the robot was when it last made progress
+  SimTime anchor_time_;
+  SimTime last_plan_;
+  bool planned_ = false;
+  bool goal_needs_plan_ = false;
+  std::optional<Vec2> goal_O_;
+  Vec2 target_O_ = Vec2::Zero();                  // end of the current path
+  int tries_ = 0;
+  std::vector<Vec2> excluded_O_;                  // frontiers given up
+  msg::Path path_msg_;
+  StuckReason last_stuck_ = StuckReason::none;
+  bool complete_ = false;
+  ExplorerStats stats_;
+};
+
+}  // namespace rescuesim::autonomy

@@ -1,0 +1,35 @@
+#pragma once
+/// Laser returns as points in the robot's base frame, the shared first step of the reactive
+/// controllers.
+
+#include <vector>
+
+#include "core/pose.h"
+#include "msgs/messages.h"
+
+namespace rescuesim::autonomy {
+
+/// One laser return placed in the base_link frame.
+struct ScanPoint {
+  Vec2 p_B;               ///< m, base_link frame (x forward, y left)
+  double bearing_B = 0;   ///< rad, atan2 of p_B: 0 ahead, > 0 to the left
+  double distance_B = 0;  ///< m, |p_B|
+  bool too_close = false; ///< the beam read -inf (closer than range_min) and was placed at range_min
+};
+
+/// The returns of `scan` in base_link, given the laser's mounting pose `X_BS` (laser frame
+/// in base_link). REP-117: -inf (something closer than the laser can measure) becomes a point
+/// at range_min; +inf and finite ranges at or beyond range_max (no return), NaN and finite
+/// ranges below range_min (invalid) are dropped.
+std::vector<ScanPoint> scan_points_in_base(const msg::LaserScan& scan, const Pose2& X_BS);
+
+/// How far (m) a disc of radius `radius` centred on the base origin can travel straight
+/// ahead (along base x) before it touches a return: min over the returns ahead with
+/// |y| < radius of x - sqrt(radius^2 - y^2); +inf when nothing is in the way, 0 when a return
+/// already lies inside the disc's front half.
+double free_distance_ahead(const std::vector<ScanPoint>& points, double radius);
+
+/// The same along the base_link direction `heading` (rad, 0 = ahead, > 0 = left).
+double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius);
+
+}  // namespace rescuesim::autonomy

@@ -1,0 +1,464 @@
+#include "physics/physics.h"
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "physics/bullet_convert.h"
+
+namespace rescuesim {
+
+using bullet::from_bt;
+using bullet::to_bt;
+
+namespace {
+
+/// What a Bullet collision object stands for, stored in its user index.
+enum Tag : int { kStatic = 0, kDynamic = 1, kRobot = 2 };
+int encode(Tag tag, int index, int sub = 0) { return (tag << 28) | (sub << 16) | index; }
+Tag tag_of(int code) { return static_cast<Tag>(code >> 28); }
+int index_of(int code) { return code & 0xffff; }
+int sub_of(int code) { return (code >> 16) & 0xfff; }
+
+/// How far apart two shapes may be for Bullet to keep a (speculative) contact between them (m).
+constexpr double kContactDistance = 0.03;
+
+bool finite(const Pose3& X) {
+  return std::isfinite(X.p.x()) && std::isfinite(X.p.y()) && std::isfinite(X.p.z()) && std::isfinite(X.q.w()) &&
+         std::isfinite(X.q.x()) && std::isfinite(X.q.y()) && std::isfinite(X.q.z());
+}
+
+}  // namespace
+
+/// One robot as a Featherstone multibody.
+struct RobotBody {
+  btMultiBody* mb = nullptr;
+  std::vector<int> bt_link;                 // per spec link: Bullet link index, -1 for the base
+  std::vector<btMultiBodyLinkCollider*> colliders;  // per spec link
+  std::vector<btMultiBodyJointMotor*> motors;       // per joint, nullptr when uncontrolled
+  std::vector<Vec3> com;                    // per spec link, centre of mass in the link frame
+};
+
+struct Physics::Impl {
+  const World& world;
+  PhysicsOptions options;
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  btMultiBodyDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &config};
+  bullet::ShapeStore shapes;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
+  std::vector<std::unique_ptr<btRigidBody>> statics;     // static geometry (one or one compound)
+  std::vector<std::unique_ptr<btRigidBody>> rubble;      // per World::dynamics
+  std::vector<std::unique_ptr<btMultiBody>> multibodies;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
+  std::vector<RobotBody> robots;
+
+  Impl(const World& w, const PhysicsOptions& o) : world(w), options(o) {
+    // contacts are kept from 3 cm apart for every shape (Bullet's default scales the distance
+    // down for small shapes), so bodies meet the ground on the step they reach it
+    dispatcher.setDispatcherFlags(dispatcher.getDispatcherFlags() & ~btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
+    gContactBreakingThreshold = btScalar(kContactDistance);
+    dynamics.setGravity(btVector3(0, 0, btScalar(-w.gravity)));
+    dynamics.getSolverInfo().m_numIterations = o.solver_iterations;
+    build_statics();
+    build_rubble();
+    for (std::size_t r = 0; r < w.robots.size(); ++r) build_robot(static_cast<int>(r));
+  }
+
+  ~Impl() {
+    for (auto& c : constraints) dynamics.removeMultiBodyConstraint(c.get());
+    for (auto& mb : multibodies) dynamics.removeMultiBody(mb.get());
+    for (auto& c : colliders) dynamics.removeCollisionObject(c.get());
+    for (auto& b : rubble) dynamics.removeRigidBody(b.get());
+    for (auto& b : statics) dynamics.removeRigidBody(b.get());
+  }
+
+  const MaterialSpec& material(int i) const { return world.materials[static_cast<std::size_t>(i)]; }
+
+  btRigidBody* add_body(btCollisionShape* shape, const Pose3& X, double mass, const Vec3& inertia, const MaterialSpec& m, int code) {
+    motion_states.push_back(std::make_unique<btDefaultMotionState>(to_bt(X)));
+    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motion_states.back().get(), shape, to_bt(inertia));
+    info.m_friction = btScalar(m.friction);
+    info.m_restitution = btScalar(m.restitution);
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setUserIndex(code);
+    btRigidBody* raw = body.get();
+    dynamics.addRigidBody(raw);
+    (mass > 0 ? rubble : statics).push_back(std::move(body));
+    return raw;
+  }
+
+  void build_statics() {
+    if (options.compound_statics) {
+      // one body for all walls and obstacles: fewer broadphase entries, one friction for all
+      btCompoundShape* all = shapes.compound();
+      for (std::size_t i = 0; i < world.statics.size(); ++i) {
+        all->addChildShape(to_bt(world.statics[i].X_WO), shapes.make(world.statics[i].geometry));
+      }
+      add_body(all, Pose3{}, 0, Vec3::Zero(), material(world.statics[0].material), encode(kStatic, 0));
+      return;
+    }
+    for (std::size_t i = 0; i < world.statics.size(); ++i) {
+      const StaticObject& s = world.statics[i];
+      if (s.kind == ObjectKind::floor) {
+        // the floor as a plane at z = 0: plane contacts are found before bodies touch, so a
+        // falling body lands on the step it arrives rather than one step late
+        add_body(shapes.plane(), Pose3{}, 0, Vec3::Zero(), material(s.material), encode(kStatic, static_cast<int>(i)));
+        continue;
+      }
+      add_body(shapes.make(s.geometry), s.X_WO, 0, Vec3::Zero(), material(s.material), encode(kStatic, static_cast<int>(i)));
+    }
+  }
+
+  void build_rubble() {
+    for (std::size_t i = 0; i < world.dynamics.size(); ++i) {
+      const DynamicObject& d = world.dynamics[i];
+      btRigidBody* b = add_body(shapes.make(d.geometry), d.X_WO, d.mass, d.inertia, material(d.material), encode(kDynamic, static_cast<int>(i)));
+      b->setRollingFriction(0.002f);
+      b->setSpinningFriction(0.002f);
+      // rubble resting on the ground starts asleep, until something touches it
+      if (resting_on_ground(*b)) b->setActivationState(ISLAND_SLEEPING);
+    }
+  }
+
+  /// True when a body's lowest point lies on the floor or on a platform top (within 1 mm).
+  bool resting_on_ground(const btRigidBody& b) const {
+    btVector3 lo, hi;
+    b.getCollisionShape()->getAabb(b.getWorldTransform(), lo, hi);
+    // rubble is boxes and cylinders, whose bounding boxes are exact
+    const double bottom = lo.z();
+    if (std::abs(bottom) < 1e-3) return true;
+    for (const auto& s : world.statics) {
+      if (s.kind == ObjectKind::platform && std::abs(bottom - (s.X_WO.p.z() + s.geometry.size.z())) < 1e-3) return true;
+    }
+    return false;
+  }
+
+  void build_robot(int r) {
+    const RobotInstance& inst = world.robots[static_cast<std::size_t>(r)];
+    const RobotSpec& spec = inst.spec;
+    RobotBody body;
+    const int n_links = static_cast<int>(spec.joints.size());
+    const LinkSpec& base = spec.links[0];
+    body.com.resize(spec.links.size());
+    body.bt_link.assign(spec.links.size(), -1);
+    for (std::size_t l = 0; l < spec.links.size(); ++l) body.com[l] = spec.links[l].com;
+
+    auto mb = std::make_unique<btMultiBody>(n_links, btScalar(base.mass), to_bt(base.inertia), false, false);
+    // each joint makes its child a Bullet link, numbered like the joint
+    for (int j = 0; j < n_links; ++j) {
+      const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
+      const int parent = spec.link_index(js.parent), child = spec.link_index(js.child);
+      body.bt_link[static_cast<std::size_t>(child)] = j;
+      const LinkSpec& pl = spec.links[static_cast<std::size_t>(parent)];
+      const LinkSpec& cl = spec.links[static_cast<std::size_t>(child)];
+      const int bt_parent = body.bt_link[static_cast<std::size_t>(parent)];
+      // Bullet frames sit at each link's centre of mass; ours at the joint
+      const btQuaternion rot_parent_to_this = to_bt(js.X_PJ.q.conjugate());
+      const btVector3 parent_com_to_pivot = to_bt(js.X_PJ.p - pl.com);
+      const btVector3 pivot_to_com = to_bt(cl.com);
+      if (js.type == JointSpec::Type::fixed) {
+        mb->setupFixed(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
+      } else {
+        mb->setupRevolute(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, to_bt(js.axis.normalized()),
+                          parent_com_to_pivot, pivot_to_com, true);
+      }
+    }
+    mb->finalizeMultiDof();
+    mb->setBaseWorldTransform(to_bt(inst.X_W_start * Pose3{base.com, Quat::Identity()}));
+    for (int j = 0; j < n_links; ++j) {
+      if (spec.joints[static_cast<std::size_t>(j)].type != JointSpec::Type::fixed) mb->setJointPos(j, btScalar(spec.joints[static_cast<std::size_t>(j)].initial));
+    }
+    mb->setCanSleep(false);
+    mb->setHasSelfCollision(false);
+    mb->setLinearDamping(0.0f);
+    mb->setAngularDamping(0.0f);
+    mb->setUseGyroTerm(true);
+    dynamics.addMultiBody(mb.get());
+
+    // colliders: each link's shapes, placed relative to the link's centre of mass
+    body.colliders.assign(spec.links.size(), nullptr);
+    for (std::size_t l = 0; l < spec.links.size(); ++l) {
+      const LinkSpec& ls = spec.links[l];
+      btCompoundShape* compound = shapes.compound();
+      double friction = 0.5, restitution = 0.0;
+      for (const auto& sh : ls.shapes) {
+        if (!sh.collides) continue;
+        compound->addChildShape(to_bt(Pose3{-ls.com, Quat::Identity()} * sh.X_LG), shapes.make(sh.geometry));
+        const MaterialSpec& m = material(world.material_index(sh.material));
+        friction = m.friction;
+        restitution = m.restitution;
+      }
+      if (compound->getNumChildShapes() == 0) continue;
+      auto col = std::make_unique<btMultiBodyLinkCollider>(mb.get(), body.bt_link[l]);
+      col->setCollisionShape(compound);
+      col->setFriction(btScalar(friction));
+      col->setRestitution(btScalar(restitution));
+      if (ls.friction_scale != Vec3::Ones()) col->setAnisotropicFriction(to_bt(ls.friction_scale));
+      col->setUserIndex(encode(kRobot, static_cast<int>(l), r));
+      dynamics.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+      if (body.bt_link[l] < 0) {
+        mb->setBaseCollider(col.get());
+      } else {
+        mb->getLink(body.bt_link[l]).m_collider = col.get();
+      }
+      body.colliders[l] = col.get();
+      colliders.push_back(std::move(col));
+    }
+
+    // actuators: velocity motors (the head's position loop runs on top of them) and limits
+    body.motors.assign(spec.joints.size(), nullptr);
+    for (int j = 0; j < n_links; ++j) {
+      const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
+      if (js.type == JointSpec::Type::fixed) continue;
+      if (js.control != JointSpec::Control::none) {
+        auto motor = std::make_unique<btMultiBodyJointMotor>(mb.get(), j, 0.0f, btScalar(js.max_effort * options.dt));
+        body.motors[static_cast<std::size_t>(j)] = motor.get();
+        dynamics.addMultiBodyConstraint(motor.get());
+        constraints.push_back(std::move(motor));
+      }
+      if (js.type == JointSpec::Type::revolute) {
+        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(mb.get(), j, btScalar(js.lower), btScalar(js.upper));
+        dynamics.addMultiBodyConstraint(limit.get());
+        constraints.push_back(std::move(limit));
+      }
+    }
+    body.mb = mb.get();
+    multibodies.push_back(std::move(mb));
+    robots.push_back(std::move(body));
+    sync_colliders(robots.back());
+  }
+
+  /// Updates the link colliders' world transforms from the multibody's joint state.
+  static void sync_colliders(RobotBody& b) {
+    btAlignedObjectArray<btQuaternion> world_to_local;
+    btAlignedObjectArray<btVector3> local_origin;
+    b.mb->forwardKinematics(world_to_local, local_origin);
+    b.mb->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  }
+
+  /// Pose of a spec link's frame in the world, from its collider (or the multibody for the base).
+  Pose3 link_pose(const RobotBody& b, std::size_t l) const {
+    btTransform T;
+    if (b.bt_link[l] < 0) {
+      T = b.mb->getBaseWorldTransform();
+    } else {
+      T = b.mb->getLink(b.bt_link[l]).m_cachedWorldTransform;
+    }
+    return from_bt(T) * Pose3{-b.com[l], Quat::Identity()};
+  }
+
+  /// Drives each actuated joint toward its target: velocity joints directly, position joints
+  /// through a proportional loop on velocity.
+  void apply_targets(const RobotSpec& spec, RobotBody& b, const RobotState& s) {
+    for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+      btMultiBodyJointMotor* m = b.motors[j];
+      if (!m) continue;
+      const JointSpec& js = spec.joints[j];
+      const double target = j < s.joint_target.size() ? s.joint_target[j] : 0.0;
+      double vel = target;
+      if (js.control == JointSpec::Control::position) {
+        const double q = b.mb->getJointPos(static_cast<int>(j));
+        vel = js.kp * (target - q);
+      }
+      vel = std::clamp(vel, -js.max_velocity, js.max_velocity);
+      m->setVelocityTarget(btScalar(vel), 1.0f);
+    }
+  }
+
+  void read_robot(const RobotSpec& spec, const RobotBody& b, RobotState& s, bool stepped = true) const {
+    const std::size_t n = spec.joints.size();
+    s.q.resize(n);
+    s.qd.resize(n);
+    s.effort.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const bool moving = spec.joints[j].type != JointSpec::Type::fixed;
+      s.q[j] = moving ? b.mb->getJointPos(static_cast<int>(j)) : 0.0;
+      s.qd[j] = moving ? b.mb->getJointVel(static_cast<int>(j)) : 0.0;
+      // motors have no impulse to report before their first solve
+      s.effort[j] = b.motors[j] && stepped ? b.motors[j]->getAppliedImpulse(0) / options.dt : 0.0;
+    }
+    s.X_WL.resize(spec.links.size());
+    for (std::size_t l = 0; l < spec.links.size(); ++l) s.X_WL[l] = link_pose(b, l);
+    s.base.X_WB = s.X_WL[0];
+    // the base's velocity at the link-frame origin, from the centre-of-mass velocity
+    const Vec3 w = from_bt(b.mb->getBaseOmega());
+    const Vec3 v_com = from_bt(b.mb->getBaseVel());
+    s.base.w_WB = w;
+    s.base.v_WB = v_com + w.cross(s.base.X_WB.q * (-b.com[0]));
+  }
+
+  /// Names of what touches each robot, and whether a new collision began.
+  void read_contacts(State& state) {
+    std::vector<std::vector<std::string>> touching(robots.size());
+    const int n = dispatcher.getNumManifolds();
+    for (int i = 0; i < n; ++i) {
+      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
+      bool contact = false;
+      for (int k = 0; k < m->getNumContacts() && !contact; ++k) contact = m->getContactPoint(k).getDistance() < 0.002f;
+      if (!contact) continue;
+      const int a = m->getBody0()->getUserIndex(), b = m->getBody1()->getUserIndex();
+      for (int pass = 0; pass < 2; ++pass) {
+        const int self = pass == 0 ? a : b, other = pass == 0 ? b : a;
+        if (tag_of(self) != kRobot) continue;
+        const std::size_t r = static_cast<std::size_t>(sub_of(self));
+        touching[r].push_back(name_of(other));
+      }
+    }
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      auto& t = touching[r];
+      std::sort(t.begin(), t.end());
+      t.erase(std::unique(t.begin(), t.end()), t.end());
+      RobotState& rs = state.robots[r];
+      // a collision is a contact that begins with something the robot should not hit
+      for (const auto& name : t) {
+        if (is_obstacle(name) && !std::binary_search(rs.touching.begin(), rs.touching.end(), name)) ++rs.collisions;
+      }
+      rs.touching = std::move(t);
+    }
+  }
+
+  std::string name_of(int code) const {
+    switch (tag_of(code)) {
+      case kStatic:
+        return options.compound_statics ? std::string("static") : world.statics[static_cast<std::size_t>(index_of(code))].name;
+      case kDynamic: return world.dynamics[static_cast<std::size_t>(index_of(code))].name;
+      case kRobot: return world.robots[static_cast<std::size_t>(sub_of(code))].name;
+    }
+    return "?";
+  }
+
+  bool is_obstacle(const std::string& name) const {
+    for (const auto& s : world.statics) {
+      if (s.name == name) return s.kind == ObjectKind::wall || s.kind == ObjectKind::obstacle || s.kind == ObjectKind::victim;
+    }
+    for (const auto& r : world.robots) {
+      if (r.name == name) return true;
+    }
+    return false;
+  }
+
+  void check_trouble(State& state) const {
+    const Box2 reach{world.floor.min - Vec2::Constant(options.escape_distance), world.floor.max + Vec2::Constant(options.escape_distance)};
+    auto check = [&](const Pose3& X, const std::string& what) {
+      if (!finite(X)) {
+        if (state.trouble.first.empty()) state.trouble.first = what + " has a non-finite pose at t = " + std::to_string(state.time.seconds()) + " s";
+        ++state.trouble.nan_poses;
+      } else if (!reach.contains(X.p.head<2>()) || X.p.z() < -options.escape_distance || X.p.z() > options.escape_distance) {
+        if (state.trouble.first.empty()) {
+          state.trouble.first = what + " was flung out of the world (to " + std::to_string(X.p.x()) + ", " + std::to_string(X.p.y()) +
+                                ", " + std::to_string(X.p.z()) + ") at t = " + std::to_string(state.time.seconds()) + " s";
+        }
+        ++state.trouble.escaped;
+      }
+    };
+    for (std::size_t i = 0; i < state.dynamics.size(); ++i) check(state.dynamics[i].X_WB, world.dynamics[i].name);
+    for (std::size_t r = 0; r < state.robots.size(); ++r) check(state.robots[r].base.X_WB, "robot '" + world.robots[r].name + "'");
+  }
+};
+
+Physics::Physics(const World& world, const PhysicsOptions& options) : options_(options) {
+  if (!(options.dt > 0) || options.dt > 0.1) throw Error({"", 0, "physics.dt"}, "time step must be in (0, 0.1] s");
+  impl_ = std::make_unique<Impl>(world, options);
+}
+
+Physics::~Physics() = default;
+
+void Physics::init_state(State& state) const {
+  const World& w = impl_->world;
+  state.dynamics.resize(w.dynamics.size());
+  for (std::size_t i = 0; i < w.dynamics.size(); ++i) state.dynamics[i] = BodyState{w.dynamics[i].X_WO, Vec3::Zero(), Vec3::Zero()};
+  state.robots.resize(w.robots.size());
+  for (std::size_t r = 0; r < w.robots.size(); ++r) {
+    RobotState& rs = state.robots[r];
+    const RobotSpec& spec = w.robots[r].spec;
+    impl_->read_robot(spec, impl_->robots[r], rs, false);
+    rs.prev_v_WB = Vec3::Zero();
+    rs.joint_target.assign(spec.joints.size(), 0.0);
+    rs.head_target.clear();
+    for (const auto& name : spec.head_joints) rs.head_target.push_back(spec.joints[static_cast<std::size_t>(spec.joint_index(name))].initial);
+    for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+      if (spec.joints[j].control == JointSpec::Control::position) rs.joint_target[j] = spec.joints[j].initial;
+    }
+  }
+}
+
+void Physics::step(State& state) {
+  Impl& m = *impl_;
+  for (std::size_t r = 0; r < m.robots.size(); ++r) m.apply_targets(m.world.robots[r].spec, m.robots[r], state.robots[r]);
+  m.dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt));
+  // read back
+  for (std::size_t i = 0; i < m.rubble.size(); ++i) {
+    const btRigidBody& b = *m.rubble[i];
+    state.dynamics[i] = {from_bt(b.getWorldTransform()), from_bt(b.getLinearVelocity()), from_bt(b.getAngularVelocity())};
+  }
+  for (std::size_t r = 0; r < m.robots.size(); ++r) m.read_robot(m.world.robots[r].spec, m.robots[r], state.robots[r]);
+  m.read_contacts(state);
+  m.check_trouble(state);
+}
+
+void Physics::restore(const State& state) {
+  Impl& m = *impl_;
+  for (std::size_t i = 0; i < m.rubble.size() && i < state.dynamics.size(); ++i) {
+    btRigidBody& b = *m.rubble[i];
+    b.setWorldTransform(to_bt(state.dynamics[i].X_WB));
+    b.getMotionState()->setWorldTransform(b.getWorldTransform());
+    b.setLinearVelocity(to_bt(state.dynamics[i].v_WB));
+    b.setAngularVelocity(to_bt(state.dynamics[i].w_WB));
+    b.activate(true);
+  }
+  for (std::size_t r = 0; r < m.robots.size() && r < state.robots.size(); ++r) {
+    RobotBody& rb = m.robots[r];
+    const RobotState& rs = state.robots[r];
+    const RobotSpec& spec = m.world.robots[r].spec;
+    rb.mb->setBaseWorldTransform(to_bt(rs.base.X_WB * Pose3{rb.com[0], Quat::Identity()}));
+    rb.mb->setBaseOmega(to_bt(rs.base.w_WB));
+    rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * rb.com[0])));
+    for (std::size_t j = 0; j < spec.joints.size() && j < rs.q.size(); ++j) {
+      if (spec.joints[j].type == JointSpec::Type::fixed) continue;
+      rb.mb->setJointPos(static_cast<int>(j), btScalar(rs.q[j]));
+      rb.mb->setJointVel(static_cast<int>(j), btScalar(rs.qd[j]));
+    }
+    Impl::sync_colliders(rb);
+  }
+  // forget contact caches so that a restored run does not depend on what came before
+  m.broadphase.resetPool(&m.dispatcher);
+  m.dynamics.getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(nullptr, &m.dispatcher);
+  m.solver.reset();
+}
+
+PhysicsStats Physics::stats() const {
+  PhysicsStats s;
+  s.static_bodies = static_cast<int>(impl_->statics.size());
+  s.dynamic_bodies = static_cast<int>(impl_->rubble.size());
+  s.multibodies = static_cast<int>(impl_->robots.size());
+  for (const auto& r : impl_->robots) s.multibody_links += r.mb->getNumLinks();
+  return s;
+}
+
+double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, double seconds) {
+  Physics::Impl impl(world, options);
+  // hold every motor at zero velocity, as a parked robot would be
+  const auto t0 = std::chrono::steady_clock::now();
+  long steps = 0;
+  double elapsed = 0;
+  while (elapsed < seconds) {
+    for (int k = 0; k < 100; ++k) impl.dynamics.stepSimulation(btScalar(options.dt), 0, btScalar(options.dt));
+    steps += 100;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return static_cast<double>(steps) / elapsed;
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,49 @@
+#include "robots/drive_controller.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rescuesim {
+
+namespace {
+double approach(double current, double target, double max_step) {
+  return current + std::clamp(target - current, -max_step, max_step);
+}
+}  // namespace
+
+void update_drive(const RobotSpec& spec, RobotState& s, SimTime now, double dt) {
+  const DriveSpec& d = spec.drive;
+  // the command in force: none, or too old, means stop
+  double v = 0, w_cmd = 0;
+  const bool fresh = s.cmd_time.ns >= 0 && (now - s.cmd_time).seconds() <= d.command_timeout;
+  if (fresh) {
+    v = std::clamp(s.cmd_linear.x(), -d.max_linear, d.max_linear);
+    w_cmd = std::clamp(s.cmd_angular.z(), -d.max_angular, d.max_angular);
+  }
+  s.drive_v = approach(s.drive_v, v, d.max_linear_accel * dt);
+  s.drive_w = approach(s.drive_w, w_cmd, d.max_angular_accel * dt);
+  // yaw-rate feedback: the chassis' measured turn rate (about its own z axis) against the set point
+  const double measured_w = (s.base.X_WB.q.conjugate() * s.base.w_WB).z();
+  const double error = s.drive_w - measured_w;
+  s.yaw_rate_integral = std::clamp(s.yaw_rate_integral + error * dt, -0.5, 0.5);
+  const double w = s.drive_w + d.yaw_rate_kp * error + d.yaw_rate_ki * s.yaw_rate_integral;
+  // differential kinematics with the effective (slip-corrected) track
+  const double half_track = 0.5 * d.track_width * d.track_multiplier;
+  const double left = (s.drive_v - w * half_track) / d.wheel_radius;
+  const double right = (s.drive_v + w * half_track) / d.wheel_radius;
+  if (s.joint_target.size() != spec.joints.size()) s.joint_target.assign(spec.joints.size(), 0.0);
+  for (const auto& name : d.left_wheels) s.joint_target[static_cast<std::size_t>(spec.joint_index(name))] = left;
+  for (const auto& name : d.right_wheels) s.joint_target[static_cast<std::size_t>(spec.joint_index(name))] = right;
+}
+
+void update_head(const RobotSpec& spec, RobotState& s) {
+  if (s.joint_target.size() != spec.joints.size()) s.joint_target.assign(spec.joints.size(), 0.0);
+  for (std::size_t i = 0; i < spec.head_joints.size() && i < s.head_target.size(); ++i) {
+    const int j = spec.joint_index(spec.head_joints[i]);
+    if (j < 0) continue;
+    const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
+    s.joint_target[static_cast<std::size_t>(j)] = std::clamp(s.head_target[i], js.lower, js.upper);
+  }
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,200 @@
+#include "session/session.h"
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "core/log.h"
+#include "session/session_controllers.h"
+
+namespace rescuesim {
+
+namespace {
+constexpr double kCoverageCell = 0.5;    // m
+constexpr double kCoverageRadius = 1.0;  // m around the path counts as covered
+}  // namespace
+
+Session::Session(const Scenario& scenario, const ModelMap& models, SessionOptions options)
+    : scenario_(scenario), options_(std::move(options)) {
+  spec_ = build_world(scenario_, &diagnostics_);
+  Diagnostics problems = validate(spec_);
+  diagnostics_.append(problems);
+  if (diagnostics_.has_errors()) diagnostics_.throw_if_errors();
+  World world = compile_scenario(scenario_, spec_, models);
+  SimOptions so = options_.sim;
+  so.seed = scenario_.seed;
+  so.physics.dt = scenario_.physics_dt;
+  so.physics.solver_iterations = scenario_.solver_iterations;
+  sim_ = std::make_unique<Simulation>(std::move(world), so);
+  last_scans_.resize(sim_->world().robots.size());
+
+  // controllers listen to the laser and odometry topics and answer with cmd_vel
+  controllers_ = std::make_unique<Controllers>();
+  const auto configs = robot_configs(scenario_, spec_, models);
+  for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
+    const RobotInstance& robot = sim_->world().robots[r];
+    controllers_->X_WO.push_back(robot.X_W_start.to_pose2());
+    controllers_->explorers.emplace_back();
+    const SensorSpec* laser = nullptr;
+    const SensorSpec* odom = nullptr;
+    for (const auto& s : robot.spec.sensors) {
+      if (s.enabled && s.type == SensorSpec::Type::lidar && s.lidar.layers == 1 && !laser) laser = &s;
+      if (s.enabled && s.type == SensorSpec::Type::odometry && !odom) odom = &s;
+    }
+    const int ri = static_cast<int>(r);
+    if (laser) {
+      sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), [this, r](const Topic&, const msg::Message& m) {
+        last_scans_[r] = std::get<msg::LaserScan>(m);
+      });
+    }
+    const bool wants = options_.controllers && r < configs.size() && configs[r].controller != "none";
+    if (!wants) continue;
+    if (!laser || !odom || robot.spec.link_index(laser->link) != 0) {
+      throw Error({scenario_.source_file, 0, "robots[" + std::to_string(r) + "].controller"},
+                  "the " + configs[r].controller + " needs an enabled planar laser on base_link and odometry");
+    }
+    autonomy::ExplorerConfig ec;
+    if (configs[r].controller == "wall_follower") ec.stuck_window = 1e9;  // never plans: pure wall following
+    controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(laser->X_LS.to_pose2(), ec);
+    autonomy::Explorer* ex = controllers_->explorers.back().get();
+    sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
+      ex->on_odometry(std::get<msg::Odometry>(m));
+    });
+    sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), [this, ex, ri](const Topic&, const msg::Message& m) {
+      const auto& scan = std::get<msg::LaserScan>(m);
+      ex->on_scan(scan);
+      sim_->command_velocity(ri, ex->command(scan.header.stamp));
+    });
+  }
+
+  // the coverage grid: cells of free floor
+  grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
+  grid_w_ = std::max(1, static_cast<int>(std::ceil(grid_box_.size().x() / kCoverageCell)));
+  grid_h_ = std::max(1, static_cast<int>(std::ceil(grid_box_.size().y() / kCoverageCell)));
+  free_cells_.assign(static_cast<std::size_t>(grid_w_ * grid_h_), 1);
+  visited_cells_.assign(free_cells_.size(), 0);
+  for (int y = 0; y < grid_h_; ++y) {
+    for (int x = 0; x < grid_w_; ++x) {
+      const Vec2 c = grid_box_.min + Vec2((x + 0.5) * kCoverageCell, (y + 0.5) * kCoverageCell);
+      bool solid = false;
+      for (const auto& w : spec_.walls) solid = solid || contains(WorldSpec::wall_outline(w), c, 0);
+      for (const auto& b : spec_.blocks) solid = solid || contains(b.outline, c, 0);
+      free_cells_[static_cast<std::size_t>(y * grid_w_ + x)] = solid ? 0 : 1;
+    }
+  }
+  record();
+}
+
+Session::~Session() = default;
+
+void Session::record() {
+  const State& s = sim_->state();
+  if (s.time < next_record_) return;
+  next_record_ = s.time + SimTime::from_seconds(1.0 / options_.trajectory_rate);
+  for (std::size_t r = 0; r < s.robots.size(); ++r) {
+    const RobotState& rs = s.robots[r];
+    const Pose2 truth = rs.base.X_WB.to_pose2();
+    const Vec3 v_B = rs.base.X_WB.q.conjugate() * rs.base.v_WB;
+    trajectory_.push_back({s.time.seconds(), static_cast<int>(r), truth, rs.odom, v_B.x(), rs.base.w_WB.z()});
+    // mark the free cells within reach of the robot as covered
+    const int reach = static_cast<int>(std::ceil(kCoverageRadius / kCoverageCell));
+    const int cx = static_cast<int>(std::floor((truth.x - grid_box_.min.x()) / kCoverageCell));
+    const int cy = static_cast<int>(std::floor((truth.y - grid_box_.min.y()) / kCoverageCell));
+    for (int y = cy - reach; y <= cy + reach; ++y) {
+      for (int x = cx - reach; x <= cx + reach; ++x) {
+        if (x < 0 || y < 0 || x >= grid_w_ || y >= grid_h_) continue;
+        const Vec2 c = grid_box_.min + Vec2((x + 0.5) * kCoverageCell, (y + 0.5) * kCoverageCell);
+        if ((c - truth.position()).norm() <= kCoverageRadius) visited_cells_[static_cast<std::size_t>(y * grid_w_ + x)] = 1;
+      }
+    }
+  }
+}
+
+double Session::coverage() const {
+  int free = 0, seen = 0;
+  for (std::size_t i = 0; i < free_cells_.size(); ++i) {
+    free += free_cells_[i];
+    seen += free_cells_[i] & visited_cells_[i];
+  }
+  return free > 0 ? static_cast<double>(seen) / free : 0.0;
+}
+
+RunResult Session::result() const {
+  const State& s = sim_->state();
+  RunResult r;
+  r.scenario = scenario_.name;
+  r.seed = scenario_.seed;
+  r.sim_time = s.time.seconds();
+  r.wall_time = wall_time_;
+  r.real_time_factor = wall_time_ > 0 ? r.sim_time / wall_time_ : 0;
+  r.stop_reason = stop_reason_;
+  r.trouble = sim_->in_trouble();
+  for (std::size_t v = 0; v < s.victims.size(); ++v) {
+    VictimResult vr;
+    vr.name = sim_->world().victims[v].name;
+    vr.found = s.victims[v].first_seen.ns >= 0;
+    vr.time = vr.found ? s.victims[v].first_seen.seconds() : -1;
+    vr.by = s.victims[v].seen_by;
+    r.victims_found += vr.found;
+    r.victims.push_back(vr);
+  }
+  r.coverage = coverage();
+  for (const auto& rs : s.robots) {
+    r.collisions += rs.collisions;
+    r.distance += rs.distance;
+  }
+  for (const auto& t : sim_->bus().topics()) r.message_counts.emplace_back(t.name, sim_->bus().count(t.id));
+  r.state_hash = state_hash(s);
+  return r;
+}
+
+RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(const RunResult&)>& progress) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const double wall_before = wall_time_;
+  const SimTime end = SimTime::from_seconds(scenario_.duration);
+  const SimTime start_time = sim_->time();
+  auto last_report = t0;
+  stop_reason_ = "duration";
+  const auto all_found = [&] {
+    for (const auto& v : sim_->state().victims) {
+      if (v.first_seen.ns < 0) return false;
+    }
+    return !sim_->state().victims.empty();
+  };
+  while (sim_->time() < end) {
+    if (stop && stop->load(std::memory_order_relaxed)) {
+      stop_reason_ = "interrupted";
+      break;
+    }
+    sim_->step();
+    record();
+    if (sim_->in_trouble()) {
+      stop_reason_ = sim_->state().trouble.first;
+      log::warn("run stopped: {}", stop_reason_);
+      break;
+    }
+    if (scenario_.stop_when_all_found && all_found()) {
+      stop_reason_ = "all victims found";
+      break;
+    }
+    // realtime: wait for the wall clock to catch up with sim time / rate
+    if (scenario_.realtime) {
+      const double due = (sim_->time() - start_time).seconds() / scenario_.rate;
+      const double now = std::chrono::duration<double>(clock::now() - t0).count();
+      if (due > now) std::this_thread::sleep_for(std::chrono::duration<double>(due - now));
+    }
+    if (progress && (sim_->state().step & 63) == 0) {
+      const auto now = clock::now();
+      if (now - last_report > std::chrono::milliseconds(100)) {
+        last_report = now;
+        wall_time_ = wall_before + std::chrono::duration<double>(now - t0).count();
+        progress(result());
+      }
+    }
+  }
+  wall_time_ = wall_before + std::chrono::duration<double>(clock::now() - t0).count();
+  return result();
+}
+
+}  // namespace rescuesim

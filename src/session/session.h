@@ -1,0 +1,104 @@
+#pragma once
+/// A run: a scenario's simulation with its built-in controllers attached, what it recorded,
+/// and the files it leaves (summary.json, overview.png, trajectory.csv, sensors/*.png). The
+/// `rescuesim run` command, batches and the Python API all run scenarios through this.
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/simulation.h"
+#include "world/scenario/scenario.h"
+
+namespace rescuesim {
+
+/// How a victim fared.
+struct VictimResult {
+  std::string name;
+  bool found = false;
+  double time = -1;       ///< sim time first seen (s)
+  std::string by;         ///< robot that saw it
+};
+
+/// What a run measured.
+struct RunResult {
+  std::string scenario;
+  std::uint64_t seed = 0;
+  double sim_time = 0;          ///< s simulated
+  double wall_time = 0;         ///< s it took
+  double real_time_factor = 0;  ///< sim_time / wall_time
+  std::string stop_reason;      ///< "duration", "all victims found", "interrupted", or the trouble message
+  bool trouble = false;         ///< numerical trouble stopped the run
+  std::vector<VictimResult> victims;
+  int victims_found = 0;
+  double coverage = 0;          ///< fraction of free floor passed within 1 m of (see docs/outputs.md)
+  int collisions = 0;           ///< contacts begun with walls, obstacles, victims, robots
+  double distance = 0;          ///< m driven (ground truth)
+  std::vector<std::pair<std::string, std::uint64_t>> message_counts;  ///< per topic
+  std::uint64_t state_hash = 0; ///< of the final State (determinism checks)
+};
+
+/// One trajectory sample.
+struct TrajectoryPoint {
+  double t = 0;
+  int robot = 0;
+  Pose2 truth, odom;
+  double v = 0, w = 0;
+};
+
+/// Settings of a run beyond its scenario.
+struct SessionOptions {
+  bool controllers = true;      ///< attach the scenario's built-in controllers
+  double trajectory_rate = 10;  ///< Hz
+  SimOptions sim;               ///< seed and physics are filled from the scenario
+};
+
+class Session {
+ public:
+  /// Builds the world, validates it (throws Error listing the problems), compiles and sets up.
+  Session(const Scenario& scenario, const ModelMap& models, SessionOptions options = {});
+  ~Session();
+
+  Simulation& sim() { return *sim_; }
+  const Scenario& scenario() const { return scenario_; }
+  const WorldSpec& world_spec() const { return spec_; }
+  /// Warnings from importing the world.
+  const Diagnostics& diagnostics() const { return diagnostics_; }
+
+  /// Steps until the scenario's duration, all victims found (when asked), trouble, or `stop`.
+  /// `progress` is called from the stepping thread about every 0.1 s of wall time.
+  RunResult run(const std::atomic<bool>* stop = nullptr, const std::function<void(const RunResult&)>& progress = nullptr);
+
+  /// The result so far (also valid during or after a run).
+  RunResult result() const;
+  const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
+
+  /// Writes summary.json, overview.png, trajectory.csv, world.svg and sensors/laser.png into
+  /// `dir` (atomically, file by file).
+  void write_outputs(const std::filesystem::path& dir, const RunResult& result) const;
+
+ private:
+  struct Controllers;
+  void record();
+  double coverage() const;
+
+  Scenario scenario_;
+  WorldSpec spec_;
+  Diagnostics diagnostics_;
+  std::unique_ptr<Simulation> sim_;
+  std::unique_ptr<Controllers> controllers_;
+  SessionOptions options_;
+  std::vector<TrajectoryPoint> trajectory_;
+  SimTime next_record_;
+  double wall_time_ = 0;
+  std::string stop_reason_;
+  std::vector<msg::LaserScan> last_scans_;
+  std::vector<std::uint8_t> free_cells_, visited_cells_;
+  Box2 grid_box_;
+  int grid_w_ = 0, grid_h_ = 0;
+};
+
+}  // namespace rescuesim

@@ -1,0 +1,143 @@
+// The files a run leaves behind: summary.json, trajectory.csv, world.svg, overview.png and
+// sensors/laser.png, each written atomically.
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "session/session.h"
+#include "session/session_controllers.h"
+#include "viz/world_plot.h"
+#include "world/svg/svg_world.h"
+
+namespace rescuesim {
+
+namespace {
+
+nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const WorldSpec& w) {
+  nlohmann::ordered_json j;
+  j["scenario"] = r.scenario;
+  j["seed"] = r.seed;
+  j["world"] = w.name;
+  j["world_seed"] = w.seed;
+  j["sim_time_s"] = r.sim_time;
+  j["wall_time_s"] = r.wall_time;
+  j["real_time_factor"] = r.real_time_factor;
+  j["mode"] = s.realtime ? "realtime" : "lockstep";
+  j["stop_reason"] = r.stop_reason;
+  j["trouble"] = r.trouble;
+  j["victims_total"] = r.victims.size();
+  j["victims_found"] = r.victims_found;
+  auto& victims = j["victims"] = nlohmann::ordered_json::array();
+  for (const auto& v : r.victims) {
+    victims.push_back({{"name", v.name}, {"found", v.found}, {"time_s", v.found ? nlohmann::ordered_json(v.time) : nlohmann::ordered_json()},
+                       {"by", v.by}});
+  }
+  j["coverage"] = r.coverage;
+  j["collisions"] = r.collisions;
+  j["distance_m"] = r.distance;
+  auto& counts = j["message_counts"] = nlohmann::ordered_json::object();
+  for (const auto& [topic, n] : r.message_counts) counts[topic] = n;
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
+  j["state_hash"] = hash;
+  return j;
+}
+
+std::string trajectory_csv(const std::vector<TrajectoryPoint>& traj, const World& world) {
+  std::string out = "t,robot,x,y,yaw,odom_x,odom_y,odom_yaw,v,w\n";
+  char line[256];
+  for (const auto& p : traj) {
+    std::snprintf(line, sizeof line, "%.3f,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", p.t,
+                  world.robots[static_cast<std::size_t>(p.robot)].name.c_str(), p.truth.x, p.truth.y, p.truth.yaw, p.odom.x, p.odom.y,
+                  p.odom.yaw, p.v, p.w);
+    out += line;
+  }
+  return out;
+}
+
+/// A polar plot of a laser scan: the robot at the centre, 1 m rings, returns as dots.
+Canvas laser_plot(const msg::LaserScan& scan, const std::string& title) {
+  const int size = 520, c = size / 2;
+  Canvas img(size, size + 24, {255, 255, 255});
+  const double max_r = std::min<double>(scan.range_max > 0 ? scan.range_max : 10.0, 10.0);
+  const double scale = (size / 2 - 20) / max_r;
+  for (int ring = 1; ring <= static_cast<int>(max_r); ++ring) img.circle({c, c}, ring * scale, {225, 225, 225}, 1.0);
+  img.line({c - 10.0, double(c)}, {c + 10.0, double(c)}, {150, 150, 150});
+  img.line({double(c), c - 10.0}, {double(c), c + 10.0}, {150, 150, 150});
+  // x forward points up the image, y left points left
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const double a = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+    const Vec2 dir(-std::sin(a), -std::cos(a));
+    const float r = scan.ranges[i];
+    if (std::isfinite(r)) {
+      img.line({double(c), double(c)}, Vec2(c, c) + dir * r * scale, {200, 225, 255}, 1.0, 0.5);
+      img.fill_circle(Vec2(c, c) + dir * r * scale, 1.8, {200, 30, 30});
+    }
+  }
+  img.fill_circle({double(c), double(c)}, 5, {44, 160, 44});
+  img.text(8, size + 6, title + "  (rings 1 m)", {0, 0, 0}, 1);
+  return img;
+}
+
+}  // namespace
+
+void Session::write_outputs(const std::filesystem::path& dir, const RunResult& result) const {
+  const World& world = sim_->world();
+  write_file_atomic(dir / "summary.json", summary_json(result, scenario_, spec_).dump(2) + "\n");
+  write_file_atomic(dir / "trajectory.csv", trajectory_csv(trajectory_, world));
+  write_file_atomic(dir / "world.svg", world_to_svg(spec_));
+
+  // overview: the world, each robot's laser map (its odometry frame placed at its start), its
+  // path, and the victims found (green ring) or missed (red cross)
+  WorldPlotOptions po;
+  po.title = scenario_.name + " - " + spec_.name + ", seed " + std::to_string(scenario_.seed) + ", " +
+             std::to_string(result.victims_found) + "/" + std::to_string(result.victims.size()) + " victims in " +
+             std::to_string(static_cast<int>(result.sim_time)) + " s";
+  Canvas img = plot_world(spec_, po);
+  const PlotFrame frame = plot_frame_for(spec_, po);
+  for (std::size_t r = 0; r < controllers_->explorers.size(); ++r) {
+    const autonomy::Explorer* ex = controllers_->explorers[r].get();
+    if (!ex) continue;
+    const msg::OccupancyGrid map = ex->map(sim_->time());
+    const Pose2 X_WO = controllers_->X_WO[r];
+    const Pose2 X_OM = map.origin.to_pose2();
+    for (std::uint32_t y = 0; y < map.height; ++y) {
+      for (std::uint32_t x = 0; x < map.width; ++x) {
+        const std::int8_t v = map.data[y * map.width + x];
+        if (v < 65) continue;
+        const Vec2 p_W = (X_WO * X_OM).transform({(x + 0.5) * map.resolution, (y + 0.5) * map.resolution});
+        img.fill_circle(frame.to_px(p_W), std::max(1.0, 0.5 * map.resolution * frame.px_per_m), {90, 110, 200}, 0.6);
+      }
+    }
+  }
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    std::vector<Vec2> path;
+    for (const auto& p : trajectory_) {
+      if (p.robot == static_cast<int>(r)) path.push_back(frame.to_px(p.truth.position()));
+    }
+    img.polyline(path, {20, 160, 60}, 2.0);
+    if (!path.empty()) img.fill_circle(path.back(), 5, {20, 120, 40});
+  }
+  for (std::size_t v = 0; v < world.victims.size() && v < result.victims.size(); ++v) {
+    const Vec2 p = frame.to_px(world.victims[v].pose.position());
+    if (result.victims[v].found) {
+      img.circle(p, 14, {20, 170, 40}, 3.0);
+    } else {
+      img.line(p + Vec2(-10, -10), p + Vec2(10, 10), {220, 30, 30}, 3.0);
+      img.line(p + Vec2(-10, 10), p + Vec2(10, -10), {220, 30, 30}, 3.0);
+    }
+  }
+  img.write_png(dir / "overview.png");
+
+  for (std::size_t r = 0; r < last_scans_.size(); ++r) {
+    if (last_scans_[r].ranges.empty()) continue;
+    const std::string name = world.robots.size() > 1 ? "laser_" + world.robots[r].name + ".png" : "laser.png";
+    char t[64];
+    std::snprintf(t, sizeof t, "%.1f s", last_scans_[r].header.stamp.seconds());
+    laser_plot(last_scans_[r], world.robots[r].name + " laser at " + t).write_png(dir / "sensors" / name);
+  }
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,377 @@
+#include "sim/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "robots/drive_controller.h"
+#include "sensors/imu.h"
+#include "sensors/lidar.h"
+#include "sensors/odometry.h"
+#include "sensors/sonar.h"
+
+namespace rescuesim {
+
+namespace {
+
+SimTime period_of(double rate) { return SimTime::from_seconds(1.0 / rate); }
+
+/// A stamped transform, built field by field.
+msg::TransformStamped transform(SimTime stamp, const std::string& parent, const std::string& child, const Pose3& X) {
+  msg::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform = X;
+  return t;
+}
+
+bool is_camera(SensorSpec::Type t) {
+  return t == SensorSpec::Type::color_camera || t == SensorSpec::Type::depth_camera || t == SensorSpec::Type::thermal_camera;
+}
+
+const char* topic_type(const SensorSpec& s) {
+  switch (s.type) {
+    case SensorSpec::Type::lidar: return s.lidar.layers > 1 ? "sensor_msgs/PointCloud2" : "sensor_msgs/LaserScan";
+    case SensorSpec::Type::sonar: return "sensor_msgs/Range";
+    case SensorSpec::Type::imu: return "sensor_msgs/Imu";
+    case SensorSpec::Type::odometry: return "nav_msgs/Odometry";
+    case SensorSpec::Type::ground_truth: return "geometry_msgs/PoseStamped";
+    case SensorSpec::Type::joint_states: return "sensor_msgs/JointState";
+    case SensorSpec::Type::contact: return "rescuesim_msgs/Contacts";
+    case SensorSpec::Type::color_camera:
+    case SensorSpec::Type::depth_camera:
+    case SensorSpec::Type::thermal_camera: return "sensor_msgs/Image";
+  }
+  return "";
+}
+
+}  // namespace
+
+Simulation::Simulation(World world, const SimOptions& options) : world_(std::move(world)), options_(options) {
+  physics_ = std::make_unique<Physics>(world_, options_.physics);
+  rays_ = std::make_unique<RayScene>(world_);
+  physics_->init_state(state_);
+  state_.victims.assign(world_.victims.size(), VictimState{});
+  for (auto& r : state_.robots) r.odom = Pose2{};
+  setup_topics();
+}
+
+Simulation::~Simulation() = default;
+
+bool Simulation::namespaced() const {
+  switch (options_.namespacing) {
+    case Namespacing::always: return true;
+    case Namespacing::never: return false;
+    case Namespacing::automatic: return world_.robots.size() > 1;
+  }
+  return false;
+}
+
+std::string Simulation::topic_name(int robot, const std::string& relative) const {
+  if (!relative.empty() && relative[0] == '/') return relative;
+  return namespaced() ? "/" + world_.robots[static_cast<std::size_t>(robot)].name + "/" + relative : "/" + relative;
+}
+
+std::string Simulation::frame_name(int robot, const std::string& frame) const {
+  if (frame == "map" || frame.empty()) return frame;
+  return namespaced() ? world_.robots[static_cast<std::size_t>(robot)].name + "/" + frame : frame;
+}
+
+int Simulation::robot_index(const std::string& name) const {
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    if (world_.robots[r].name == name) return static_cast<int>(r);
+  }
+  return -1;
+}
+
+void Simulation::setup_topics() {
+  clock_topic_ = bus_.advertise("/clock", "rosgraph_msgs/Clock", options_.clock_rate > 0 ? options_.clock_rate : 1.0 / dt());
+  tf_topic_ = bus_.advertise("/tf", "tf2_msgs/TFMessage", options_.tf_rate);
+  tf_static_topic_ = bus_.advertise("/tf_static", "tf2_msgs/TFMessage", 0, true);
+  // one random stream and one schedule per sensor, in robot and spec order
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    const RobotInstance& robot = world_.robots[r];
+    for (std::size_t i = 0; i < robot.spec.sensors.size(); ++i) {
+      const SensorSpec& spec = robot.spec.sensors[i];
+      if (!spec.enabled) continue;
+      SensorInstance s;
+      s.robot = static_cast<int>(r);
+      s.index = static_cast<int>(i);
+      s.slot = static_cast<int>(state_.sensors.size());
+      s.period = period_of(spec.rate);
+      const std::string topic = topic_name(s.robot, spec.topic);
+      s.topic = bus_.advertise(topic, topic_type(spec), spec.rate, false, s.robot);
+      if (is_camera(spec.type)) {
+        const std::string base = topic.substr(0, topic.rfind('/'));
+        s.extra_topic = bus_.advertise(base + "/camera_info", "sensor_msgs/CameraInfo", spec.rate, false, s.robot);
+      }
+      SensorSlot slot;
+      slot.rng = Rng(options_.seed, "sensor/" + robot.name + "/" + spec.name);
+      slot.next_due = SimTime{0};
+      state_.sensors.push_back(slot);
+      sensors_.push_back(s);
+    }
+  }
+}
+
+bool Simulation::command_velocity(int robot, const msg::Twist& t) {
+  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return false;
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return false;
+  }
+  std::lock_guard lock(commands_mutex_);
+  commands_.push_back({robot, false, t, {}});
+  return true;
+}
+
+bool Simulation::command_head(int robot, const std::vector<double>& positions) {
+  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return false;
+  if (positions.size() != world_.robots[static_cast<std::size_t>(robot)].spec.head_joints.size()) return false;
+  for (double p : positions) {
+    if (!std::isfinite(p)) return false;
+  }
+  std::lock_guard lock(commands_mutex_);
+  commands_.push_back({robot, true, {}, positions});
+  return true;
+}
+
+void Simulation::pre_step() {
+  // commands queued since the last step, in arrival order
+  std::vector<Command> pending;
+  {
+    std::lock_guard lock(commands_mutex_);
+    pending.swap(commands_);
+  }
+  for (const auto& c : pending) {
+    RobotState& rs = state_.robots[static_cast<std::size_t>(c.robot)];
+    if (c.is_head) {
+      rs.head_target = c.head;
+    } else {
+      rs.cmd_linear = c.twist.linear;
+      rs.cmd_angular = c.twist.angular;
+      rs.cmd_time = state_.time;
+    }
+  }
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    update_drive(world_.robots[r].spec, state_.robots[r], state_.time, dt());
+    update_head(world_.robots[r].spec, state_.robots[r]);
+  }
+}
+
+void Simulation::step() {
+  if (in_trouble()) return;
+  if (!started_) {
+    started_ = true;
+    publish_tf_static();
+    post_step();
+  }
+  pre_step();
+  const std::vector<Vec3> before = [&] {
+    std::vector<Vec3> p;
+    for (const auto& r : state_.robots) p.push_back(r.base.X_WB.p);
+    return p;
+  }();
+  physics_->step(state_);
+  state_.time += SimTime::from_seconds(dt());
+  ++state_.step;
+  rays_current_ = false;
+  for (std::size_t r = 0; r < state_.robots.size(); ++r) state_.robots[r].distance += (state_.robots[r].base.X_WB.p - before[r]).head<2>().norm();
+  // wheel odometry integrates every step, whatever rate it publishes at
+  for (const auto& s : sensors_) {
+    const SensorSpec& spec = world_.robots[static_cast<std::size_t>(s.robot)].spec.sensors[static_cast<std::size_t>(s.index)];
+    if (spec.type == SensorSpec::Type::odometry) integrate_odometry(world_, state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
+  }
+  if (in_trouble()) return;
+  post_step();
+}
+
+bool Simulation::step_until(SimTime t) {
+  while (state_.time < t && !in_trouble()) step();
+  return !in_trouble();
+}
+
+void Simulation::post_step() {
+  const SimTime now = state_.time;
+  if (now >= next_clock_) {
+    bus_.publish(clock_topic_, msg::Clock{now});
+    next_clock_ = options_.clock_rate > 0 ? next_clock_ + period_of(options_.clock_rate) : now;
+    if (options_.clock_rate <= 0) next_clock_ = now + SimTime{1};
+  }
+  for (const auto& s : sensors_) {
+    SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
+    if (now < slot.next_due) continue;
+    sample(s);
+    ++slot.count;
+    // the next due time keeps the nominal grid, even if a step overshot this one
+    while (slot.next_due <= now) slot.next_due += s.period;
+  }
+  if (now >= next_tf_) {
+    publish_tf();
+    while (next_tf_ <= now) next_tf_ += period_of(options_.tf_rate);
+  }
+  if (now >= next_victim_check_ && !world_.victims.empty()) {
+    check_victims();
+    while (next_victim_check_ <= now) next_victim_check_ += period_of(options_.victim_check_rate);
+  }
+}
+
+void Simulation::sample(const SensorInstance& s) {
+  const RobotInstance& robot = world_.robots[static_cast<std::size_t>(s.robot)];
+  const SensorSpec& spec = robot.spec.sensors[static_cast<std::size_t>(s.index)];
+  SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
+  const RobotState& rs = state_.robots[static_cast<std::size_t>(s.robot)];
+  const SimTime now = state_.time;
+  SensorSpec framed = spec;
+  framed.frame_id = frame_name(s.robot, spec.frame_id);
+  auto rays = [&]() -> const RayScene& {
+    if (!rays_current_) {
+      rays_->update(state_);
+      rays_current_ = true;
+    }
+    return *rays_;
+  };
+  switch (spec.type) {
+    case SensorSpec::Type::lidar:
+      if (spec.lidar.layers > 1) {
+        bus_.publish(s.topic, sample_lidar_cloud(world_, state_, rays(), s.robot, framed, now, slot.rng));
+      } else {
+        bus_.publish(s.topic, sample_lidar(world_, state_, rays(), s.robot, framed, now, slot.rng));
+      }
+      break;
+    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_sonar(world_, state_, rays(), s.robot, framed, now, slot.rng)); break;
+    case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, framed, now, slot)); break;
+    case SensorSpec::Type::odometry: {
+      const msg::Odometry odom = odometry_message(world_, state_, s.robot, framed, now, frame_name(s.robot, "base_link"));
+      if (!options_.tf_from_ground_truth) {
+        msg::TFMessage tf;
+        tf.transforms.push_back(transform(now, odom.header.frame_id, odom.child_frame_id, odom.pose));
+        bus_.publish(tf_topic_, std::move(tf));
+      }
+      bus_.publish(s.topic, odom);
+      break;
+    }
+    case SensorSpec::Type::ground_truth: {
+      msg::PoseStamped p;
+      p.header = {now, "map"};
+      p.pose = rs.base.X_WB;
+      bus_.publish(s.topic, std::move(p));
+      msg::TFMessage tf;
+      if (options_.tf_from_ground_truth) {
+        tf.transforms.push_back(transform(now, frame_name(s.robot, "odom"), frame_name(s.robot, "base_link"), rs.base.X_WB));
+      }
+      if (options_.publish_map_to_odom) {
+        // map -> odom such that map -> odom -> base_link is the true pose
+        const Pose3 X_OB = options_.tf_from_ground_truth ? rs.base.X_WB : Pose3::from_pose2(rs.odom);
+        tf.transforms.push_back(transform(now, "map", frame_name(s.robot, "odom"), rs.base.X_WB * X_OB.inverse()));
+      }
+      if (!tf.transforms.empty()) bus_.publish(tf_topic_, std::move(tf));
+      break;
+    }
+    case SensorSpec::Type::joint_states: {
+      msg::JointState js;
+      js.header = {now, ""};
+      for (std::size_t j = 0; j < robot.spec.joints.size(); ++j) {
+        if (robot.spec.joints[j].type == JointSpec::Type::fixed) continue;
+        js.name.push_back(robot.spec.joints[j].name);
+        js.position.push_back(rs.q[j]);
+        js.velocity.push_back(rs.qd[j]);
+        js.effort.push_back(rs.effort[j]);
+      }
+      bus_.publish(s.topic, std::move(js));
+      break;
+    }
+    case SensorSpec::Type::contact: {
+      msg::Contacts c;
+      c.header.stamp = now;
+      c.header.frame_id = framed.frame_id;
+      c.touching = rs.touching;
+      bus_.publish(s.topic, std::move(c));
+      break;
+    }
+    case SensorSpec::Type::color_camera:
+    case SensorSpec::Type::depth_camera:
+    case SensorSpec::Type::thermal_camera:
+      if (cameras_) cameras_->sample(world_, state_, s, slot, [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
+      break;
+  }
+}
+
+void Simulation::publish_tf_static() {
+  // every sensor mount, and every fixed joint, relative to its link
+  msg::TFMessage tf;
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    const RobotSpec& spec = world_.robots[r].spec;
+    const int ri = static_cast<int>(r);
+    for (const auto& j : spec.joints) {
+      if (j.type == JointSpec::Type::fixed) tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
+    }
+    for (const auto& s : spec.sensors) {
+      if (s.frame_id.empty() || s.frame_id == s.link || s.type == SensorSpec::Type::odometry || s.type == SensorSpec::Type::ground_truth) continue;
+      tf.transforms.push_back(transform(SimTime{}, frame_name(ri, s.link), frame_name(ri, s.frame_id), s.X_LS));
+    }
+  }
+  bus_.publish(tf_static_topic_, std::move(tf));
+}
+
+void Simulation::publish_tf() {
+  // moving joints: each child link relative to its parent at the current joint position
+  msg::TFMessage tf;
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    const RobotSpec& spec = world_.robots[r].spec;
+    const RobotState& rs = state_.robots[r];
+    for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+      const JointSpec& js = spec.joints[j];
+      if (js.type == JointSpec::Type::fixed) continue;
+      const Pose3 X = js.X_PJ * Pose3{Vec3::Zero(), Quat(Eigen::AngleAxisd(rs.q[j], js.axis.normalized()))};
+      tf.transforms.push_back(transform(state_.time, frame_name(static_cast<int>(r), js.parent), frame_name(static_cast<int>(r), js.child), X));
+    }
+  }
+  if (!tf.transforms.empty()) bus_.publish(tf_topic_, std::move(tf));
+}
+
+void Simulation::check_victims() {
+  if (!rays_current_) {
+    rays_->update(state_);
+    rays_current_ = true;
+  }
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    const RobotSpec& spec = world_.robots[r].spec;
+    // a victim is seen when it is in the thermal camera's view, in range, and not hidden
+    const SensorSpec* cam = nullptr;
+    for (const auto& s : spec.sensors) {
+      if (s.type == SensorSpec::Type::thermal_camera) cam = &s;
+    }
+    if (!cam) continue;
+    const int link = spec.link_index(cam->link);
+    const Pose3 X_WC = state_.robots[r].X_WL[static_cast<std::size_t>(link)] * cam->X_LS;
+    const double tan_h = std::tan(cam->camera.hfov / 2);
+    const double tan_v = tan_h * cam->camera.height / cam->camera.width;
+    for (std::size_t v = 0; v < world_.victims.size(); ++v) {
+      VictimState& vs = state_.victims[v];
+      if (vs.first_seen.ns >= 0) continue;
+      for (int part : world_.victims[v].parts) {
+        const Vec3 p_W = world_.statics[static_cast<std::size_t>(part)].X_WO.p;
+        const Vec3 p_C = X_WC.inverse() * p_W;
+        if (p_C.x() <= cam->camera.min_range || p_C.x() > cam->camera.max_range) continue;
+        if (std::abs(p_C.y()) > tan_h * p_C.x() || std::abs(p_C.z()) > tan_v * p_C.x()) continue;
+        const Vec3 d = p_W - X_WC.p;
+        Ray ray{X_WC.p, d.normalized(), static_cast<float>(d.norm() + 0.05)};
+        RayHit hit;
+        rays_->cast({&ray, 1}, {&hit, 1}, static_cast<int>(r));
+        if (hit.source == RayHit::Source::static_object && world_.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
+          vs.first_seen = state_.time;
+          vs.seen_by = world_.robots[r].name;
+          break;
+        }
+      }
+    }
+  }
+}
+
+void Simulation::restore(const State& state) {
+  state_ = state;
+  physics_->restore(state_);
+  rays_current_ = false;
+}
+
+}  // namespace rescuesim

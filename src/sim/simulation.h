@@ -1,0 +1,136 @@
+#pragma once
+/// Simulation: owns the World, the State, the physics engine, the ray scene and the sensors,
+/// and steps them in phases:
+///   PreStep   apply queued commands; drive and head controllers
+///   Physics   one fixed step of Bullet
+///   PostStep  odometry; every sensor due at this time samples a const State and publishes
+/// Messages go to the Bus stamped with sim time. Commands may come from any thread; they
+/// are queued and applied at the next step boundary, so a run's messages do not depend on
+/// thread timing.
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "physics/physics.h"
+#include "raycast/ray_scene.h"
+#include "sim/bus.h"
+#include "world/state.h"
+#include "world/world.h"
+
+namespace rescuesim {
+
+/// How topics and frames of several robots are told apart.
+enum class Namespacing { automatic, always, never };
+
+/// Settings of a simulation.
+struct SimOptions {
+  PhysicsOptions physics;
+  std::uint64_t seed = 1;              ///< every noise stream derives from (seed, robot, sensor)
+  double clock_rate = 0;               ///< Hz for /clock; 0 = every step
+  double tf_rate = 50;                 ///< Hz for moving joints on /tf
+  bool tf_from_ground_truth = false;   ///< odom -> base_link from ground truth instead of wheel odometry
+  bool publish_map_to_odom = false;    ///< also map -> odom from ground truth
+  Namespacing namespacing = Namespacing::automatic;  ///< automatic: prefixes only with two or more robots
+  double victim_check_rate = 5;        ///< Hz: how often victims in view are looked for
+};
+
+/// A sensor of a robot, as the simulation schedules it.
+struct SensorInstance {
+  int robot = 0;
+  int index = 0;                       ///< into the robot's spec.sensors
+  int slot = 0;                        ///< into State::sensors
+  int topic = -1;                      ///< Bus topic id
+  int extra_topic = -1;                ///< e.g. camera_info, point cloud
+  SimTime period;
+};
+
+/// A camera renderer: given a robot's camera sensor, produce its messages. The render thread
+/// service (src/render) implements it; the simulation only calls it.
+class CameraService {
+ public:
+  virtual ~CameraService() = default;
+  /// Publishes the camera sensor's messages for `state` via `publish(topic, message)`.
+  virtual void sample(const World& world, const State& state, const SensorInstance& sensor, SensorSlot& slot,
+                      const std::function<void(int, msg::Message)>& publish) = 0;
+};
+
+class Simulation {
+ public:
+  Simulation(World world, const SimOptions& options = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  const World& world() const { return world_; }
+  const State& state() const { return state_; }
+  Bus& bus() { return bus_; }
+  const SimOptions& options() const { return options_; }
+  SimTime time() const { return state_.time; }
+  double dt() const { return physics_->dt(); }
+  const std::vector<SensorInstance>& sensors() const { return sensors_; }
+  const RayScene& ray_scene() const { return *rays_; }
+
+  /// One step of dt (the first call also publishes the state at t = 0: /tf_static, first samples).
+  void step();
+  /// Steps until sim time reaches `t` (or trouble stops the run); returns false on trouble.
+  bool step_until(SimTime t);
+  /// True when numerical trouble stopped the simulation (see state().trouble).
+  bool in_trouble() const { return state_.trouble.nan_poses + state_.trouble.escaped > 0; }
+
+  /// cmd_vel for a robot: applied at the next step boundary. Non-finite values are rejected
+  /// (returns false); the drive clamps the rest to its limits.
+  bool command_velocity(int robot, const msg::Twist& twist);
+  /// Head joint position targets (rad), one per head joint in RobotSpec::head_joints order.
+  bool command_head(int robot, const std::vector<double>& positions);
+
+  /// Robot index by name, or -1.
+  int robot_index(const std::string& name) const;
+  /// The absolute topic name of a robot's relative topic ("scan" -> "/scan" or "/robot2/scan").
+  std::string topic_name(int robot, const std::string& relative) const;
+  /// A robot's frame name ("base_link" -> "base_link" or "robot2/base_link").
+  std::string frame_name(int robot, const std::string& frame) const;
+
+  /// Cameras are sampled through this service when one is attached (none: cameras are skipped).
+  void set_camera_service(CameraService* service) { cameras_ = service; }
+
+  /// A copy of the state, and a way back to it (see Physics::restore for the fine print).
+  State snapshot() const { return state_; }
+  void restore(const State& state);
+
+ private:
+  void setup_topics();
+  void pre_step();
+  void post_step();
+  void sample(const SensorInstance& s);
+  void publish_tf_static();
+  void publish_tf();
+  void check_victims();
+  bool namespaced() const;
+
+  World world_;
+  SimOptions options_;
+  State state_;
+  Bus bus_;
+  std::unique_ptr<Physics> physics_;
+  std::unique_ptr<RayScene> rays_;
+  bool rays_current_ = false;
+  std::vector<SensorInstance> sensors_;
+  CameraService* cameras_ = nullptr;
+  bool started_ = false;
+  int clock_topic_ = -1, tf_topic_ = -1, tf_static_topic_ = -1;
+  SimTime next_clock_, next_tf_, next_victim_check_;
+
+  struct Command {
+    int robot;
+    bool is_head;
+    msg::Twist twist;
+    std::vector<double> head;
+  };
+  std::mutex commands_mutex_;
+  std::vector<Command> commands_;
+};
+
+}  // namespace rescuesim

@@ -1,0 +1,99 @@
+#pragma once
+/// RobotSpec: a robot described as data — links with mass and shapes, joints with limits and
+/// actuation, a drive, and sensors with their mount frames. The built-in rescue robot
+/// (src/robots) is one; URDF models will produce the same structure. Frames: each link's
+/// frame is its joint frame; X_PJ places a joint in its parent link's frame.
+
+#include <string>
+#include <vector>
+
+#include "core/pose.h"
+#include "world/geometry.h"
+#include "world/sensor_spec.h"
+
+namespace rescuesim {
+
+/// One shape of a link, for collision and looks.
+struct LinkShape {
+  Geometry geometry;
+  Pose3 X_LG;                 ///< shape frame in the link frame
+  std::string material;       ///< a world material name, or one of the robot's own
+  bool collides = true;
+};
+
+/// A rigid link.
+struct LinkSpec {
+  std::string name;
+  double mass = 1.0;          ///< kg
+  Vec3 inertia{0.01, 0.01, 0.01};  ///< principal moments about the centre of mass (kg m^2)
+  Vec3 com = Vec3::Zero();    ///< centre of mass in the link frame (m)
+  std::vector<LinkShape> shapes;
+  /// Friction scale along the link's own x, y, z axes (anisotropic friction): skid-steer
+  /// wheels slide sideways more easily than they roll, which lets the robot turn in place.
+  Vec3 friction_scale = Vec3::Ones();
+};
+
+/// A joint between a parent link and a child link.
+struct JointSpec {
+  enum class Type { revolute, continuous, fixed };
+  enum class Control { none, velocity, position };
+  std::string name;
+  Type type = Type::revolute;
+  std::string parent, child;  ///< link names
+  Pose3 X_PJ;                 ///< joint (= child link) frame in the parent link frame at q = 0
+  Vec3 axis = Vec3::UnitZ();  ///< rotation axis in the joint frame
+  double lower = -M_PI, upper = M_PI;  ///< position limits (rad), revolute only
+  double max_effort = 10.0;   ///< N m
+  double max_velocity = 2.0;  ///< rad/s
+  double damping = 0.0;       ///< viscous joint damping (N m s/rad)
+  Control control = Control::none;
+  double kp = 8.0;            ///< position gain (1/s): joint speed = kp × position error, within max_velocity
+  double initial = 0.0;       ///< starting position (rad)
+};
+
+/// How cmd_vel becomes wheel velocities.
+struct DriveSpec {
+  std::vector<std::string> left_wheels, right_wheels;  ///< joint names, positive = forward
+  double wheel_radius = 0.1;        ///< m
+  double track_width = 0.5;         ///< m, between left and right wheel centres
+  /// Skid-steer slip factor: the effective track is track_width × this (like
+  /// diff_drive_controller's wheel_separation_multiplier); used by the controller and odometry.
+  double track_multiplier = 1.0;
+  double max_linear = 1.0;          ///< m/s
+  double max_angular = 2.0;         ///< rad/s
+  double max_linear_accel = 2.5;    ///< m/s^2
+  double max_angular_accel = 6.0;   ///< rad/s^2
+  double command_timeout = 0.5;     ///< s without cmd_vel before the robot stops
+  /// Yaw-rate feedback from the chassis gyro (proportional, and integral in 1/s): skid-steer turning
+  /// depends on how the wheels slide, so the controller trims the wheel speed difference until
+  /// the chassis turns at the commanded rate. Zero gains give a purely open-loop drive.
+  double yaw_rate_kp = 3.0, yaw_rate_ki = 20.0;
+};
+
+/// A whole robot model.
+struct RobotSpec {
+  std::string model;                 ///< e.g. "rescue_robot"
+  std::vector<LinkSpec> links;       ///< links[0] is the base (chassis)
+  std::vector<JointSpec> joints;     ///< in tree order: a joint's parent appears before its child
+  DriveSpec drive;
+  std::vector<std::string> head_joints;  ///< joints driven by /head/command, in message order
+  std::vector<SensorSpec> sensors;
+
+  /// Index of a link or joint by name, or -1.
+  int link_index(const std::string& name) const;
+  int joint_index(const std::string& name) const;
+  /// The sensor with this name, or nullptr.
+  const SensorSpec* find_sensor(const std::string& name) const;
+  SensorSpec* find_sensor(const std::string& name);
+  /// Total mass (kg).
+  double total_mass() const;
+};
+
+/// Poses of every link in the base link's frame for joint positions `q` (one per joint, in
+/// joint order; fixed joints ignore theirs): X_BL = X_BP * X_PJ * rotation(axis, q).
+std::vector<Pose3> link_poses(const RobotSpec& robot, const std::vector<double>& q);
+
+/// Joint positions at the start (each joint's `initial`).
+std::vector<double> initial_positions(const RobotSpec& robot);
+
+}  // namespace rescuesim

@@ -1,0 +1,88 @@
+#pragma once
+/// Sensor descriptions as data: what each sensor is, where it is mounted, how often it samples
+/// and how it is noisy. Samplers live in src/sensors; these are plain settings.
+
+#include <string>
+
+#include "core/pose.h"
+
+namespace rescuesim {
+
+/// Additive noise: white Gaussian noise plus a bias that starts at `bias` and random-walks.
+struct NoiseSpec {
+  double stddev = 0.0;       ///< white noise standard deviation (sensor units)
+  double bias = 0.0;         ///< initial bias
+  double bias_walk = 0.0;    ///< bias random walk: standard deviation growth per sqrt(second)
+};
+
+/// A planar or multi-layer scanning laser range finder.
+struct LidarSpec {
+  double min_angle = -M_PI * 3 / 4;  ///< first beam, rad, counter-clockwise from the sensor's x axis
+  double max_angle = M_PI * 3 / 4;   ///< last beam
+  int samples = 541;                 ///< beams per layer
+  int layers = 1;                    ///< 1 = planar
+  double vertical_fov = 0.0;         ///< rad between the lowest and highest layer
+  double min_range = 0.05;           ///< m
+  double max_range = 20.0;           ///< m
+  NoiseSpec noise{0.01, 0, 0};       ///< range noise (m)
+};
+
+/// An ultrasonic range finder: a cone sampled by rays, reporting the nearest return.
+struct SonarSpec {
+  double fov = 0.5;                  ///< full cone angle (rad)
+  int rays = 5;                      ///< rays across the cone in each direction (rays × rays in all)
+  double min_range = 0.03;           ///< m
+  double max_range = 4.0;            ///< m
+  double max_incidence = 1.05;       ///< rad: steeper than this from the surface normal gives no echo
+  NoiseSpec noise{0.01, 0, 0};
+};
+
+/// Inertial measurement unit on a link.
+struct ImuSpec {
+  NoiseSpec gyro{0.002, 0, 0.0005};      ///< rad/s
+  NoiseSpec accel{0.02, 0, 0.001};       ///< m/s^2
+  NoiseSpec orientation{0.0, 0, 0};      ///< rad (applied to yaw, pitch and roll)
+};
+
+/// Wheel odometry: travel integrated from wheel joint velocities, so it drifts with slip.
+/// Heading comes from the chassis gyro by default, as on most real skid-steer robots (their
+/// wheel-derived turn rate is off by however much the wheels skid); set gyro_heading false for
+/// pure wheel odometry.
+struct OdometrySpec {
+  NoiseSpec wheel_noise{0.0, 0, 0};      ///< relative noise on each wheel speed (fraction)
+  bool gyro_heading = true;              ///< heading from the gyro rather than from the wheel speed difference
+  NoiseSpec gyro{0.002, 0, 0.0002};      ///< yaw-rate noise of that gyro (rad/s)
+};
+
+/// A pinhole camera (colour, depth or thermal); rendered by src/render.
+struct CameraSpec {
+  int width = 320, height = 240;
+  double hfov = 1.2;                 ///< horizontal field of view (rad)
+  double near_clip = 0.05, far_clip = 30.0;  ///< m
+  double min_range = 0.1, max_range = 10.0;  ///< depth/thermal useful range (m)
+  NoiseSpec noise;                   ///< pixel noise (colour: 0..1; depth: metres at 1 m; thermal: K)
+  double blur_sigma = 1.5;           ///< thermal: Gaussian blur (px)
+};
+
+/// What kind of sensor, and the settings of that kind.
+struct SensorSpec {
+  enum class Type { lidar, sonar, imu, odometry, ground_truth, joint_states, contact, color_camera, depth_camera, thermal_camera };
+  std::string name;          ///< unique per robot, e.g. "scan", "sonar_front"
+  Type type = Type::lidar;
+  std::string link = "base_link";  ///< mount link
+  Pose3 X_LS;                ///< sensor frame in the link frame (x forward, z up; cameras: optical frame derived)
+  double rate = 10.0;        ///< Hz
+  bool enabled = true;
+  std::string topic;         ///< relative topic name, e.g. "scan" (namespaced by robot when needed)
+  std::string frame_id;      ///< frame name for messages, e.g. "laser"
+  LidarSpec lidar;
+  SonarSpec sonar;
+  ImuSpec imu;
+  OdometrySpec odometry;
+  CameraSpec camera;
+};
+
+/// Readable name of a sensor type ("lidar", "sonar", ...).
+const char* sensor_type_name(SensorSpec::Type t);
+
+}  // namespace rescuesim

@@ -1,0 +1,98 @@
+#pragma once
+/// World: the compiled, immutable description of a simulation — every object as a shape with a
+/// pose and a material, victims as human figures, robots as placed RobotSpecs. Physics, ray
+/// casting and rendering are built from it; nothing in it changes while a simulation runs (that
+/// is State, in src/sim).
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "world/geometry.h"
+#include "world/robot_spec.h"
+#include "world/world_spec.h"
+
+namespace rescuesim {
+
+/// What an object is, for sensors and statistics.
+enum class ObjectKind { floor, wall, obstacle, platform, ramp, victim, rubble, robot };
+
+/// A piece of static geometry fixed in the world.
+struct StaticObject {
+  std::string name;
+  ObjectKind kind = ObjectKind::wall;
+  Geometry geometry;
+  Pose3 X_WO;                 ///< shape frame in the world
+  int material = 0;           ///< index into World::materials
+  double temperature = -1;    ///< K; < 0: the material's (or ambient)
+  int victim = -1;            ///< index into World::victims for victim body parts
+};
+
+/// A loose rigid body (rubble).
+struct DynamicObject {
+  std::string name;
+  Geometry geometry;
+  Pose3 X_WO;                 ///< initial pose of the body (centre of mass at the origin)
+  double mass = 1.0;          ///< kg
+  Vec3 inertia{0.01, 0.01, 0.01};  ///< principal moments (kg m^2)
+  int material = 0;
+};
+
+/// A victim: where they are and which static parts make up their body.
+struct Victim {
+  std::string name;
+  Pose2 pose;
+  VictimSpec::Posture posture = VictimSpec::Posture::lying;
+  std::vector<int> parts;     ///< indices into World::statics
+  Vec3 centre = Vec3::Zero(); ///< centre of the body (m), for "seen" checks
+  double skin_temperature = 307.15, clothes_temperature = 301.15;
+};
+
+/// A robot in the world.
+struct RobotInstance {
+  std::string name;           ///< unique, used for topic namespaces
+  RobotSpec spec;
+  Pose3 X_W_start;            ///< base link pose at the start
+};
+
+/// The compiled world.
+struct World {
+  std::string name;
+  Box2 floor;                          ///< floor rectangle (m); the floor slab extends beyond it
+  double ambient_temperature = 293.15; ///< K
+  double gravity = 9.81;               ///< m/s^2
+  std::vector<MaterialSpec> materials;
+  std::vector<StaticObject> statics;
+  std::vector<DynamicObject> dynamics;
+  std::vector<Victim> victims;
+  std::vector<RobotInstance> robots;
+  std::vector<LightSpec> lights;
+  std::uint64_t world_seed = 0;        ///< of a generated world
+
+  /// Index of a material by name; throws Error when it is missing.
+  int material_index(const std::string& name) const;
+  /// Temperature (K) of a static object's surface.
+  double temperature_of(const StaticObject& o) const;
+};
+
+/// How to compile a WorldSpec.
+struct CompileOptions {
+  double floor_margin = 2.0;   ///< the floor slab extends this far beyond the drawn floor (m)
+  double floor_thickness = 0.2;
+};
+
+/// Compiles a validated WorldSpec with the robot models it names (by model name). Robots
+/// are placed at their start poses with their wheels on the ground. Throws Error for a robot
+/// model that is not in `models`.
+World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options = {});
+
+/// The body parts of a victim as (geometry, pose in the world, material name) triples: torso,
+/// head, arms and legs from boxes, spheres and cylinders, lying or sitting.
+struct BodyPart {
+  Geometry geometry;
+  Pose3 X_WP;
+  bool skin = false;  ///< exposed skin (head, hands) rather than clothes
+};
+std::vector<BodyPart> victim_body(const VictimSpec& v);
+
+}  // namespace rescuesim
