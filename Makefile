@@ -32,7 +32,7 @@ test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 bench: build
-	$(BUILD)/bin/world_bench
+	$(BUILD)/bin/rescuesim bench --out $(BUILD)/bench.json
 
 clean:
 	rm -rf $(BUILD) runs

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   app::add_run_command(app, action);
   app::add_maze_command(app, action);
   app::add_check_command(app, action);
+  app::add_bench_command(app, action);
 
   try {
     app.parse(argc, argv);

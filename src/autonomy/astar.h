@@ -16,7 +16,7 @@ struct PlannerConfig {
   /// Costs for goal planning; frontier search never crosses unknown cells whatever
   /// `unknown_traversable` says.
   CostMapConfig cost;
-  int min_frontier_cells = 8;        ///< a frontier cluster (8-connected) needs this many cells
+  int min_frontier_cells = 12;       ///< a frontier cluster (8-connected) needs this many cells
   double min_frontier_distance = 0.5;  ///< m; frontier cells nearer the start are skipped
   double excluded_radius = 1.0;      ///< m; frontier cells this near an excluded point are skipped
   /// m; when the start lies in lethal space (robot pressed against a wall), lethal but

@@ -196,7 +196,7 @@ msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
   }
 
   // stuck: plan a trip to new terrain (at most once per replan period)
-  const StuckReason reason = stuck_reason(now);
+  const StuckReason reason = config_.frontier_trips ? stuck_reason(now) : StuckReason::none;
   if (reason == StuckReason::none || !may_plan(now)) return twist;
   last_stuck_ = reason;
   if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
@@ -225,10 +225,12 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
     start_wall_following(now);
     return wall_follow(X_OB, now);
   }
-  // replan when stuck on the path, when the target is explored on the way, or when the map
-  // shows an obstacle on what is left of the path
-  bool replan = false;
-  if (follower_.status() == PathStatus::stuck) {
+  // replan (at most once per replan period) when stuck on the path, when the target was
+  // explored on the way, or when the map shows an obstacle on what is left of the path;
+  // a frontier whose paths got stuck max_tries times is given up
+  const bool stuck = follower_.status() == PathStatus::stuck;
+  if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
+  if (stuck) {
     ++stats_.path_stuck;
     if (++tries_ >= config_.max_tries) {
       ++stats_.abandoned;
@@ -236,25 +238,16 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
       start_wall_following(now);
       return wall_follow(X_OB, now);
     }
-    replan = true;
-  } else if (may_plan(now)) {
-    if (!still_frontier(target_O_)) {
-      replan = true;
-    } else if (path_blocked(mapper_, follower_.path(), follower_.next_index(), X_OB.position(),
-                            config_.blocked_clearance_factor * config_.robot_radius)) {
-      ++stats_.path_blocked;
-      replan = true;
-    }
+  } else if (still_frontier(target_O_)) {
+    if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
+    ++stats_.path_blocked;
   }
-  if (replan) {
-    if (!may_plan(now)) return {};
-    std::vector<Vec2> path = plan_frontier(X_OB, now);
-    if (path.empty()) {
-      start_wall_following(now);
-      return wall_follow(X_OB, now);
-    }
-    start_path(std::move(path), ExplorerMode::to_frontier, now);
+  std::vector<Vec2> path = plan_frontier(X_OB, now);
+  if (path.empty()) {
+    start_wall_following(now);
+    return wall_follow(X_OB, now);
   }
+  start_path(std::move(path), ExplorerMode::to_frontier, now);
   return follow_path(X_OB, now);
 }
 
@@ -263,36 +256,51 @@ msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
     mode_ = ExplorerMode::at_goal;
     return {};
   }
-  // plan on request, then on a period (the map grows), when stuck, or when blocked
-  bool replan = goal_needs_plan_ || follower_.status() == PathStatus::idle;
-  if (follower_.status() == PathStatus::stuck) {
-    ++stats_.path_stuck;
-    replan = true;
-  } else if (!replan && (now - last_plan_).seconds() >= config_.goal_replan_period) {
-    replan = true;
-  }
-  if (replan && (goal_needs_plan_ || may_plan(now))) {
-    goal_needs_plan_ = false;
-    planned_ = true;
-    last_plan_ = now;
-    ++stats_.plans;
-    std::vector<Vec2> path = planner_.plan(mapper_, X_OB.position(), *goal_O_);
-    if (path.empty()) {
-      follower_.clear();
-      path_msg_.poses.clear();
-      return {};
+  // plan on request; replan (at most once per replan period) when there is no path, when
+  // stuck, when the map shows an obstacle on the path, and every goal_replan_period as the
+  // map grows
+  const bool stuck = follower_.status() == PathStatus::stuck;
+  const bool no_path = follower_.status() == PathStatus::idle;
+  if (!goal_needs_plan_) {
+    if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
+    if (stuck) {
+      ++stats_.path_stuck;
+    } else if (!no_path && (now - last_plan_).seconds() < config_.goal_replan_period) {
+      if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
+      ++stats_.path_blocked;
     }
-    // end exactly on the goal rather than its cell's centre
-    path.back() = *goal_O_;
-    start_path(std::move(path), ExplorerMode::to_goal, now);
   }
+  goal_needs_plan_ = false;
+  planned_ = true;
+  last_plan_ = now;
+  ++stats_.plans;
+  std::vector<Vec2> path = planner_.plan(mapper_, X_OB.position(), *goal_O_);
+  if (path.empty()) {
+    // unreachable on the map so far: stand still and try again later
+    follower_.clear();
+    path_msg_.poses.clear();
+    return {};
+  }
+  path.back() = *goal_O_;  // end on the goal itself rather than its cell's centre
+  start_path(std::move(path), ExplorerMode::to_goal, now);
   return follow_path(X_OB, now);
+}
+
+bool Explorer::due_for_check(SimTime now) {
+  if ((now - last_check_).seconds() < config_.replan_period) return false;
+  last_check_ = now;
+  return true;
+}
+
+bool Explorer::path_ahead_blocked(const Pose2& X_OB) const {
+  return path_blocked(mapper_, follower_.path(), follower_.next_index(), X_OB.position(),
+                      config_.blocked_clearance_factor * config_.robot_radius);
 }
 
 msg::Twist Explorer::follow_path(const Pose2& X_OB, SimTime now) {
   msg::Twist twist = follower_.command(X_OB, now);
   // the laser overrules the map: slow, then stop forward motion, when something is close ahead
-  const double ahead = free_distance_ahead(points_B_, config_.robot_radius + 0.05);
+  const double ahead = free_distance_ahead(points_B_, config_.robot_radius);
   const double span = std::max(config_.safety_slow_distance - config_.safety_stop_distance, 1e-6);
   const double scale = std::clamp((ahead - config_.safety_stop_distance) / span, 0.0, 1.0);
   twist.linear.x() = std::min(twist.linear.x(), scale * config_.path.max_linear);

@@ -30,7 +30,12 @@ enum class ExplorerMode {
 };
 
 /// Why the explorer last decided it was stuck.
-enum class StuckReason { none, no_progress, blocked, looping };
+enum class StuckReason {
+  none,         ///< not stuck yet
+  no_progress,  ///< moved less than stuck_distance in stuck_window
+  blocked,      ///< blocked_limit stop-and-turn episodes within blocked_window
+  looping,      ///< a novelty_window of wall following added under novelty_min_area of new map
+};
 
 /// Settings of an Explorer. The constructor copies robot_radius into the planner's and the
 /// wall follower's settings.
@@ -41,6 +46,7 @@ struct ExplorerConfig {
   PlannerConfig planner;             ///< A* and frontier search
   WallFollowerConfig wall;           ///< the reactive controller (its X_BS is set by the constructor)
   PathFollowerConfig path;           ///< pure pursuit
+  bool frontier_trips = true;        ///< false: pure wall following, never stuck, never plans (goals still work)
   double stuck_window = 8.0;         ///< s; moving less than stuck_distance in this long is stuck
   double stuck_distance = 0.3;       ///< m
   int blocked_limit = 3;             ///< this many blocked episodes (stop and turn on the spot) ...
@@ -62,9 +68,9 @@ struct ExplorerStats {
   int plans = 0;              ///< planner calls
   int frontier_trips = 0;     ///< paths to a frontier started
   int frontiers_reached = 0;  ///< frontier paths driven to their end
-  int stuck_no_progress = 0;  ///< stuck triggers by reason
-  int stuck_blocked = 0;
-  int stuck_looping = 0;
+  int stuck_no_progress = 0;  ///< stuck triggers: no progress
+  int stuck_blocked = 0;      ///< stuck triggers: blocked again and again
+  int stuck_looping = 0;      ///< stuck triggers: going round known ground
   int no_frontier = 0;        ///< stuck, but no reachable frontier was left
   int path_blocked = 0;       ///< replans because the map showed an obstacle on the path
   int path_stuck = 0;         ///< replans because the path follower made no progress
@@ -113,6 +119,8 @@ class Explorer {
   msg::Twist follow_path(const Pose2& X_OB, SimTime now);
   StuckReason stuck_reason(SimTime now) const;
   bool may_plan(SimTime now) const;
+  bool due_for_check(SimTime now);
+  bool path_ahead_blocked(const Pose2& X_OB) const;
   std::vector<Vec2> plan_frontier(const Pose2& X_OB, SimTime now);
   bool still_frontier(const Vec2& p_O) const;
   void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
@@ -141,6 +149,7 @@ class Explorer {
   SimTime anchor_time_;
   SimTime last_plan_;
   bool planned_ = false;
+  SimTime last_check_;                            // last look for obstacles on the path
   bool goal_needs_plan_ = false;
   std::optional<Vec2> goal_O_;
   Vec2 target_O_ = Vec2::Zero();                  // end of the current path

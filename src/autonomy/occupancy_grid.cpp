@@ -201,9 +201,10 @@ int OccupancyMapper::integrate(const msg::LaserScan& scan, const Pose2& X_OS) {
     return Cell{std::clamp(static_cast<int>(std::floor(q.x())), 0, width_ - 1),
                 std::clamp(static_cast<int>(std::floor(q.y())), 0, height_ - 1)};
   };
-  grow_observed(clamp_cell(start));
   for (const Beam& b : beams) {
-    if (b.valid) grow_observed(clamp_cell(b.end));
+    if (!b.valid) continue;
+    grow_observed(clamp_cell(start));
+    grow_observed(clamp_cell(b.end));
   }
 
   // returns first, so that no beam of this scan clears a cell another beam saw occupied

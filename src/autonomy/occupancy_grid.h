@@ -37,11 +37,11 @@ struct OccupancyMapperConfig {
   /// A return's beam leaves uncleared the stretch before it that runs within this many cells
   /// of the surface hit (estimated from neighbouring returns), so shallow views do not erode walls.
   double surface_guard_cells = 1.5;
-  double max_surface_guard = 2.0;  ///< m, the longest such stretch
-  float hit_log_odds = 0.9f;      ///< added to the cell holding a return
-  float miss_log_odds = -0.4f;    ///< added to every cell a beam crosses before its return
-  float min_log_odds = -2.0f;     ///< clamp, so an old belief can still be revised
-  float max_log_odds = 3.5f;      ///< clamp
+  double max_surface_guard = 2.0;   ///< m, the longest such stretch
+  float hit_log_odds = 0.9f;        ///< added to the cell holding a return
+  float miss_log_odds = -0.4f;      ///< added to every cell a beam crosses before its return
+  float min_log_odds = -2.0f;       ///< clamp, so an old belief can still be revised
+  float max_log_odds = 3.5f;        ///< clamp
   float occupied_threshold = 0.5f;  ///< log-odds above this: occupied
   float free_threshold = -0.2f;     ///< log-odds below this: free (in between: unknown)
 };
@@ -62,7 +62,8 @@ class OccupancyMapper {
   /// Adds one scan taken from sensor pose `X_OS` (laser frame in the odom frame at the scan's
   /// stamp). REP-117: finite ranges in [range_min, range_max) clear the cells before the
   /// return (but for the guarded stretch next to the surface, see surface_guard_cells) and
-  /// mark the return's cell occupied; ranges >= range_max clear up to range_max;
+  /// mark the return's cell occupied (a return exactly on a cell border counts in the cell
+  /// beyond it, inside the obstacle); ranges >= range_max clear up to range_max;
   /// +inf clears up to min(range_max, inf_free_range); -inf, NaN and finite ranges below
   /// range_min are ignored. Each cell is updated at most once per scan, and a cell holding a
   /// return in this scan is not cleared by another beam of it. Returns how many cells this

@@ -13,7 +13,7 @@ void PathFollower::set_path(std::vector<Vec2> path_O, SimTime now) {
   arc_.assign(path_.size(), 0.0);
   for (std::size_t i = 1; i < path_.size(); ++i) arc_[i] = arc_[i - 1] + (path_[i] - path_[i - 1]).norm();
   progress_ = 0;
-  best_remaining_ = path_.empty() ? 0 : arc_.back();
+  best_remaining_ = std::numeric_limits<double>::infinity();
   best_time_ = now;
   status_ = path_.empty() ? PathStatus::idle : PathStatus::following;
 }
@@ -55,7 +55,7 @@ msg::Twist PathFollower::command(const Pose2& X_OB, SimTime now) {
     if (arc_[i - 1] > progress_ + config_.search_window) break;
     const Vec2 a = path_[i - 1], ab = path_[i] - a;
     const double len2 = ab.squaredNorm();
-    double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
     const double s = std::max(arc_[i - 1] + t * (arc_[i] - arc_[i - 1]), progress_);
     const double d = (p - point_at(s)).norm();
     if (d < best_distance) {
@@ -64,10 +64,12 @@ msg::Twist PathFollower::command(const Pose2& X_OB, SimTime now) {
     }
   }
   progress_ = best_s;
+  if (path_.size() == 1) best_distance = (p - path_.front()).norm();
 
-  // no progress for too long: stuck
-  if (remaining_length() < best_remaining_ - config_.stuck_progress) {
-    best_remaining_ = remaining_length();
+  // no progress (along the path, or toward it) for too long: stuck
+  const double to_go = remaining_length() + best_distance;
+  if (to_go < best_remaining_ - config_.stuck_progress) {
+    best_remaining_ = to_go;
     best_time_ = now;
   } else if ((now - best_time_).seconds() > config_.stuck_time) {
     status_ = PathStatus::stuck;

@@ -28,7 +28,7 @@ struct PathFollowerConfig {
   double rotate_in_place_angle = 1.0;  ///< rad; a target bearing beyond this is first turned to on the spot
   double turn_gain = 2.0;              ///< rad/s per rad of bearing when turning on the spot
   double stuck_time = 5.0;             ///< s without stuck_progress before reporting stuck
-  double stuck_progress = 0.2;         ///< m of progress along the path that resets the stuck timer
+  double stuck_progress = 0.2;         ///< m of progress (along the path or toward it) that resets the stuck timer
   double search_window = 2.0;          ///< m of path ahead of the last closest point searched for the next one
 };
 
@@ -62,7 +62,7 @@ class PathFollower {
   std::vector<double> arc_;       // arc length (m) at each path point
   PathStatus status_ = PathStatus::idle;
   double progress_ = 0;           // arc length of the closest point (m), never decreasing
-  double best_remaining_ = 0;     // least remaining length so far (m)
+  double best_remaining_ = 0;     // least distance to go so far (m): along the path plus to it
   SimTime best_time_;             // when best_remaining_ last improved by stuck_progress
 };
 

@@ -26,18 +26,21 @@ std::vector<ScanPoint> scan_points_in_base(const msg::LaserScan& scan, const Pos
   return points;
 }
 
-double free_distance_ahead(const std::vector<ScanPoint>& points, double radius) {
-  return free_distance_along(points, 0.0, radius);
+double free_distance_ahead(const std::vector<ScanPoint>& points, double radius, double margin) {
+  return free_distance_along(points, 0.0, radius, margin);
 }
 
-double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius) {
+double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius, double margin) {
   const Vec2 u(std::cos(heading), std::sin(heading));
+  const double reach = radius + margin;
   double travel = std::numeric_limits<double>::infinity();
   for (const ScanPoint& s : points) {
     // coordinates along and across the direction of travel
-    const double along = u.dot(s.p_B), across = u.x() * s.p_B.y() - u.y() * s.p_B.x();
-    if (along <= 0 || std::abs(across) >= radius) continue;
-    travel = std::min(travel, std::max(0.0, along - std::sqrt(radius * radius - across * across)));
+    const double along = u.dot(s.p_B), across = std::abs(u.x() * s.p_B.y() - u.y() * s.p_B.x());
+    if (along <= 0 || across >= reach) continue;
+    const double t = along - std::sqrt(reach * reach - across * across);
+    if (t < 0 && across >= radius) continue;  // beside, within the margin: passing it, not hitting it
+    travel = std::min(travel, std::max(0.0, t));
   }
   return travel;
 }

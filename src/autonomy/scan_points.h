@@ -23,13 +23,15 @@ struct ScanPoint {
 /// ranges below range_min (invalid) are dropped.
 std::vector<ScanPoint> scan_points_in_base(const msg::LaserScan& scan, const Pose2& X_BS);
 
-/// How far (m) a disc of radius `radius` centred on the base origin can travel straight
-/// ahead (along base x) before it touches a return: min over the returns ahead with
-/// |y| < radius of x - sqrt(radius^2 - y^2); +inf when nothing is in the way, 0 when a return
-/// already lies inside the disc's front half.
-double free_distance_ahead(const std::vector<ScanPoint>& points, double radius);
+/// How far (m) the robot, a disc of radius `radius` centred on the base origin, can travel
+/// straight ahead (along base x) before it comes within `margin` of a return: over the
+/// returns ahead with |y| < radius + margin, the least x - sqrt((radius + margin)^2 - y^2),
+/// +inf when nothing is in the way, 0 when something is already that close in front.
+/// Returns beside the robot (|y| >= radius) that are already within the margin do not count:
+/// driving on takes the robot past them, not into them.
+double free_distance_ahead(const std::vector<ScanPoint>& points, double radius, double margin = 0.0);
 
 /// The same along the base_link direction `heading` (rad, 0 = ahead, > 0 = left).
-double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius);
+double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius, double margin = 0.0);
 
 }  // namespace rescuesim::autonomy

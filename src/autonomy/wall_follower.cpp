@@ -32,7 +32,7 @@ msg::Twist WallFollower::command(const std::vector<ScanPoint>& points_B, SimTime
 
   // what is ahead, the nearest return on the wall side (bearings 10..170 degrees), and the
   // nearest return diagonally ahead on that side (40..50 degrees)
-  front_distance_ = free_distance_ahead(points_B, config_.robot_radius + config_.front_margin);
+  front_distance_ = free_distance_ahead(points_B, config_.robot_radius);
   wall_distance_ = std::numeric_limits<double>::infinity();
   double wall_bearing = s * M_PI / 2;
   double diagonal = std::numeric_limits<double>::infinity();
@@ -58,6 +58,7 @@ msg::Twist WallFollower::command(const std::vector<ScanPoint>& points_B, SimTime
   double turn = 0;
   double speed = config_.max_linear;
   const double corner_speed = 0.5 * config_.max_linear;
+  bool rounding_end = false;
   if (wall_distance_ <= config_.wall_lost_distance) {
     seen_wall_ = true;
     last_wall_seen_ = stamp;
@@ -65,12 +66,12 @@ msg::Twist WallFollower::command(const std::vector<ScanPoint>& points_B, SimTime
     const double distance_error =
         std::clamp(wall_distance_ - config_.target_distance, -config_.max_distance_error, config_.max_distance_error);
     turn = config_.angle_gain * heading_error + s * config_.distance_gain * distance_error;
-    const bool wall_ends = diagonal > 2 * wall_distance_ + 0.3 && s * wall_bearing >= 75 * kDeg;
-    if (wall_ends) {
+    rounding_end = diagonal > 2 * wall_distance_ + 0.3 && s * wall_bearing >= 75 * kDeg;
+    if (rounding_end) {
       speed = corner_speed;
-      turn += s * speed / std::max(wall_distance_, 0.2);
+      turn += s * speed / std::max(config_.target_distance, 0.1);
     }
-    state_ = wall_ends ? WallFollowerState::turning_corner : WallFollowerState::following;
+    state_ = rounding_end ? WallFollowerState::turning_corner : WallFollowerState::following;
   } else if (seen_wall_ && (stamp - last_wall_seen_).seconds() < config_.corner_memory) {
     speed = corner_speed;
     turn = s * speed / std::max(config_.target_distance, 0.1);
@@ -82,10 +83,10 @@ msg::Twist WallFollower::command(const std::vector<ScanPoint>& points_B, SimTime
   // something ahead on the way it is turning to (where the heading will be in a moment):
   // blend toward turning away from the wall side, and slow down
   const double look = std::clamp(turn * config_.look_ahead_time, -M_PI / 2, M_PI / 2);
-  const double way = free_distance_along(points_B, look, config_.robot_radius + config_.front_margin);
+  const double way = free_distance_along(points_B, look, config_.robot_radius, config_.front_margin);
   const double span = std::max(config_.slow_distance - config_.stop_distance, 1e-6);
   double ahead = std::clamp((config_.slow_distance - way) / span, 0.0, 1.0);
-  if (state_ == WallFollowerState::turning_corner) ahead = 0;  // circling away from it already
+  if (rounding_end) ahead = 0;  // circling the wall's end turns away from what is ahead already
   if (ahead > 0) {
     turn = (1 - ahead) * turn - ahead * s * w_max;
     state_ = WallFollowerState::avoiding;

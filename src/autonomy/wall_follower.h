@@ -34,7 +34,7 @@ struct WallFollowerConfig {
   double max_linear = 0.5;           ///< m/s
   double max_angular = 1.2;          ///< rad/s
   double robot_radius = 0.35;        ///< m
-  double front_margin = 0.05;        ///< m added to the radius when measuring the free travel ahead
+  double front_margin = 0.05;        ///< m of side clearance wanted when looking ahead along the turn's heading
   double slow_distance = 0.8;        ///< m of free travel (along the turn's coming heading) below which it slows and turns away
   double stop_distance = 0.2;        ///< m of free travel straight ahead below which it stops and turns on the spot
   double wall_lost_distance = 1.5;   ///< m; no return on the wall side this near means no wall

@@ -447,18 +447,18 @@ PhysicsStats Physics::stats() const {
   return s;
 }
 
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, double seconds) {
+double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed) {
   Physics::Impl impl(world, options);
-  // hold every motor at zero velocity, as a parked robot would be
-  const auto t0 = std::chrono::steady_clock::now();
-  long steps = 0;
-  double elapsed = 0;
-  while (elapsed < seconds) {
-    for (int k = 0; k < 100; ++k) impl.dynamics.stepSimulation(btScalar(options.dt), 0, btScalar(options.dt));
-    steps += 100;
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (std::size_t r = 0; r < impl.robots.size(); ++r) {
+    const RobotSpec& spec = world.robots[r].spec;
+    for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+      btMultiBodyJointMotor* m = impl.robots[r].motors[j];
+      if (m) m->setVelocityTarget(btScalar(spec.joints[j].control == JointSpec::Control::velocity ? wheel_speed : 0.0), 1.0f);
+    }
   }
-  return static_cast<double>(steps) / elapsed;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < steps; ++k) impl.dynamics.stepSimulation(btScalar(options.dt), 0, btScalar(options.dt));
+  return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace rescuesim

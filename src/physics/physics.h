@@ -35,7 +35,7 @@ struct PhysicsStats {
 };
 
 class Physics;
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, double seconds);
+double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed);
 
 /// Bullet, set up from a World.
 class Physics {
@@ -61,14 +61,16 @@ class Physics {
   PhysicsStats stats() const;
 
  private:
-  friend double bare_bullet_steps_per_second(const World&, const PhysicsOptions&, double);
+  friend double bare_bullet_steps_per_second(const World&, const PhysicsOptions&, int, double);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   PhysicsOptions options_;
 };
 
-/// A bare Bullet loop over the same World (no State, no read-back, rubble only): the baseline
-/// that `rescuesim bench` compares Physics against. Returns steps per second over `seconds`.
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, double seconds);
+/// A bare Bullet loop over the same World: the same bodies, but no State, no controllers, no
+/// read-back — the baseline that `rescuesim bench` compares Physics against. Every velocity-
+/// controlled joint is held at `wheel_speed` (rad/s), so a wheeled robot drives straight on
+/// as Physics would make it. Returns steps per second over `steps` steps from a fresh start.
+double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed);
 
 }  // namespace rescuesim

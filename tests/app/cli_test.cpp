@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 
 #include "support/command.h"
@@ -176,6 +177,58 @@ TEST(RunCommand, UnknownScenarioKeyNamesTheKeyPath) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("s.yaml:5"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("world.maze.colls"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+using testing::rescuesim;
+using testing::temp_dir;
+using testing::write_text;
+
+TEST(RunCommand, ImpossibleSensorSettingIsABadInputError) {
+  const auto dir = temp_dir("run-sensor");
+  write_text(dir / "s.yaml", "robots:\n  - name: r\n    sensors:\n      laser: {fov: 0}\n");
+  const auto r = rescuesim("run '" + (dir / "s.yaml").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("robots[0].sensors.laser.fov"), std::string::npos) << r.err;
+}
+
+TEST(RunCommand, MissingScenarioFileIsNamed) {
+  const auto r = rescuesim("run /nonexistent/scenario.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/scenario.yaml"), std::string::npos) << r.err;
+}
+
+TEST(RunCommand, MissingWorldFileNamedInAScenario) {
+  const auto dir = temp_dir("run-world");
+  write_text(dir / "s.yaml", "world:\n  svg: nowhere.svg\n");
+  const auto r = rescuesim("run '" + (dir / "s.yaml").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nowhere.svg"), std::string::npos) << r.err;
+}
+
+TEST(RunCommand, ShortRunWritesItsOutputs) {
+  const auto dir = temp_dir("run-short");
+  const auto r = rescuesim("run --duration 5 --quiet --out '" + (dir / "out").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"summary.json", "overview.png", "trajectory.csv", "world.svg", "sensors/laser.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  }
+  EXPECT_NE(r.out.find("5.0 s simulated"), std::string::npos) << r.out;
+}
+
+TEST(RunCommand, RealtimeModeIsPacedByTheWallClock) {
+  const auto dir = temp_dir("run-realtime");
+  const auto t0 = std::chrono::steady_clock::now();
+  // 2 s of sim time at 4x real time must take at least 0.5 s of wall time
+  const auto r = rescuesim("run --duration 2 --realtime --rate 4 --quiet --out '" + (dir / "out").string() + "'");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GE(wall, 0.5);
 }
 
 }  // namespace

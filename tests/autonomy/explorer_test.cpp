@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -32,16 +33,17 @@ struct RunLog {
   double time_to(std::size_t n) const { return n >= 1 && n <= first_visit_s.size() ? first_visit_s[n - 1] : -1; }
 };
 
-// drives the explorer in the simulator for `seconds` of sim time; `before_step(t)` may
-// change the world or the robot between steps
+// drives the explorer in the simulator for `seconds` of sim time, or until `all_cells` cells
+// have been visited; `before_step(t)` may change the world or the robot between steps
 RunLog drive(Explorer& explorer, KinematicSim& sim, double seconds, double cell,
-          const std::function<void(SimTime)>& before_step = {}) {
+             const std::function<void(SimTime)>& before_step = {},
+             std::size_t all_cells = std::numeric_limits<std::size_t>::max()) {
   RunLog run;
   using Clock = std::chrono::steady_clock;
   Clock::duration scan_time{}, command_time{};
   int scans = 0;
   const int steps = static_cast<int>(std::lround(seconds / kDt));
-  for (int k = 0; k < steps; ++k) {
+  for (int k = 0; k < steps && run.visited.size() != all_cells; ++k) {
     const SimTime t = SimTime::from_ms(50) * k;
     if (before_step) before_step(t);
     explorer.on_odometry(sim.odometry(t));
@@ -58,14 +60,14 @@ RunLog drive(Explorer& explorer, KinematicSim& sim, double seconds, double cell,
     command_time += spent;
     run.max_command_us = std::max(run.max_command_us, std::chrono::duration<double, std::micro>(spent).count());
     sim.step(cmd, kDt);
+    ++run.steps;
     const Vec2 p = sim.pose().position();
     if (run.visited.emplace(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell))).second) {
       run.first_visit_s.push_back((t + SimTime::from_ms(50)).seconds());
     }
   }
-  run.steps = steps;
   run.scan_us = std::chrono::duration<double, std::micro>(scan_time).count() / std::max(scans, 1);
-  run.command_us = std::chrono::duration<double, std::micro>(command_time).count() / std::max(steps, 1);
+  run.command_us = std::chrono::duration<double, std::micro>(command_time).count() / std::max(run.steps, 1);
   return run;
 }
 
@@ -104,7 +106,7 @@ TEST_P(ExplorerMaze, VisitsMostCellsWithoutTouchingAWall) {
   constexpr double kCell = 1.5;
   KinematicSim sim(testing::carve_maze(kN, kCell, GetParam()), {0.75, 0.75, 0.3}, kLaserMount, kRadius);
   Explorer explorer(kLaserMount);
-  const RunLog run = drive(explorer, sim, 600.0, kCell);
+  const RunLog run = drive(explorer, sim, 600.0, kCell, {}, kN * kN);
   const std::string name = "maze seed " + std::to_string(GetParam());
   print(name.c_str(), run, sim, explorer);
   std::printf("[%s] 80%% of cells after %.1f s, all after %.1f s\n", name.c_str(), run.time_to(29), run.time_to(36));
@@ -149,6 +151,20 @@ TEST(Explorer, StuckInADeadEndTriggersAStarToAFrontier) {
   EXPECT_GE(explorer.stats().plans, 1);
   EXPECT_TRUE(saw_path);
   EXPECT_GE(run.visited.size(), 3u);  // and once free it drove on
+  EXPECT_EQ(sim.collisions(), 0);
+}
+
+TEST(Explorer, WithoutFrontierTripsItOnlyFollowsWalls) {
+  std::vector<Segment> walls = testing::box(0, 0, 12, 12);
+  for (const Segment& s : testing::box(4.5, 4.5, 7.5, 7.5)) walls.push_back(s);
+  KinematicSim sim(walls, {7.0, 3.9, M_PI}, kLaserMount, kRadius, 3.0);
+  ExplorerConfig config;
+  config.frontier_trips = false;
+  Explorer explorer(kLaserMount, config);
+  const RunLog run = drive(explorer, sim, 120.0, 1.5);
+  EXPECT_EQ(explorer.stats().plans, 0);
+  EXPECT_EQ(explorer.mode(), ExplorerMode::wall_following);
+  EXPECT_EQ(run.visited.size(), 12u);  // the ring of cells round the pillar, for ever
   EXPECT_EQ(sim.collisions(), 0);
 }
 

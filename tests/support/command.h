@@ -57,9 +57,11 @@ inline CommandResult run_command(const std::string& command, const std::filesyst
   return r;
 }
 
+#ifdef RESCUESIM_EXE
 /// The rescuesim executable with arguments appended.
 inline CommandResult rescuesim(const std::string& args, const std::filesystem::path& cwd = {}) {
   return run_command(std::string("'") + RESCUESIM_EXE + "' " + args, cwd);
 }
+#endif
 
 }  // namespace rescuesim::testing

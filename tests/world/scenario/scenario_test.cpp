@@ -103,3 +103,79 @@ TEST(Scenario, MissingSvgFileNamesThePath) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+std::string robot_error(const std::string& robot_yaml) {
+  try {
+    parse_scenario("robots:\n  - name: r1\n" + robot_yaml, "s.yaml", builtin_models());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioRobots, SensorSettingsAreApplied) {
+  const Scenario s = parse_scenario(
+      "robots:\n  - name: scout\n    controller: none\n    head: [10, 0, 90, -70]\n    sensors:\n"
+      "      laser: {fov: 180, samples: 181, max_range: 8, noise: 0, rate: 20}\n      sonar_rear_left: {enabled: false}\n",
+      "s.yaml", builtin_models());
+  ASSERT_EQ(s.robots.size(), 1u);
+  const RobotSpec& spec = s.robots[0].spec;
+  const SensorSpec* laser = spec.find_sensor("laser");
+  EXPECT_NEAR(laser->lidar.min_angle, -M_PI / 2, 1e-12);
+  EXPECT_EQ(laser->lidar.samples, 181);
+  EXPECT_DOUBLE_EQ(laser->lidar.max_range, 8);
+  EXPECT_DOUBLE_EQ(laser->rate, 20);
+  EXPECT_FALSE(spec.find_sensor("sonar_rear_left")->enabled);
+  EXPECT_NEAR(spec.joints[static_cast<std::size_t>(spec.joint_index("mast_yaw"))].initial, 10 * M_PI / 180, 1e-12);
+  EXPECT_EQ(s.robots[0].controller, "none");
+}
+
+TEST(ScenarioRobots, ZeroFieldOfViewIsRejected) {
+  const std::string e = robot_error("    sensors:\n      laser: {fov: 0}\n");
+  EXPECT_NE(e.find("robots[0].sensors.laser.fov"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, NegativeRangeIsRejected) {
+  const std::string e = robot_error("    sensors:\n      sonar_front_left: {min_range: -1}\n");
+  EXPECT_NE(e.find("robots[0].sensors.sonar_front_left.min_range"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, MinAboveMaxRangeIsRejected) {
+  const std::string e = robot_error("    sensors:\n      laser: {min_range: 5, max_range: 2}\n");
+  EXPECT_NE(e.find("must be below max_range"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, ZeroRateIsRejected) {
+  const std::string e = robot_error("    sensors:\n      imu: {rate: 0}\n");
+  EXPECT_NE(e.find("robots[0].sensors.imu.rate"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, UnknownSensorSettingIsNamed) {
+  const std::string e = robot_error("    sensors:\n      laser: {resolution: 3}\n");
+  EXPECT_NE(e.find("robots[0].sensors.laser.resolution"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, UnknownSensorNameIsNamed) {
+  const std::string e = robot_error("    sensors:\n      radar: {rate: 3}\n");
+  EXPECT_NE(e.find("robots[0].sensors.radar"), std::string::npos) << e;
+}
+
+TEST(ScenarioRobots, UnknownModelAndController) {
+  EXPECT_NE(robot_error("    model: tank\n").find("unknown robot model 'tank'"), std::string::npos);
+  EXPECT_NE(robot_error("    controller: magic\n").find("robots[0].controller"), std::string::npos);
+}
+
+TEST(ScenarioRobots, HeadOutsideItsLimits) {
+  EXPECT_NE(robot_error("    head: [0, 120, 0, 0]\n").find("shoulder_pitch"), std::string::npos);
+}
+
+TEST(ScenarioRobots, WrongTypeForASensorSetting) {
+  const std::string e = robot_error("    sensors:\n      laser: {samples: many}\n");
+  EXPECT_NE(e.find("robots[0].sensors.laser.samples"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace rescuesim

@@ -1,0 +1,192 @@
+// rescuesim bench: every speed figure beside a raw baseline measured in the same run, and the
+// default run's peak memory. Speed goals live here, not in tests.
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/atomic_file.h"
+#include "physics/physics.h"
+#include "raycast/raycast_bench.h"
+#include "robots/drive_controller.h"
+#include "robots/rescue_robot.h"
+#include "sensors/lidar.h"
+#include "session/session.h"
+
+namespace rescuesim::app {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+struct BenchOptions {
+  std::string out;
+  double seconds = 1.0;         ///< per ray measurement
+  double scenario_time = 180;   ///< sim seconds of the default scenario
+  int physics_steps = 4000;
+};
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+json figure(double value, const char* unit, double baseline, const char* baseline_name, double target_ratio) {
+  json j;
+  j["value"] = value;
+  j["unit"] = unit;
+  j["baseline"] = baseline;
+  j["baseline_is"] = baseline_name;
+  j["ratio"] = baseline > 0 ? value / baseline : 0.0;
+  j["target_ratio"] = target_ratio;
+  j["meets_target"] = baseline > 0 && value / baseline >= target_ratio;
+  return j;
+}
+
+/// Our physics step (controllers, read-back, contacts) beside a bare Bullet loop, both driving
+/// the robot straight ahead at the same wheel speed from a fresh start.
+json bench_physics(const World& world, int steps) {
+  const double wheel_speed = 4.0;  // rad/s: 0.44 m/s on 0.11 m wheels
+  const double bare = bare_bullet_steps_per_second(world, PhysicsOptions{}, steps, wheel_speed);
+  Physics physics(world);
+  State s;
+  physics.init_state(s);
+  const RobotSpec& spec = world.robots[0].spec;
+  const auto t0 = Clock::now();
+  for (int k = 0; k < steps; ++k) {
+    RobotState& rs = s.robots[0];
+    rs.cmd_linear = Vec3(wheel_speed * spec.drive.wheel_radius, 0, 0);
+    rs.cmd_angular = Vec3::Zero();
+    rs.cmd_time = s.time;
+    update_drive(spec, rs, s.time, physics.dt());
+    update_head(spec, rs);
+    physics.step(s);
+    s.time += SimTime::from_seconds(physics.dt());
+  }
+  const double ours = steps / since(t0);
+  json j = figure(ours, "steps/s", bare, "bare Bullet stepSimulation loop, same world and wheel speed", 0.8);
+  j["steps"] = steps;
+  j["dt_s"] = physics.dt();
+  j["static_bodies"] = physics.stats().static_bodies;
+  j["dynamic_bodies"] = physics.stats().dynamic_bodies;
+  return j;
+}
+
+/// Lidar rays: RayScene beside bare rtcIntersect16, and a whole laser scan (noise, REP-117) per second.
+json bench_rays(const World& world, double seconds) {
+  const Vec3 origin = world.robots[0].X_W_start.p + Vec3(0.26, 0, 0.16);
+  const RayBenchResult r = measure_ray_throughput(world, origin, 1080, seconds);
+  json j = figure(r.scene_rays_per_s, "rays/s", r.bare_rays_per_s, "bare Embree rtcIntersect16, same triangles, one thread", 0.7);
+  // the whole laser sampler: rays, noise, message
+  RayScene scene(world);
+  State s;
+  Physics(world).init_state(s);
+  scene.update(s);
+  const SensorSpec& laser = *world.robots[0].spec.find_sensor("laser");
+  Rng rng(1, "bench");
+  int scans = 0;
+  const auto t0 = Clock::now();
+  while (since(t0) < seconds) {
+    for (int k = 0; k < 50; ++k) sample_lidar(world, s, scene, 0, laser, SimTime{}, rng);
+    scans += 50;
+  }
+  const double rate = scans / since(t0);
+  j["laser_scans_per_s"] = rate;
+  j["laser_beams"] = laser.lidar.samples;
+  j["laser_rays_per_s_end_to_end"] = rate * laser.lidar.samples;
+  return j;
+}
+
+/// Runs a scenario in a child process; returns its result and the child's peak memory (MB).
+json run_child(const Scenario& scenario, const ModelMap& models) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    json out;
+    try {
+      Session session(scenario, models);
+      const RunResult r = session.run();
+      out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
+             {"victims_found", r.victims_found}, {"collisions", r.collisions}};
+    } catch (const std::exception& e) {
+      out = {{"error", e.what()}};
+    }
+    const std::string text = out.dump();
+    (void)!::write(fds[1], text.data(), text.size());
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buf[4096];
+  ssize_t n;
+  while ((n = ::read(fds[0], buf, sizeof buf)) > 0) text.append(buf, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  struct rusage ru {};
+  ::wait4(pid, &status, 0, &ru);
+  json j = text.empty() ? json{{"error", "child process died"}} : json::parse(text);
+  j["peak_memory_mb"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+  return j;
+}
+
+int run_bench(const BenchOptions& o) {
+  const ModelMap models = builtin_models();
+  Scenario def = default_scenario(models);
+  def.duration = o.scenario_time;
+  const WorldSpec spec = build_world(def);
+  const World world = compile_scenario(def, spec, models);
+
+  json report;
+  report["rescuesim"] = RESCUESIM_VERSION;
+  report["machine"] = {{"cores", std::thread::hardware_concurrency()}};
+  std::fprintf(stderr, "bench: physics ...\n");
+  report["physics"] = bench_physics(world, o.physics_steps);
+  std::fprintf(stderr, "bench: lidar rays ...\n");
+  report["lidar"] = bench_rays(world, o.seconds);
+  std::fprintf(stderr, "bench: default scenario, %.0f s of sim time, no cameras ...\n", o.scenario_time);
+  json d = run_child(def, models);
+  d["target_real_time_factor"] = 30;
+  d["meets_target"] = d.value("real_time_factor", 0.0) >= 30;
+  report["default_scenario"] = d;
+  std::fprintf(stderr, "bench: 300 rubble bodies ...\n");
+  Scenario heavy = def;
+  heavy.maze->rubble = 300;
+  heavy.duration = std::min(o.scenario_time, 60.0);
+  json h = run_child(heavy, models);
+  h["rubble_requested"] = 300;
+  h["rubble_placed"] = build_world(heavy).rubble.size();
+  h["target_real_time_factor"] = 10;
+  h["meets_target"] = h.value("real_time_factor", 0.0) >= 10;
+  report["rubble_300"] = h;
+
+  const std::string text = report.dump(2) + "\n";
+  std::fputs(text.c_str(), stdout);
+  if (!o.out.empty()) write_file_atomic(o.out, text);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Measure speed and memory, each figure beside a raw baseline from the same run");
+  cmd->footer(
+      "Prints a JSON report: physics steps/s beside a bare Bullet loop of the same world; lidar\n"
+      "rays/s beside bare Embree rtcIntersect16 on the same triangles; the default scenario's\n"
+      "real-time factor and peak memory (run in a child process); and a 300-rubble maze.\n"
+      "Targets (2-core machine): physics >= 0.8x bare, lidar >= 0.7x bare, default >= 30x real\n"
+      "time, 300 rubble >= 10x real time.");
+  cmd->add_option("--out,-o", o->out, "also write the report to this file");
+  cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--physics-steps", o->physics_steps, "steps per physics measurement")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
+}
+
+}  // namespace rescuesim::app

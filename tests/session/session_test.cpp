@@ -1,0 +1,68 @@
+// A whole run through Session: the default scenario's explorer finds victims, the outputs
+// are written and say so, and two runs with the same seed agree.
+
+#include "session/session.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "robots/rescue_robot.h"
+#include "support/command.h"
+
+namespace rescuesim {
+namespace {
+
+TEST(Session, TheExplorerFindsVictimsInTheDefaultScenario) {
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  Session session(s, models);
+  const RunResult r = session.run();
+  EXPECT_EQ(r.stop_reason, "duration");
+  EXPECT_DOUBLE_EQ(r.sim_time, 180.0);
+  EXPECT_GE(r.victims_found, 1);
+  EXPECT_GT(r.distance, 10.0);
+  EXPECT_GT(r.coverage, 0.2);
+  EXPECT_FALSE(r.trouble);
+
+  const auto dir = testing::temp_dir("session-out");
+  session.write_outputs(dir, r);
+  const auto j = nlohmann::json::parse(testing::slurp(dir / "summary.json"));
+  EXPECT_EQ(j["victims_found"].get<int>(), r.victims_found);
+  EXPECT_EQ(j["seed"].get<std::uint64_t>(), s.seed);
+  EXPECT_EQ(j["message_counts"]["/scan"].get<int>(), 1801);  // 10 Hz for 180 s, and t = 0
+  for (const char* f : {"overview.png", "trajectory.csv", "world.svg", "sensors/laser.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  }
+  // trajectory at 10 Hz: a header and 1801 rows
+  const std::string csv = testing::slurp(dir / "trajectory.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1802);
+}
+
+TEST(Session, StopsWhenAllVictimsAreFoundIfAsked) {
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  s.maze->victims = 1;
+  s.stop_when_all_found = true;
+  Session session(s, models);
+  const RunResult r = session.run();
+  if (r.victims_found == 1) {
+    EXPECT_EQ(r.stop_reason, "all victims found");
+    EXPECT_LT(r.sim_time, 180.0);
+  }
+}
+
+TEST(Session, InvalidWorldIsRefusedWithItsProblems) {
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  s.robots[0].start = Pose2{0.0, 0.0, 0.0};  // on the corner of the outer walls
+  try {
+    Session session(s, models);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("clearance"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rescuesim
