@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <set>
 
 #include "physics/bullet_convert.h"
 
@@ -301,7 +302,7 @@ struct Physics::Impl {
 
   /// Names of what touches each robot, and whether a new collision began.
   void read_contacts(State& state) {
-    std::vector<std::vector<std::string>> touching(robots.size());
+    std::vector<std::vector<int>> touching(robots.size());
     const int n = dispatcher.getNumManifolds();
     for (int i = 0; i < n; ++i) {
       const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
@@ -309,45 +310,52 @@ struct Physics::Impl {
       for (int k = 0; k < m->getNumContacts() && !contact; ++k) contact = m->getContactPoint(k).getDistance() < 0.002f;
       if (!contact) continue;
       const int a = m->getBody0()->getUserIndex(), b = m->getBody1()->getUserIndex();
-      for (int pass = 0; pass < 2; ++pass) {
-        const int self = pass == 0 ? a : b, other = pass == 0 ? b : a;
-        if (tag_of(self) != kRobot) continue;
-        const std::size_t r = static_cast<std::size_t>(sub_of(self));
-        touching[r].push_back(name_of(other));
-      }
+      if (tag_of(a) == kRobot) touching[static_cast<std::size_t>(sub_of(a))].push_back(b);
+      if (tag_of(b) == kRobot) touching[static_cast<std::size_t>(sub_of(b))].push_back(a);
     }
     for (std::size_t r = 0; r < robots.size(); ++r) {
-      auto& t = touching[r];
-      std::sort(t.begin(), t.end());
-      t.erase(std::unique(t.begin(), t.end()), t.end());
-      RobotState& rs = state.robots[r];
-      // a collision is a contact that begins with something the robot should not hit
-      for (const auto& name : t) {
-        if (is_obstacle(name) && !std::binary_search(rs.touching.begin(), rs.touching.end(), name)) ++rs.collisions;
+      // the robot's own links touching each other are not contacts with the world
+      std::vector<std::string> names;
+      for (int code : touching[r]) {
+        if (tag_of(code) == kRobot && static_cast<std::size_t>(sub_of(code)) == r) continue;
+        names.push_back(name_of(code));
       }
-      rs.touching = std::move(t);
+      std::sort(names.begin(), names.end());
+      names.erase(std::unique(names.begin(), names.end()), names.end());
+      RobotState& rs = state.robots[r];
+      if (names == rs.touching) continue;
+      // a collision is a contact that begins with something the robot should not hit
+      for (const auto& name : names) {
+        if (obstacle_names.count(name) && !std::binary_search(rs.touching.begin(), rs.touching.end(), name)) ++rs.collisions;
+      }
+      rs.touching = std::move(names);
     }
   }
 
+  /// What a contact is called: the object's name, or the victim's for any of their body parts.
   std::string name_of(int code) const {
     switch (tag_of(code)) {
-      case kStatic:
-        return options.compound_statics ? std::string("static") : world.statics[static_cast<std::size_t>(index_of(code))].name;
+      case kStatic: {
+        if (options.compound_statics) return "static";
+        const StaticObject& s = world.statics[static_cast<std::size_t>(index_of(code))];
+        return s.victim >= 0 ? world.victims[static_cast<std::size_t>(s.victim)].name : s.name;
+      }
       case kDynamic: return world.dynamics[static_cast<std::size_t>(index_of(code))].name;
       case kRobot: return world.robots[static_cast<std::size_t>(sub_of(code))].name;
     }
     return "?";
   }
 
-  bool is_obstacle(const std::string& name) const {
+  /// Names of the things a robot should not hit: walls, obstacles, victims, other robots.
+  std::set<std::string> obstacle_names = [this] {
+    std::set<std::string> out;
     for (const auto& s : world.statics) {
-      if (s.name == name) return s.kind == ObjectKind::wall || s.kind == ObjectKind::obstacle || s.kind == ObjectKind::victim;
+      if (s.kind == ObjectKind::wall || s.kind == ObjectKind::obstacle) out.insert(s.name);
     }
-    for (const auto& r : world.robots) {
-      if (r.name == name) return true;
-    }
-    return false;
-  }
+    for (const auto& v : world.victims) out.insert(v.name);
+    for (const auto& r : world.robots) out.insert(r.name);
+    return out;
+  }();
 
   void check_trouble(State& state) const {
     const Box2 reach{world.floor.min - Vec2::Constant(options.escape_distance), world.floor.max + Vec2::Constant(options.escape_distance)};
