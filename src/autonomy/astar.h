@@ -44,7 +44,7 @@ class AStarPlanner {
 
   /// Cells expanded by the last search (a cost measure for tests and benches).
   int last_expansions() const { return expansions_; }
-  const PlannerConfig& config() const { return config_; }
+  const PlannerConfig& config() const { return config_; }  ///< its settings
 
  private:
   PlannerConfig config_;

@@ -10,6 +10,17 @@ namespace {
 // odometry kept for placing scans: enough for several seconds at usual rates
 constexpr std::size_t kOdomHistory = 256;
 
+// does the scan have a beam within one increment of base_link bearing `b` (rad)?
+bool looks_toward(const msg::LaserScan& scan, const Pose2& X_BS, double b) {
+  if (scan.ranges.empty() || !(scan.angle_increment > 0)) return false;
+  double offset = b - X_BS.yaw - scan.angle_min;
+  offset -= 2 * M_PI * std::floor(offset / (2 * M_PI));
+  const double per_turn = 2 * M_PI / scan.angle_increment;
+  double beam = std::round(offset / scan.angle_increment);
+  if (beam >= per_turn - 0.5) beam -= std::round(per_turn);
+  return beam >= 0 && beam < static_cast<double>(scan.ranges.size());
+}
+
 ExplorerConfig with_shared_settings(ExplorerConfig c, const Pose2& X_BS) {
   c.wall.X_BS = X_BS;
   c.wall.robot_radius = c.robot_radius;
@@ -25,7 +36,8 @@ Explorer::Explorer(const Pose2& X_BS, ExplorerConfig config)
       mapper_(config_.map),
       planner_(config_.planner),
       wall_(config_.wall),
-      follower_(config_.path) {
+      follower_(config_.path),
+      slip_(config_.slip) {
   path_msg_.header.frame_id = config_.frame_id;
 }
 
@@ -55,8 +67,19 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   points_B_ = scan_points_in_base(scan, X_BS_);
   scan_stamp_ = scan.header.stamp;
   have_scan_ = true;
+  sees_behind_ = looks_toward(scan, X_BS_, M_PI - 0.35) && looks_toward(scan, X_BS_, M_PI) &&
+                 looks_toward(scan, X_BS_, M_PI + 0.35);
   const auto X_OB = pose_at(scan.header.stamp);
   if (!X_OB) return;
+  // scans that contradict odometry (slipping wheels) would smear the map; the last pose where
+  // odometry and laser agreed is remembered for reversing blind
+  const bool compared = slip_.add(scan, *X_OB * X_BS_);
+  if (slip_.slipping() || slip_.last_misfit()) {
+    ++stats_.slipping_scans;
+    return;
+  }
+  if (compared || !have_trusted_) trusted_X_OB_ = *X_OB;
+  have_trusted_ = true;
   const int learned = mapper_.integrate(scan, *X_OB * X_BS_);
   ++stats_.scans;
   stats_.cells_learned += learned;
@@ -117,12 +140,15 @@ msg::Twist Explorer::command(SimTime now) {
     case ExplorerMode::to_frontier: return drive_to_frontier(X_OB, now);
     case ExplorerMode::to_goal: return drive_to_goal(X_OB, now);
     case ExplorerMode::at_goal: return {};
+    case ExplorerMode::backing_up: return back_up(X_OB, now);
   }
   return {};
 }
 
+bool Explorer::wheels_slipping() const { return slip_.slipping(); }
+
 StuckReason Explorer::stuck_reason(SimTime now) const {
-  if ((now - anchor_time_).seconds() > config_.stuck_window) return StuckReason::no_progress;
+  if ((now - anchor_time_).seconds() > config_.stuck_window || wheels_slipping()) return StuckReason::no_progress;
   if (static_cast<int>(blocked_times_.size()) >= config_.blocked_limit) return StuckReason::blocked;
   // looping: a whole novelty window of wall following that taught the map almost nothing
   if ((now - mode_since_).seconds() >= config_.novelty_window) {
@@ -202,6 +228,7 @@ msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
   if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
   if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
   if (reason == StuckReason::looping) ++stats_.stuck_looping;
+  if (reason == StuckReason::no_progress && start_backup(ExplorerMode::wall_following, now)) return back_up(X_OB, now);
   std::vector<Vec2> path = plan_frontier(X_OB, now);
   reset_progress(X_OB, now);
   if (path.empty()) {
@@ -228,7 +255,7 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
   // replan (at most once per replan period) when stuck on the path, when the target was
   // explored on the way, or when the map shows an obstacle on what is left of the path;
   // a frontier whose paths got stuck max_tries times is given up
-  const bool stuck = follower_.status() == PathStatus::stuck;
+  const bool stuck = follower_.status() == PathStatus::stuck || wheels_slipping();
   if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
   if (stuck) {
     ++stats_.path_stuck;
@@ -238,6 +265,7 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
       start_wall_following(now);
       return wall_follow(X_OB, now);
     }
+    if (start_backup(ExplorerMode::to_frontier, now)) return back_up(X_OB, now);
   } else if (still_frontier(target_O_)) {
     if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
     ++stats_.path_blocked;
@@ -259,12 +287,13 @@ msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
   // plan on request; replan (at most once per replan period) when there is no path, when
   // stuck, when the map shows an obstacle on the path, and every goal_replan_period as the
   // map grows
-  const bool stuck = follower_.status() == PathStatus::stuck;
+  const bool stuck = follower_.status() == PathStatus::stuck || wheels_slipping();
   const bool no_path = follower_.status() == PathStatus::idle;
   if (!goal_needs_plan_) {
     if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
     if (stuck) {
       ++stats_.path_stuck;
+      if (start_backup(ExplorerMode::to_goal, now)) return back_up(X_OB, now);
     } else if (!no_path && (now - last_plan_).seconds() < config_.goal_replan_period) {
       if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
       ++stats_.path_blocked;
@@ -295,6 +324,70 @@ bool Explorer::due_for_check(SimTime now) {
 bool Explorer::path_ahead_blocked(const Pose2& X_OB) const {
   return path_blocked(mapper_, follower_.path(), follower_.next_index(), X_OB.position(),
                       config_.blocked_clearance_factor * config_.robot_radius);
+}
+
+bool Explorer::rear_clear(double distance) const {
+  // the laser, when it looks behind
+  if (sees_behind_) return free_distance_along(points_B_, M_PI, config_.robot_radius) >= distance;
+  // else the map: every cell the robot would sweep reversing must be known free, seen from
+  // the last pose odometry and laser agreed on, with room for the drift since then
+  if (!mapper_.allocated() || !have_trusted_) return false;
+  const Pose2& X_OB = trusted_X_OB_;
+  distance += config_.slip.min_motion;
+  const double reach = config_.robot_radius + mapper_.resolution();
+  for (double back = 0; back <= distance + 1e-9; back += mapper_.resolution()) {
+    for (double side = -reach; side <= reach + 1e-9; side += mapper_.resolution()) {
+      for (double ahead = -reach; ahead <= reach + 1e-9; ahead += mapper_.resolution()) {
+        if (std::hypot(side, ahead) > reach) continue;
+        const auto c = mapper_.world_to_cell(X_OB.transform(Vec2(ahead - back, side)));
+        if (!c || !mapper_.is_free(*c)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool Explorer::start_backup(ExplorerMode resume, SimTime now) {
+  // only when the way back is clear (seen by the laser, or known free on the map)
+  if (backed_up_ && (now - backup_until_).seconds() < config_.backup_cooldown) return false;
+  if (!rear_clear(std::max(config_.backup_clearance, config_.backup_speed * config_.backup_time))) return false;
+  backed_up_ = true;
+  ++stats_.backups;
+  resume_ = resume;
+  mode_ = ExplorerMode::backing_up;
+  backup_until_ = now + SimTime::from_seconds(config_.backup_time);
+  follower_.clear();
+  path_msg_.poses.clear();
+  return true;
+}
+
+msg::Twist Explorer::back_up(const Pose2& X_OB, SimTime now) {
+  // reverse for a moment (stopping short of anything the laser sees behind), then find a way
+  // on: the goal again, or the nearest frontier (wall following when there is none)
+  if (now < backup_until_ && (!sees_behind_ || free_distance_along(points_B_, M_PI, config_.robot_radius) > 0.1)) {
+    msg::Twist twist;
+    twist.linear.x() = -config_.backup_speed;
+    return twist;
+  }
+  reset_progress(X_OB, now);
+  slip_.reset();  // fresh evidence before calling it slipping again
+  backup_until_ = now;
+  if (resume_ == ExplorerMode::to_goal) {
+    mode_ = ExplorerMode::to_goal;
+    goal_needs_plan_ = true;
+    return drive_to_goal(X_OB, now);
+  }
+  std::vector<Vec2> path = plan_frontier(X_OB, now);
+  complete_ = path.empty();
+  if (path.empty()) {
+    ++stats_.no_frontier;
+    start_wall_following(now);
+    return wall_.command(points_B_, scan_stamp_);
+  }
+  ++stats_.frontier_trips;
+  tries_ = resume_ == ExplorerMode::to_frontier ? tries_ : 0;
+  start_path(std::move(path), ExplorerMode::to_frontier, now);
+  return follow_path(X_OB, now);
 }
 
 msg::Twist Explorer::follow_path(const Pose2& X_OB, SimTime now) {

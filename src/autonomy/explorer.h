@@ -1,8 +1,9 @@
 #pragma once
 /// The built-in exploring controller (the seed's navigation demo, sections 4.1-4.2): it maps
-/// with the laser, follows a wall by default, and when it gets stuck (no progress, blocked
-/// again and again, or circling ground it already knows) it plans with A* to the nearest
-/// frontier, drives there and resumes wall following. A goal mode drives to a set point.
+/// with the laser, follows a wall by default, and when it gets stuck (no progress, slipping
+/// wheels, blocked again and again, or circling ground it already knows) it plans with A* to
+/// the nearest frontier, drives there and resumes wall following; when stuck in place it
+/// first reverses a little if the way back is clear. A goal mode drives to a set point.
 /// It talks only in messages and reads time only from their stamps and the `now` it is
 /// given, so the same object runs in-process and inside a ROS node, deterministically.
 
@@ -16,6 +17,7 @@
 #include "autonomy/occupancy_grid.h"
 #include "autonomy/path_follower.h"
 #include "autonomy/scan_points.h"
+#include "autonomy/slip_detector.h"
 #include "autonomy/wall_follower.h"
 #include "msgs/messages.h"
 
@@ -27,12 +29,13 @@ enum class ExplorerMode {
   to_frontier,     ///< following an A* path to the nearest frontier
   to_goal,         ///< following an A* path to the goal set by set_goal
   at_goal,         ///< arrived at the goal: standing still
+  backing_up,      ///< stuck: reversing a little before planning a way on
 };
 
 /// Why the explorer last decided it was stuck.
 enum class StuckReason {
   none,         ///< not stuck yet
-  no_progress,  ///< moved less than stuck_distance in stuck_window
+  no_progress,  ///< moved less than stuck_distance in stuck_window, or the wheels slip
   blocked,      ///< blocked_limit stop-and-turn episodes within blocked_window
   looping,      ///< a novelty_window of wall following added under novelty_min_area of new map
 };
@@ -49,6 +52,7 @@ struct ExplorerConfig {
   bool frontier_trips = true;        ///< false: pure wall following, never stuck, never plans (goals still work)
   double stuck_window = 8.0;         ///< s; moving less than stuck_distance in this long is stuck
   double stuck_distance = 0.3;       ///< m
+  SlipDetectorConfig slip;           ///< odometry checked against the laser: slipping wheels mean stuck
   int blocked_limit = 3;             ///< this many blocked episodes (stop and turn on the spot) ...
   double blocked_window = 20.0;      ///< s ... within this long is stuck
   double novelty_window = 30.0;      ///< s; wall following this long while learning ...
@@ -59,6 +63,13 @@ struct ExplorerConfig {
   double safety_stop_distance = 0.1;  ///< m of free travel ahead below which a path is not driven forward
   double safety_slow_distance = 0.6;  ///< m of free travel ahead below which path driving slows
   double blocked_clearance_factor = 0.8;  ///< an occupied cell within this x robot_radius of the path blocks it
+  double backup_time = 2.0;          ///< s of reversing when stuck (when the way back is clear)
+  double backup_speed = 0.15;        ///< m/s, reversing speed
+  double backup_cooldown = 10.0;     ///< s after reversing before it may reverse again
+  /// m of free travel behind needed to start reversing: seen by the laser when its fan covers
+  /// the rear, else every cell the robot would sweep (plus slip.min_motion for odometry drift)
+  /// must be known free on the map
+  double backup_clearance = 0.3;
 };
 
 /// Counters of what the explorer did, for tests, logs and run summaries.
@@ -75,6 +86,8 @@ struct ExplorerStats {
   int path_blocked = 0;       ///< replans because the map showed an obstacle on the path
   int path_stuck = 0;         ///< replans because the path follower made no progress
   int abandoned = 0;          ///< frontiers given up after max_tries
+  int backups = 0;            ///< times it reversed to get unstuck
+  int slipping_scans = 0;     ///< scans that contradicted odometry (not mapped)
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -84,7 +97,8 @@ class Explorer {
   explicit Explorer(const Pose2& X_BS, ExplorerConfig config = {});
 
   /// Integrates a scan into the map at the odom pose interpolated to its stamp (scans before
-  /// the first odometry only feed the reactive controller).
+  /// the first odometry, and scans that contradict odometry, only feed the reactive
+  /// controller).
   void on_scan(const msg::LaserScan& scan);
   /// Records the pose of base_link in the odom frame (header.frame_id) at the stamp.
   void on_odometry(const msg::Odometry& odom);
@@ -102,13 +116,18 @@ class Explorer {
   const msg::Path& current_path() const { return path_msg_; }
   /// The map so far (frame_id, `stamp`); an empty grid before the first scan.
   msg::OccupancyGrid map(SimTime stamp) const;
+  /// The map itself (odom frame), for planners and plots in-process.
   const OccupancyMapper& mapper() const { return mapper_; }
 
+  /// What it is doing now.
   ExplorerMode mode() const { return mode_; }
+  /// Why it last decided it was stuck (none before the first time).
   StuckReason last_stuck_reason() const { return last_stuck_; }
   /// True after a stuck trigger found no reachable frontier (cleared when one is found).
   bool exploration_complete() const { return complete_; }
+  /// Counters of what it did.
   const ExplorerStats& stats() const { return stats_; }
+  /// Its settings, with robot_radius and X_BS copied into the parts.
   const ExplorerConfig& config() const { return config_; }
 
  private:
@@ -117,6 +136,10 @@ class Explorer {
   msg::Twist drive_to_frontier(const Pose2& X_OB, SimTime now);
   msg::Twist drive_to_goal(const Pose2& X_OB, SimTime now);
   msg::Twist follow_path(const Pose2& X_OB, SimTime now);
+  msg::Twist back_up(const Pose2& X_OB, SimTime now);
+  bool start_backup(ExplorerMode resume, SimTime now);
+  bool rear_clear(double distance) const;
+  bool wheels_slipping() const;
   StuckReason stuck_reason(SimTime now) const;
   bool may_plan(SimTime now) const;
   bool due_for_check(SimTime now);
@@ -138,6 +161,11 @@ class Explorer {
   std::vector<ScanPoint> points_B_;               // latest scan in base_link
   SimTime scan_stamp_;
   bool have_scan_ = false;
+  bool sees_behind_ = false;                      // the laser's fan covers the robot's rear
+  Pose2 trusted_X_OB_;                            // pose of the last scan that fitted odometry
+  bool have_trusted_ = false;
+  bool backed_up_ = false;                        // reversed at least once (backup_until_ is its end)
+  SlipDetector slip_;
   std::deque<std::pair<SimTime, int>> novelty_;  // cells learned per scan, by stamp
   std::deque<SimTime> blocked_times_;             // starts of blocked episodes
   WallFollowerState last_wall_state_ = WallFollowerState::no_data;
@@ -153,6 +181,8 @@ class Explorer {
   bool goal_needs_plan_ = false;
   std::optional<Vec2> goal_O_;
   Vec2 target_O_ = Vec2::Zero();                  // end of the current path
+  SimTime backup_until_;                          // end of the current reversing
+  ExplorerMode resume_ = ExplorerMode::wall_following;  // what reversing was for
   int tries_ = 0;
   std::vector<Vec2> excluded_O_;                  // frontiers given up
   msg::Path path_msg_;

@@ -46,13 +46,13 @@ class PathFollower {
   /// `X_OB` (base_link in odom) at time `now`; zero once reached, stuck or idle.
   msg::Twist command(const Pose2& X_OB, SimTime now);
 
-  PathStatus status() const { return status_; }
+  PathStatus status() const { return status_; }  ///< where it stands after the last command
   const std::vector<Vec2>& path() const { return path_; }  ///< m, odom frame
   /// Index of the first path point beyond the closest point (path.size() at the end).
   std::size_t next_index() const;
   /// Path length (m) from the closest point to the end.
   double remaining_length() const;
-  const PathFollowerConfig& config() const { return config_; }
+  const PathFollowerConfig& config() const { return config_; }  ///< its settings
 
  private:
   Vec2 point_at(double s) const;  // the path point at arc length s (m)

@@ -62,7 +62,7 @@ class WallFollower {
   WallFollowerState state() const { return state_; }     ///< what the last command did
   double wall_distance() const { return wall_distance_; }  ///< m to the wall side's nearest return, +inf if none
   double front_distance() const { return front_distance_; }  ///< m of free travel straight ahead, +inf if clear
-  const WallFollowerConfig& config() const { return config_; }
+  const WallFollowerConfig& config() const { return config_; }  ///< its settings
   /// Forgets the last time the wall was seen.
   void reset();
 

@@ -54,7 +54,9 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
                   "the " + configs[r].controller + " needs an enabled planar laser on base_link and odometry");
     }
     autonomy::ExplorerConfig ec;
-    if (configs[r].controller == "wall_follower") ec.stuck_window = 1e9;  // never plans: pure wall following
+    // the robot as a disc around base_link: half the diagonal of its footprint with wheels
+    ec.robot_radius = 0.41;
+    if (configs[r].controller == "wall_follower") ec.frontier_trips = false;  // never plans: pure wall following
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(laser->X_LS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {

@@ -77,11 +77,11 @@ void print(const char* name, const RunLog& run, const KinematicSim& sim, const E
       "[%s] cells %zu, distance %.1f m, min clearance %.3f m, collisions %d; on_scan %.0f us, command %.0f us "
       "(max %.0f us); "
       "plans %d, trips %d, reached %d, stuck(progress %d, blocked %d, looping %d), no frontier %d, path blocked %d, "
-      "path stuck %d, abandoned %d\n",
+      "path stuck %d, abandoned %d, backups %d\n",
       name, run.visited.size(), sim.distance(), sim.min_clearance(), sim.collisions(), run.scan_us, run.command_us,
       run.max_command_us,
       s.plans, s.frontier_trips, s.frontiers_reached, s.stuck_no_progress, s.stuck_blocked, s.stuck_looping,
-      s.no_frontier, s.path_blocked, s.path_stuck, s.abandoned);
+      s.no_frontier, s.path_blocked, s.path_stuck, s.abandoned, s.backups);
 }
 
 TEST(Explorer, StandsStillUntilItHasScanAndOdometry) {
@@ -152,6 +152,44 @@ TEST(Explorer, StuckInADeadEndTriggersAStarToAFrontier) {
   EXPECT_TRUE(saw_path);
   EXPECT_GE(run.visited.size(), 3u);  // and once free it drove on
   EXPECT_EQ(sim.collisions(), 0);
+}
+
+TEST(Explorer, SlippingWheelsAreSeenByTheLaserAndItBacksOff) {
+  // wedged with spinning wheels for 20 s: odometry runs on, the scans stay the same
+  KinematicSim sim(testing::carve_maze(6, 1.5, 7), {0.75, 2.25, M_PI / 2}, kLaserMount, kRadius);
+  Explorer explorer(kLaserMount);
+  bool reversed = false;
+  const RunLog run = drive(explorer, sim, 60.0, 1.5, [&](SimTime t) {
+    sim.set_slipping(t >= SimTime::from_seconds(5) && t < SimTime::from_seconds(25));
+    reversed = reversed || explorer.mode() == ExplorerMode::backing_up;
+  });
+  print("slipping", run, sim, explorer);
+  EXPECT_GE(explorer.stats().stuck_no_progress, 1);
+  EXPECT_GE(explorer.stats().backups, 1);
+  EXPECT_TRUE(reversed);
+  EXPECT_EQ(sim.collisions(), 0);
+}
+
+TEST(Explorer, WithA270DegreeLaserItReversesOnlyOverGroundItKnowsIsFree) {
+  // wedged with its back 5 cm from a wall it cannot see: it must not back into it
+  KinematicSim blind(testing::carve_maze(6, 1.5, 7), {0.75, 0.45, M_PI / 2}, kLaserMount, kRadius);
+  blind.set_fov(270);
+  Explorer first(kLaserMount);
+  drive(first, blind, 15.0, 1.5, [&](SimTime t) { blind.set_slipping(t < SimTime::from_seconds(15)); });
+  EXPECT_GE(first.stats().stuck_no_progress, 1);
+  EXPECT_EQ(first.stats().backups, 0);
+  EXPECT_EQ(blind.collisions(), 0);
+
+  // wedged after driving a while: the ground it came over is mapped free, so it backs up
+  KinematicSim later(testing::carve_maze(6, 1.5, 7), {0.75, 0.75, M_PI / 2}, kLaserMount, kRadius);
+  later.set_fov(270);
+  Explorer second(kLaserMount);
+  const RunLog run = drive(second, later, 40.0, 1.5, [&](SimTime t) {
+    later.set_slipping(t >= SimTime::from_seconds(6) && t < SimTime::from_seconds(20));
+  });
+  print("270 degrees", run, later, second);
+  EXPECT_GE(second.stats().backups, 1);
+  EXPECT_EQ(later.collisions(), 0);
 }
 
 TEST(Explorer, WithoutFrontierTripsItOnlyFollowsWalls) {

@@ -104,18 +104,20 @@ class KinematicSim {
     }
   }
 
-  // a 360-beam scan over the full circle from the current pose, stamped t (REP-117 ranges)
+  // a scan with a beam every degree over the field of view (full circle by default) from the
+  // current pose, stamped t (REP-117 ranges)
   msg::LaserScan scan(SimTime t) const {
     msg::LaserScan s;
     s.header = {t, "laser"};
-    s.angle_increment = static_cast<float>(2 * M_PI / 360);
-    s.angle_min = static_cast<float>(-M_PI);
-    s.angle_max = s.angle_min + 359 * s.angle_increment;
+    const int beams = static_cast<int>(std::lround(fov_deg_));
+    s.angle_increment = static_cast<float>(M_PI / 180);
+    s.angle_min = static_cast<float>(-fov_deg_ / 2 * M_PI / 180);
+    s.angle_max = s.angle_min + (beams - 1) * s.angle_increment;
     s.range_min = 0.05f;
     s.range_max = static_cast<float>(range_max_);
     s.scan_time = 0.1f;
     const Pose2 X_WS = X_WB_ * X_BS_;
-    for (int i = 0; i < 360; ++i) {
+    for (int i = 0; i < beams; ++i) {
       const double a = X_WS.yaw + s.angle_min + i * static_cast<double>(s.angle_increment);
       const double r = ray_cast(X_WS.position(), Vec2(std::cos(a), std::sin(a)), edges_);
       if (r < s.range_min) s.ranges.push_back(-std::numeric_limits<float>::infinity());
@@ -125,12 +127,12 @@ class KinematicSim {
     return s;
   }
 
-  // perfect odometry: odom coincides with the world frame
+  // odometry: perfect (odom coincides with the world frame) until the wheels slip
   msg::Odometry odometry(SimTime t) const {
     msg::Odometry o;
     o.header = {t, "odom"};
     o.child_frame_id = "base_link";
-    o.pose = Pose3::from_pose2(X_WB_);
+    o.pose = Pose3::from_pose2(X_OW_ * X_WB_);
     return o;
   }
 
@@ -141,6 +143,13 @@ class KinematicSim {
     const double h = dt / kSub;
     for (int k = 0; k < kSub; ++k) {
       const double v = frozen_ ? 0.0 : cmd.linear.x(), w = frozen_ ? 0.0 : cmd.angular.z();
+      if (slipping_) {
+        // the wheels turn, the robot does not: odometry drifts away from the world
+        const Pose2 X_OB = X_OW_ * X_WB_;
+        const Pose2 moved = X_OB * Pose2{v * h, 0.0, w * h};
+        X_OW_ = moved * X_WB_.inverse();
+        continue;
+      }
       Pose2 next = X_WB_;
       next.x += v * std::cos(X_WB_.yaw + 0.5 * w * h) * h;
       next.y += v * std::sin(X_WB_.yaw + 0.5 * w * h) * h;
@@ -167,8 +176,13 @@ class KinematicSim {
   int collisions() const { return collisions_; }
   double min_clearance() const { return min_clearance_; }
   double distance() const { return distance_; }
-  // while frozen the wheels spin without moving the robot (wedged on low debris)
+  // while frozen the wheels are blocked: neither robot nor odometry moves
   void set_frozen(bool f) { frozen_ = f; }
+  // a laser seeing only `degrees` round its front (360: all round)
+  void set_fov(double degrees) { fov_deg_ = degrees; }
+  // while slipping the wheels spin without moving the robot (wedged on low debris), and
+  // odometry counts the spinning
+  void set_slipping(bool s) { slipping_ = s; }
 
  private:
   std::vector<Segment> walls_;  // centre lines
@@ -177,7 +191,10 @@ class KinematicSim {
   Pose2 X_BS_;
   double radius_;
   double range_max_;
+  Pose2 X_OW_;  // odometry's drift: the world frame in the odom frame
   bool frozen_ = false;
+  bool slipping_ = false;
+  double fov_deg_ = 360;
   int collisions_ = 0;
   double min_clearance_ = std::numeric_limits<double>::infinity();
   double distance_ = 0;

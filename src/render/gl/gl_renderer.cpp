@@ -1,0 +1,479 @@
+// The OpenGL 4.5 renderer: a headless EGL context, the scene in one vertex buffer, and the
+// passes — shadow map, SSAO, colour, FXAA or MSAA resolve, depth, thermal with a separable
+// Gaussian blur — each ending in a glReadPixels of the finished image.
+//
+// Every camera pass uses optical_projection_reversed_z: reversed Z into a 32-bit float depth
+// buffer (precise metric depth far from the camera) and rows laid out top-down, so the read-back
+// needs no flip. That projection mirrors the image vertically, so outward faces wind clockwise
+// on screen (glFrontFace(GL_CW)).
+
+#include "render/gl/gl_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "render/gl/egl_context.h"
+#include "render/gl/gpu_scene.h"
+#include "render/gl/render_targets.h"
+#include "render/gl/shaders.h"
+
+namespace rescuesim::gl {
+
+namespace {
+
+constexpr int kMaxMaterials = 64;
+constexpr int kMaxLights = 4;
+constexpr int kMaxBlurRadius = 96;
+constexpr std::size_t kMaxCachedSizes = 8;
+constexpr double kAoRadius = 0.35;     ///< SSAO sampling radius (m)
+constexpr double kAoBlurSigma = 1.5;   ///< px
+constexpr int kPatternSize = 512;      ///< texels across a pattern layer
+constexpr float kPatternPeriod = 2.0f; ///< m covered by a pattern layer (3.9 mm texels)
+constexpr int kPatternLayers = 6;      ///< one per TextureKind
+
+// lighting beside the scene's lights: ambient from the sky and the ground, a weak fill light
+// from the side opposite the sun (all linear)
+const Eigen::Vector3f kSkyAmbient(0.30f, 0.33f, 0.38f);
+const Eigen::Vector3f kGroundAmbient(0.15f, 0.14f, 0.12f);
+const Eigen::Vector3f kFillColor(0.16f, 0.16f, 0.17f);
+
+int shadow_map_size(Quality q) { return q == Quality::high ? 2048 : q == Quality::medium ? 1024 : 0; }
+
+/// World → clip of a camera view.
+Eigen::Matrix4f view_projection(const CameraView& v) {
+  const Pose3 X_WO = v.X_WC * X_BO();
+  return (optical_projection_reversed_z(v.k, v.near_clip, v.far_clip) * X_WO.inverse().isometry().matrix()).cast<float>();
+}
+
+/// Depth test, culling and winding of every camera pass.
+void camera_pass_state(int width, int height) {
+  glViewport(0, 0, width, height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CW);
+}
+
+/// State of the full-screen image passes.
+void image_pass_state(int width, int height) {
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+}
+
+class GlRenderer final : public Renderer {
+ public:
+  explicit GlRenderer(Quality q);
+  ~GlRenderer() override { context_.make_current(); }
+  std::string device() const override { return context_.description(); }
+
+ private:
+  void do_load(const RenderScene& scene) override;
+  void do_update(const RenderScene& scene) override;
+  void do_color(const CameraView& view, ColorImage& out) override;
+  void do_depth(const CameraView& view, DepthImage& out) override;
+  void do_thermal(const CameraView& view, double blur_sigma_px, ThermalImage& out) override;
+  void do_set_quality(Quality q) override;
+
+  SizeTargets& targets(int width, int height);
+  void configure_shadows(Quality q);
+  void render_shadow_map();
+  void render_ambient_occlusion(const CameraView& view, const Eigen::Matrix4f& view_proj, ColorTargets& t);
+  void draw_scene(const Program& p, GLint model_location, const Eigen::Matrix4f& view_proj, const DrawFilter& filter) const;
+  /// Separable Gaussian blur of the red channel: src → tmp across, tmp → dst down.
+  void blur(GLuint src_tex, GLuint tmp_fbo, GLuint tmp_tex, GLuint dst_fbo, int width, int height, double sigma);
+
+  /// The colour program of the current quality.
+  const Program& color() const { return color_[static_cast<int>(quality())]; }
+  /// Bakes the surface patterns into patterns_.
+  void bake_patterns();
+  /// Compiles the three colour programs for `lights` lights (0..kMaxLights).
+  void build_color_programs(int lights);
+
+  EglContext context_;  // first member: made first, destroyed last, after every GL object
+  Program color_[3];    // per Quality: shadows from medium, SSAO at high
+  Program depth_, thermal_, fxaa_, ssao_;
+  std::map<int, Program> blur_;  ///< blur programs by radius (px), made on first use
+  GLint color_model_[3] = {-1, -1, -1}, depth_model_ = -1, thermal_model_ = -1;
+  Texture patterns_;
+  int light_count_ = -1;  ///< lights the colour programs were compiled for
+  VertexArray empty_vao_;
+  GpuScene scene_;
+  Eigen::Vector4f sky_ = Eigen::Vector4f::Zero();  ///< sRGB clear colour, luma in alpha
+  float ambient_temperature_ = 293.15f;
+  int shadow_light_ = -1;                          ///< light index with the shadow map, -1 none
+  Vec3 shadow_direction_ = -Vec3::UnitZ();
+  Texture shadow_map_;
+  Framebuffer shadow_fbo_;
+  int shadow_size_ = 0;
+  bool shadow_dirty_ = true;
+  std::vector<std::unique_ptr<SizeTargets>> targets_;  ///< least recently used first
+  std::vector<float> blur_weights_;
+  double blur_sigma_ = -1;
+};
+
+GlRenderer::GlRenderer(Quality q) : Renderer(q) {
+  build_color_programs(1);
+  depth_ = Program("depth", shaders::kDepthVertex, shaders::kDepthFragment);
+  thermal_ = Program("thermal", shaders::kSceneVertex, shaders::kThermalFragment);
+  fxaa_ = Program("fxaa", shaders::kFullscreenVertex, shaders::kFxaaFragment);
+  ssao_ = Program("ssao", shaders::kFullscreenVertex, shaders::kSsaoFragment);
+  depth_model_ = depth_.uniform("u_model");
+  thermal_model_ = thermal_.uniform("u_model");
+  fxaa_.set("u_src", 0);
+  ssao_.set("u_depth", 0);
+  empty_vao_ = VertexArray::create();
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  configure_shadows(q);
+}
+
+void GlRenderer::build_color_programs(int lights) {
+  for (int i = 0; i < 3; ++i) {
+    // low: Gouraud lighting, no shadows; medium: per-pixel with shadows; high: and SSAO
+    const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n",
+                                           lights, i > 0 ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0);
+    const std::string common = header + shaders::kLightUniforms;
+    color_[i] = Program("colour", i == 0 ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
+                        common + shaders::kColorFragment);
+    color_model_[i] = color_[i].uniform("u_model");
+    // samplers of different types may not share a texture unit
+    color_[i].set("u_shadow_map", 1);
+    color_[i].set("u_ao", 2);
+    color_[i].set("u_patterns", 3);
+    color_[i].set("u_period", kPatternPeriod);
+    color_[i].set("u_sky_ambient", kSkyAmbient);
+    color_[i].set("u_ground_ambient", kGroundAmbient);
+    color_[i].set("u_shadow_light", -1);
+  }
+  light_count_ = lights;
+}
+
+void GlRenderer::bake_patterns() {
+  const int levels = 1 + static_cast<int>(std::log2(kPatternSize));
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+  patterns_ = Texture(id);
+  glTextureStorage3D(id, levels, GL_RGBA8, kPatternSize, kPatternSize, kPatternLayers);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);  // bilinear in one level: trilinear costs a CPU rasteriser 15 %
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  const Framebuffer fbo = Framebuffer::create();
+  image_pass_state(kPatternSize, kPatternSize);
+  glBindVertexArray(empty_vao_.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  for (int layer = 0; layer < kPatternLayers; ++layer) {
+    const Program bake("pattern", shaders::kFullscreenVertex,
+                       fmt::format("#version 450 core\n#define KIND {}\n{}", layer, shaders::kPatternFragment));
+    bake.set("u_period", kPatternPeriod);
+    bake.set("u_size", static_cast<float>(kPatternSize));
+    glUseProgram(bake.id());
+    glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, id, 0, layer);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glGenerateTextureMipmap(id);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void GlRenderer::configure_shadows(Quality q) {
+  shadow_size_ = shadow_map_size(q);
+  shadow_map_.reset();
+  shadow_fbo_.reset();
+  shadow_dirty_ = true;
+  if (shadow_size_ == 0) return;
+  shadow_map_ = Texture::create_2d(GL_DEPTH_COMPONENT32F, shadow_size_, shadow_size_);
+  // hardware comparison with bilinear filtering: each lookup is already a 2 × 2 PCF
+  glTextureParameteri(shadow_map_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(shadow_map_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  shadow_fbo_ = Framebuffer::create();
+  glNamedFramebufferTexture(shadow_fbo_.id(), GL_DEPTH_ATTACHMENT, shadow_map_.id(), 0);
+  glNamedFramebufferDrawBuffer(shadow_fbo_.id(), GL_NONE);
+  shadow_fbo_.check_complete("shadow map");
+}
+
+SizeTargets& GlRenderer::targets(int width, int height) {
+  auto it = std::find_if(targets_.begin(), targets_.end(), [&](const auto& t) { return t->width == width && t->height == height; });
+  if (it == targets_.end()) {
+    if (targets_.size() >= kMaxCachedSizes) targets_.erase(targets_.begin());
+    auto t = std::make_unique<SizeTargets>();
+    t->width = width;
+    t->height = height;
+    targets_.push_back(std::move(t));
+  } else if (it + 1 != targets_.end()) {
+    std::rotate(it, it + 1, targets_.end());
+  }
+  return *targets_.back();
+}
+
+void GlRenderer::do_load(const RenderScene& scene) {
+  context_.make_current();
+  if (scene.materials.size() > static_cast<std::size_t>(kMaxMaterials)) {
+    throw Error(SourceRef{"", 0, "Renderer::load"}, fmt::format("the scene has {} materials; at most {} are supported", scene.materials.size(), kMaxMaterials));
+  }
+  scene_.upload(scene);
+
+  // materials: linear albedo and roughness, texture kind
+  std::vector<float> material(4 * kMaxMaterials, 0.0f), layer(kMaxMaterials, 0.0f);
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const RenderMaterial& m = scene.materials[i];
+    for (int c = 0; c < 3; ++c) material[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(m.albedo[c]);
+    material[4 * i + 3] = static_cast<float>(m.roughness);
+    layer[i] = static_cast<float>(m.texture);
+  }
+
+  // lights: the first kMaxLights; the first shadow-casting directional one gets the shadow map
+  const int count = std::min<int>(kMaxLights, static_cast<int>(scene.lights.size()));
+  std::vector<float> where(4 * kMaxLights, 0.0f), color(3 * kMaxLights, 0.0f);
+  shadow_light_ = -1;
+  Vec3 sun = Vec3(-0.35, 0.45, -1.0).normalized();
+  for (int i = 0; i < count; ++i) {
+    const RenderLight& l = scene.lights[static_cast<std::size_t>(i)];
+    const Vec3 v = l.directional ? l.direction : l.position;
+    for (int c = 0; c < 3; ++c) {
+      where[static_cast<std::size_t>(4 * i + c)] = static_cast<float>(v[c]);
+      color[static_cast<std::size_t>(3 * i + c)] = static_cast<float>(l.color[c]);
+    }
+    where[static_cast<std::size_t>(4 * i + 3)] = l.directional ? 0.0f : 1.0f;
+    if (l.directional && shadow_light_ < 0) sun = l.direction;
+    if (l.directional && l.casts_shadows && shadow_light_ < 0) {
+      shadow_light_ = i;
+      shadow_direction_ = l.direction;
+    }
+  }
+  if (count != light_count_) build_color_programs(count);
+  // the fill light comes from the side the sun shines towards, a little above the horizon
+  Vec3 across(sun.x(), sun.y(), 0);
+  across = across.norm() > 1e-6 ? across.normalized() : Vec3::UnitX();
+  for (const Program& p : color_) {
+    glProgramUniform4fv(p.id(), p.uniform("u_material"), kMaxMaterials, material.data());
+    glProgramUniform1fv(p.id(), p.uniform("u_layer"), kMaxMaterials, layer.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_light"), kMaxLights, where.data());
+    glProgramUniform3fv(p.id(), p.uniform("u_light_color"), kMaxLights, color.data());
+    p.set("u_fill_dir", Eigen::Vector3f((across + Vec3(0, 0, 0.7)).normalized().cast<float>()));
+    p.set("u_fill_color", kFillColor);
+  }
+
+  const Eigen::Vector3f sky = scene.sky_color.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
+  sky_ = Eigen::Vector4f(sky.x(), sky.y(), sky.z(), sky.dot(Eigen::Vector3f(0.299f, 0.587f, 0.114f)));
+  ambient_temperature_ = static_cast<float>(scene.ambient_temperature);
+  shadow_dirty_ = true;
+}
+
+void GlRenderer::do_update(const RenderScene& scene) {
+  scene_.update(scene);
+  shadow_dirty_ = true;
+}
+
+void GlRenderer::do_set_quality(Quality q) {
+  context_.make_current();
+  configure_shadows(q);
+  for (auto& t : targets_) t->color.reset();
+}
+
+void GlRenderer::draw_scene(const Program& p, GLint model_location, const Eigen::Matrix4f& view_proj, const DrawFilter& filter) const {
+  glUseProgram(p.id());
+  p.set("u_view_proj", view_proj);
+  scene_.draw(p.id(), model_location, filter);
+}
+
+void GlRenderer::render_shadow_map() {
+  // an orthographic view along the light around everything that casts shadows
+  Eigen::AlignedBox3d box = scene_.caster_bounds();
+  if (box.isEmpty()) {
+    for (const Program& p : color_) p.set("u_shadow_light", -1);
+    return;
+  }
+  box.extend(box.min() - Vec3::Constant(0.25));
+  box.extend(box.max() + Vec3::Constant(0.25));
+  const Vec3 f = shadow_direction_.normalized();
+  const Vec3 r = f.cross(std::abs(f.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitX()).normalized();
+  const Vec3 u = r.cross(f);
+  Eigen::AlignedBox3d light_box;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    light_box.extend(Vec3(r.dot(p), u.dot(p), f.dot(p)));
+  }
+  const Vec3 lo = light_box.min(), size = light_box.sizes();
+  // world → shadow map (s, t, depth) in [0, 1], and the clip matrix of the same view
+  Eigen::Matrix4d to_map = Eigen::Matrix4d::Identity();
+  const Vec3 axes[3] = {r, u, f};
+  for (int i = 0; i < 3; ++i) {
+    to_map.block<1, 3>(i, 0) = axes[i].transpose() / size[i];
+    to_map(i, 3) = -lo[i] / size[i];
+  }
+  Eigen::Matrix4d to_clip = Eigen::Matrix4d::Identity();
+  to_clip(0, 0) = to_clip(1, 1) = 2;
+  to_clip(0, 3) = to_clip(1, 3) = -1;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.id());
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(shadow_fbo_.id(), GL_DEPTH, 0, &one);
+  glViewport(0, 0, shadow_size_, shadow_size_);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  draw_scene(depth_, depth_model_, (to_clip * to_map).cast<float>(), {-1, true});
+  glDisable(GL_POLYGON_OFFSET_FILL);
+
+  for (const Program& p : color_) {
+    p.set("u_shadow_matrix", Eigen::Matrix4f(to_map.cast<float>()));
+    p.set("u_shadow_texel", 1.0f / static_cast<float>(shadow_size_));
+    p.set("u_shadow_texel_m", static_cast<float>(std::max(size.x(), size.y()) / shadow_size_));
+    p.set("u_shadow_light", shadow_light_);
+  }
+  shadow_dirty_ = false;
+}
+
+void GlRenderer::render_ambient_occlusion(const CameraView& view, const Eigen::Matrix4f& view_proj, ColorTargets& t) {
+  const int w = view.k.width, h = view.k.height;
+  // single-sample depth of the view, then occlusion from it, then a light blur of the noise
+  glBindFramebuffer(GL_FRAMEBUFFER, t.prepass.id());
+  const float zero = 0.0f;
+  glClearNamedFramebufferfv(t.prepass.id(), GL_DEPTH, 0, &zero);
+  camera_pass_state(w, h);
+  draw_scene(depth_, depth_model_, view_proj, {view.hide_robot, false});
+
+  glBindFramebuffer(GL_FRAMEBUFFER, t.ao.id());
+  image_pass_state(w, h);
+  glUseProgram(ssao_.id());
+  glProgramUniform4f(ssao_.id(), ssao_.uniform("u_k"), static_cast<float>(view.k.fx), static_cast<float>(view.k.fy),
+                     static_cast<float>(view.k.cx), static_cast<float>(view.k.cy));
+  ssao_.set("u_clip", Eigen::Vector2f(static_cast<float>(view.near_clip), static_cast<float>(view.far_clip)));
+  ssao_.set("u_radius", static_cast<float>(kAoRadius));
+  glBindTextureUnit(0, t.prepass_depth.id());
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  blur(t.ao_tex.id(), t.ao_tmp.id(), t.ao_tmp_tex.id(), t.ao.id(), w, h, kAoBlurSigma);
+}
+
+void GlRenderer::blur(GLuint src_tex, GLuint tmp_fbo, GLuint tmp_tex, GLuint dst_fbo, int width, int height, double sigma) {
+  if (sigma != blur_sigma_) {
+    const int radius = std::min(kMaxBlurRadius, static_cast<int>(std::ceil(3.0 * sigma)));
+    blur_weights_.assign(static_cast<std::size_t>(radius) + 1, 0.0f);
+    double sum = 0;
+    for (int i = 0; i <= radius; ++i) sum += (i == 0 ? 1.0 : 2.0) * std::exp(-0.5 * i * i / (sigma * sigma));
+    for (int i = 0; i <= radius; ++i) blur_weights_[static_cast<std::size_t>(i)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)) / sum);
+    blur_sigma_ = sigma;
+  }
+  const int radius = std::max(1, static_cast<int>(blur_weights_.size()) - 1);
+  auto it = blur_.find(radius);
+  if (it == blur_.end()) {
+    Program p("blur", shaders::kFullscreenVertex, fmt::format("#version 450 core\n#define RADIUS {}\n{}", radius, shaders::kBlurFragment));
+    p.set("u_src", 0);
+    it = blur_.emplace(radius, std::move(p)).first;
+  }
+  const Program& program = it->second;
+  blur_weights_.resize(static_cast<std::size_t>(radius) + 1, 0.0f);
+  image_pass_state(width, height);
+  glUseProgram(program.id());
+  glProgramUniform1fv(program.id(), program.uniform("u_weights"), static_cast<GLsizei>(blur_weights_.size()), blur_weights_.data());
+  glBindVertexArray(empty_vao_.id());
+  const GLint step = program.uniform("u_step");
+  glBindFramebuffer(GL_FRAMEBUFFER, tmp_fbo);
+  glProgramUniform2i(program.id(), step, 1, 0);
+  glBindTextureUnit(0, src_tex);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, dst_fbo);
+  glProgramUniform2i(program.id(), step, 0, 1);
+  glBindTextureUnit(0, tmp_tex);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void GlRenderer::do_color(const CameraView& view, ColorImage& out) {
+  context_.make_current();
+  if (!patterns_) bake_patterns();  // on first use: depth and thermal cameras never need them
+  const int w = view.k.width, h = view.k.height;
+  SizeTargets& st = targets(w, h);
+  if (!st.color) st.color = make_color_targets(w, h, quality());
+  ColorTargets& t = *st.color;
+  const Eigen::Matrix4f view_proj = view_projection(view);
+
+  // shadows (medium, high) and ambient occlusion (high) before the scene
+  const bool shadows = shadow_size_ > 0 && shadow_light_ >= 0;
+  if (shadows && shadow_dirty_) render_shadow_map();
+  if (!shadows) color().set("u_shadow_light", -1);
+  const bool ao = quality() == Quality::high;
+  if (ao) render_ambient_occlusion(view, view_proj, t);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.id());
+  const float zero = 0.0f;
+  glClearNamedFramebufferfv(t.scene.id(), GL_COLOR, 0, sky_.data());
+  glClearNamedFramebufferfv(t.scene.id(), GL_DEPTH, 0, &zero);
+  camera_pass_state(w, h);
+  color().set("u_eye", Eigen::Vector3f(view.X_WC.p.cast<float>()));
+  if (shadows) glBindTextureUnit(1, shadow_map_.id());
+  if (ao) glBindTextureUnit(2, t.ao_tex.id());
+  glBindTextureUnit(3, patterns_.id());
+  draw_scene(color(), color_model_[static_cast<int>(quality())], view_proj, {view.hide_robot, false});
+
+  // anti-aliasing: FXAA into the output (medium) or the multisample resolve (high)
+  if (quality() == Quality::medium) {
+    glBindFramebuffer(GL_FRAMEBUFFER, t.output.id());
+    image_pass_state(w, h);
+    glUseProgram(fxaa_.id());
+    fxaa_.set("u_texel", Eigen::Vector2f(1.0f / static_cast<float>(w), 1.0f / static_cast<float>(h)));
+    glBindTextureUnit(0, t.color_tex.id());
+    glBindVertexArray(empty_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  } else if (quality() == Quality::high) {
+    glBlitNamedFramebuffer(t.scene.id(), t.output.id(), 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.readback());
+  glNamedFramebufferReadBuffer(t.readback(), GL_COLOR_ATTACHMENT0);
+  glReadnPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, static_cast<GLsizei>(out.rgb.size()), out.rgb.data());
+}
+
+void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
+  context_.make_current();
+  const int w = view.k.width, h = view.k.height;
+  SizeTargets& st = targets(w, h);
+  if (!st.depth) st.depth = make_depth_targets(w, h);
+  const GLuint fbo = st.depth->fbo.id();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  const float zero = 0.0f;
+  glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &zero);
+  camera_pass_state(w, h);
+  draw_scene(depth_, depth_model_, view_projection(view), {view.hide_robot, false});
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(out.z.size() * sizeof(float)), out.z.data());
+  // reversed Z: 0 is the far plane (and the clear value), so nothing in view reads +inf
+  const double n = view.near_clip, f = view.far_clip;
+  for (float& d : out.z) d = d > 0.0f ? static_cast<float>(depth_from_reversed_z(d, n, f)) : std::numeric_limits<float>::infinity();
+}
+
+void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, ThermalImage& out) {
+  context_.make_current();
+  const int w = view.k.width, h = view.k.height;
+  SizeTargets& st = targets(w, h);
+  if (!st.thermal) st.thermal = make_thermal_targets(w, h);
+  ThermalTargets& t = *st.thermal;
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo.id());
+  const float background[4] = {ambient_temperature_, 0, 0, 0}, zero = 0.0f;
+  glClearNamedFramebufferfv(t.fbo.id(), GL_COLOR, 0, background);
+  glClearNamedFramebufferfv(t.fbo.id(), GL_DEPTH, 0, &zero);
+  camera_pass_state(w, h);
+  draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
+  if (blur_sigma_px > 0) blur(t.kelvin.id(), t.tmp.id(), t.kelvin_tmp.id(), t.fbo.id(), w, h, blur_sigma_px);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo.id());
+  glNamedFramebufferReadBuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0);
+  glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.kelvin.size() * sizeof(float)), out.kelvin.data());
+}
+
+}  // namespace
+
+std::unique_ptr<Renderer> make_headless_renderer(Quality q) { return std::make_unique<GlRenderer>(q); }
+
+}  // namespace rescuesim::gl
