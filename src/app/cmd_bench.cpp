@@ -14,6 +14,9 @@
 #include "core/atomic_file.h"
 #include "physics/physics.h"
 #include "raycast/raycast_bench.h"
+#include "render/render_bench.h"
+#include "render/renderer.h"
+#include "sensors/camera.h"
 #include "robots/drive_controller.h"
 #include "robots/rescue_robot.h"
 #include "sensors/lidar.h"
@@ -101,8 +104,42 @@ json bench_rays(const World& world, double seconds) {
   return j;
 }
 
+/// Camera frames per second (low quality) beside a bare GL loop drawing the same number of
+/// triangles with readback, for colour, depth and thermal at two sizes.
+json bench_cameras(const World& world, double seconds) {
+  json j;
+  std::unique_ptr<Renderer> renderer;
+  try {
+    renderer = Renderer::create_headless(Quality::low);
+  } catch (const Error& e) {
+    j["error"] = e.what();
+    return j;
+  }
+  RenderScene scene = build_render_scene(world);
+  renderer->load(scene);
+  State s;
+  Physics(world).init_state(s);
+  update_render_scene(scene, s);
+  renderer->update(scene);
+  j["device"] = renderer->device();
+  j["triangles"] = scene.triangle_count();
+  const SensorSpec* head = world.robots[0].spec.find_sensor("color_camera");
+  const char* kinds[3] = {"color", "depth", "thermal"};
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{640, 480}, {320, 240}}) {
+    const double bare = bare_gl_frames_per_second(w, h, static_cast<int>(scene.triangle_count()), seconds);
+    CameraView view = camera_view(world, s, 0, *head);
+    view.k = Intrinsics::from_hfov(w, h, 70 * M_PI / 180);
+    for (int k = 0; k < 3; ++k) {
+      const double fps = renderer_frames_per_second(*renderer, view, k, seconds);
+      j[std::string(kinds[k]) + "_" + std::to_string(w) + "x" + std::to_string(h)] =
+          figure(fps, "frames/s", bare, "bare GL loop, same triangles, RGB8 readback", 0.8);
+    }
+  }
+  return j;
+}
+
 /// Runs a scenario in a child process; returns its result and the child's peak memory (MB).
-json run_child(const Scenario& scenario, const ModelMap& models) {
+json run_child(const Scenario& scenario, const ModelMap& models, bool cameras) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = ::fork();
@@ -110,7 +147,9 @@ json run_child(const Scenario& scenario, const ModelMap& models) {
     ::close(fds[0]);
     json out;
     try {
-      Session session(scenario, models);
+      SessionOptions so;
+      so.cameras = cameras;
+      Session session(scenario, models, so);
       const RunResult r = session.run();
       out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
              {"victims_found", r.victims_found}, {"collisions", r.collisions}};
@@ -149,8 +188,10 @@ int run_bench(const BenchOptions& o) {
   report["physics"] = bench_physics(world, o.physics_steps);
   std::fprintf(stderr, "bench: lidar rays ...\n");
   report["lidar"] = bench_rays(world, o.seconds);
+  std::fprintf(stderr, "bench: cameras ...\n");
+  report["cameras"] = bench_cameras(world, o.seconds);
   std::fprintf(stderr, "bench: default scenario, %.0f s of sim time, no cameras ...\n", o.scenario_time);
-  json d = run_child(def, models);
+  json d = run_child(def, models, false);
   d["target_real_time_factor"] = 30;
   d["meets_target"] = d.value("real_time_factor", 0.0) >= 30;
   report["default_scenario"] = d;
@@ -158,12 +199,34 @@ int run_bench(const BenchOptions& o) {
   Scenario heavy = def;
   heavy.maze->rubble = 300;
   heavy.duration = std::min(o.scenario_time, 60.0);
-  json h = run_child(heavy, models);
+  json h = run_child(heavy, models, false);
   h["rubble_requested"] = 300;
   h["rubble_placed"] = build_world(heavy).rubble.size();
   h["target_real_time_factor"] = 10;
   h["meets_target"] = h.value("real_time_factor", 0.0) >= 10;
   report["rubble_300"] = h;
+  std::fprintf(stderr, "bench: default scenario with all cameras at 320x240, 10 Hz ...\n");
+  Scenario cams = def;
+  cams.duration = std::min(o.scenario_time, 60.0);
+  for (auto& rc : cams.robots) {
+    for (auto& sensor : rc.spec.sensors) {
+      if (sensor.type == SensorSpec::Type::color_camera || sensor.type == SensorSpec::Type::depth_camera ||
+          sensor.type == SensorSpec::Type::thermal_camera) {
+        sensor.camera.width = 320;
+        sensor.camera.height = 240;
+        sensor.rate = 10;
+      }
+    }
+  }
+  json c = run_child(cams, models, true);
+  c["target_real_time_factor"] = 5;
+  c["meets_target"] = c.value("real_time_factor", 0.0) >= 5;
+  report["default_scenario_cameras_320x240"] = c;
+  Scenario shipped = def;
+  shipped.duration = std::min(o.scenario_time, 60.0);
+  json d2 = run_child(shipped, models, true);
+  d2["note"] = "the shipped camera settings: colour 640x480, depth 320x240, thermal 160x120, all 10 Hz";
+  report["default_scenario_cameras_shipped"] = d2;
 
   const std::string text = report.dump(2) + "\n";
   std::fputs(text.c_str(), stdout);

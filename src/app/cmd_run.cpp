@@ -27,6 +27,8 @@ struct RunCommand {
   bool realtime = false;
   std::optional<double> rate;
   bool quiet = false;
+  bool no_cameras = false;
+  std::string quality;
 };
 
 /// One line of progress: a bar, sim time, real-time factor, victims.
@@ -56,12 +58,16 @@ int run(const RunCommand& c) {
     s.svg = c.world_svg;
     s.maze.reset();
   }
-  Session session(s, models);
+  if (!c.quality.empty()) s.render_quality = c.quality;
+  SessionOptions so;
+  so.cameras = !c.no_cameras;
+  Session session(s, models, so);
   print_diagnostics(session.diagnostics());
   const fs::path out = c.out.empty() ? fs::path("runs") / s.name : fs::path(c.out);
   const WorldSpec& w = session.world_spec();
   std::printf("scenario %s (seed %llu, %s, %.0f s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
               s.realtime ? "realtime" : "lockstep", s.duration, w.name.c_str(), world_summary(w).c_str());
+  if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
   std::fflush(stdout);
 
   // Ctrl-C stops the run cleanly: the outputs of what ran are still written
@@ -117,6 +123,8 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--rate", c->rate, "realtime pace: sim seconds per wall second")->check(CLI::PositiveNumber);
   cmd->add_option("--out,-o", c->out, "output folder (default runs/<scenario name>)");
   cmd->add_flag("--quiet,-q", c->quiet, "no progress bar");
+  cmd->add_flag("--no-cameras", c->no_cameras, "switch off the colour, depth and thermal cameras (no OpenGL needed; faster)");
+  cmd->add_option("--quality", c->quality, "camera rendering quality")->check(CLI::IsMember({"low", "medium", "high"}));
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }
 

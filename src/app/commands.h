@@ -22,6 +22,8 @@ void add_check_command(CLI::App& app, Action& action);
 void add_maze_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
+void add_snapshot_command(CLI::App& app, Action& action);
+void add_view_command(CLI::App& app, Action& action);
 
 /// Several lines describing a world: size, counts of each kind, starts.
 std::string world_summary(const WorldSpec& world);

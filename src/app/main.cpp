@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   app::add_maze_command(app, action);
   app::add_check_command(app, action);
   app::add_bench_command(app, action);
+  app::add_snapshot_command(app, action);
+  app::add_view_command(app, action);
 
   try {
     app.parse(argc, argv);

@@ -145,14 +145,12 @@ RobotSpec rescue_robot() {
   r.sensors.push_back(sensor("joint_states", SensorSpec::Type::joint_states, "base_link", {}, 20, "joint_states", ""));
   r.sensors.push_back(sensor("bumper", SensorSpec::Type::contact, "base_link", {}, 20, "bumper", "base_link"));
 
-  // the head's cameras, looking along the head's x axis (rendered by src/render; until a
-  // renderer is attached they only define what the head can see)
+  // the head's cameras, looking along the head's x axis (rendered by src/render)
   SensorSpec color = sensor("color_camera", SensorSpec::Type::color_camera, "head", at(0.10, 0.06, 0.0), 10, "camera/color/image_raw",
                             "camera_color");
   color.camera.width = 640;
   color.camera.height = 480;
   color.camera.hfov = 70 * deg;
-  color.enabled = false;
   r.sensors.push_back(color);
   SensorSpec depth = sensor("depth_camera", SensorSpec::Type::depth_camera, "head", at(0.10, -0.06, 0.0), 10, "camera/depth/image_raw",
                             "camera_depth");
@@ -161,17 +159,17 @@ RobotSpec rescue_robot() {
   depth.camera.hfov = 58 * deg;
   depth.camera.min_range = 0.3;
   depth.camera.max_range = 8.0;
-  depth.enabled = false;
+  depth.camera.depth_noise_quadratic = 0.001;
   r.sensors.push_back(depth);
   // a small radiometric thermal camera (160 x 120, 57 degrees, like a FLIR Lepton)
-  SensorSpec thermal = sensor("thermal_camera", SensorSpec::Type::thermal_camera, "head", at(0.10, 0.0, 0.04), 9, "thermal/image_raw",
+  SensorSpec thermal = sensor("thermal_camera", SensorSpec::Type::thermal_camera, "head", at(0.10, 0.0, 0.04), 10, "thermal/image_raw",
                               "thermal_camera");
   thermal.camera.width = 160;
   thermal.camera.height = 120;
   thermal.camera.hfov = 57 * deg;
   thermal.camera.min_range = 0.1;
   thermal.camera.max_range = 6.0;
-  thermal.enabled = false;
+  thermal.camera.noise.stddev = 0.05;  // NETD 50 mK
   r.sensors.push_back(thermal);
   return r;
 }

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "core/log.h"
+#include "session/camera_service.h"
 #include "session/session_controllers.h"
 
 namespace rescuesim {
@@ -21,11 +22,32 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   diagnostics_.append(problems);
   if (diagnostics_.has_errors()) diagnostics_.throw_if_errors();
   World world = compile_scenario(scenario_, spec_, models);
+  bool any_camera = false;
+  for (auto& robot : world.robots) {
+    for (auto& sensor : robot.spec.sensors) {
+      const bool camera = sensor.type == SensorSpec::Type::color_camera || sensor.type == SensorSpec::Type::depth_camera ||
+                          sensor.type == SensorSpec::Type::thermal_camera;
+      if (camera && !options_.cameras) sensor.enabled = false;
+      any_camera = any_camera || (camera && sensor.enabled);
+    }
+  }
   SimOptions so = options_.sim;
   so.seed = scenario_.seed;
   so.physics.dt = scenario_.physics_dt;
   so.physics.solver_iterations = scenario_.solver_iterations;
   sim_ = std::make_unique<Simulation>(std::move(world), so);
+  if (any_camera) {
+    CameraServiceOptions co;
+    co.quality = scenario_.render_quality == "high" ? Quality::high : scenario_.render_quality == "medium" ? Quality::medium : Quality::low;
+    co.latency = scenario_.render_latency;
+    try {
+      cameras_ = std::make_unique<RenderCameraService>(sim_->world(), co);
+    } catch (const Error& e) {
+      throw Error({scenario_.source_file, 0, "camera sensors"},
+                  std::string(e.what()) + "\n(the cameras need OpenGL 4.5 through EGL; run without them with --no-cameras)");
+    }
+    sim_->set_camera_service(cameras_.get());
+  }
   last_scans_.resize(sim_->world().robots.size());
 
   // controllers listen to the laser and odometry topics and answer with cmd_vel
@@ -87,7 +109,19 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   record();
 }
 
-Session::~Session() = default;
+Session::~Session() {
+  // the simulation holds a pointer to the camera service: detach it before either goes
+  if (sim_) sim_->set_camera_service(nullptr);
+}
+
+bool Session::world_has_no_thermal() const {
+  for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
+    if (cameras_->detects_victims(static_cast<int>(r))) return false;
+  }
+  return true;
+}
+
+std::string Session::render_device() const { return cameras_ ? cameras_->device() : std::string(); }
 
 void Session::record() {
   const State& s = sim_->state();
@@ -140,6 +174,7 @@ RunResult Session::result() const {
     r.victims_found += vr.found;
     r.victims.push_back(vr);
   }
+  r.victim_detection = cameras_ && !world_has_no_thermal() ? "thermal images" : "line of sight";
   r.coverage = coverage();
   for (const auto& rs : s.robots) {
     r.collisions += rs.collisions;
@@ -195,6 +230,8 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       }
     }
   }
+  // frames still being rendered belong to this run
+  sim_->flush_cameras();
   wall_time_ = wall_before + std::chrono::duration<double>(clock::now() - t0).count();
   return result();
 }

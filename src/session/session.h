@@ -34,6 +34,7 @@ struct RunResult {
   bool trouble = false;         ///< numerical trouble stopped the run
   std::vector<VictimResult> victims;
   int victims_found = 0;
+  std::string victim_detection;  ///< "thermal images" (cameras rendered) or "line of sight" (no cameras)
   double coverage = 0;          ///< fraction of free floor passed within 1 m of (see docs/outputs.md)
   int collisions = 0;           ///< contacts begun with walls, obstacles, victims, robots
   double distance = 0;          ///< m driven (ground truth)
@@ -52,6 +53,7 @@ struct TrajectoryPoint {
 /// Settings of a run beyond its scenario.
 struct SessionOptions {
   bool controllers = true;      ///< attach the scenario's built-in controllers
+  bool cameras = true;          ///< render camera sensors (false: every camera sensor is switched off)
   double trajectory_rate = 10;  ///< Hz
   SimOptions sim;               ///< seed and physics are filled from the scenario
 };
@@ -65,6 +67,8 @@ class Session {
   Simulation& sim() { return *sim_; }
   const Scenario& scenario() const { return scenario_; }
   const WorldSpec& world_spec() const { return spec_; }
+  /// The GL device rendering the cameras, or "" when there are none.
+  std::string render_device() const;
   /// Warnings from importing the world.
   const Diagnostics& diagnostics() const { return diagnostics_; }
 
@@ -83,13 +87,16 @@ class Session {
  private:
   struct Controllers;
   void record();
+  void write_camera_frames(const std::filesystem::path& dir) const;
   double coverage() const;
+  bool world_has_no_thermal() const;
 
   Scenario scenario_;
   WorldSpec spec_;
   Diagnostics diagnostics_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<Controllers> controllers_;
+  std::unique_ptr<class RenderCameraService> cameras_;
   SessionOptions options_;
   std::vector<TrajectoryPoint> trajectory_;
   SimTime next_record_;

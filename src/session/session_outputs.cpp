@@ -1,12 +1,15 @@
 // The files a run leaves behind: summary.json, trajectory.csv, world.svg, overview.png and
 // sensors/laser.png, each written atomically.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "session/session.h"
+#include "session/camera_service.h"
 #include "session/session_controllers.h"
 #include "viz/world_plot.h"
 #include "world/svg/svg_world.h"
@@ -29,6 +32,7 @@ nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const
   j["trouble"] = r.trouble;
   j["victims_total"] = r.victims.size();
   j["victims_found"] = r.victims_found;
+  j["victim_detection"] = r.victim_detection;
   auto& victims = j["victims"] = nlohmann::ordered_json::array();
   for (const auto& v : r.victims) {
     victims.push_back({{"name", v.name}, {"found", v.found}, {"time_s", v.found ? nlohmann::ordered_json(v.time) : nlohmann::ordered_json()},
@@ -57,6 +61,15 @@ std::string trajectory_csv(const std::vector<TrajectoryPoint>& traj, const World
   return out;
 }
 
+/// A depth in metres as a colour: near red through yellow and green to far blue; black for none.
+Rgb8 depth_colour(float z) {
+  if (!std::isfinite(z)) return {0, 0, 0};
+  const double t = std::clamp(z / 8.0, 0.0, 1.0);
+  const double r = std::clamp(1.5 - std::abs(4 * t - 1), 0.0, 1.0), g = std::clamp(1.5 - std::abs(4 * t - 2), 0.0, 1.0),
+               b = std::clamp(1.5 - std::abs(4 * t - 3), 0.0, 1.0);
+  return {static_cast<std::uint8_t>(255 * r), static_cast<std::uint8_t>(255 * g), static_cast<std::uint8_t>(255 * b)};
+}
+
 /// A polar plot of a laser scan: the robot at the centre, 1 m rings, returns as dots.
 Canvas laser_plot(const msg::LaserScan& scan, const std::string& title) {
   const int size = 520, c = size / 2;
@@ -82,6 +95,43 @@ Canvas laser_plot(const msg::LaserScan& scan, const std::string& title) {
 }
 
 }  // namespace
+
+void Session::write_camera_frames(const std::filesystem::path& dir) const {
+  if (!cameras_) return;
+  const World& world = sim_->world();
+  for (const auto& f : cameras_->last_frames()) {
+    const msg::Image& m = f.image;
+    Canvas img(static_cast<int>(m.width), static_cast<int>(m.height));
+    for (std::uint32_t y = 0; y < m.height; ++y) {
+      for (std::uint32_t x = 0; x < m.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * m.width + x;
+        Rgb8 c;
+        if (m.encoding == "rgb8") {
+          c = {m.data[i * 3], m.data[i * 3 + 1], m.data[i * 3 + 2]};
+        } else if (m.encoding == "32FC1") {
+          float z;
+          std::memcpy(&z, &m.data[i * 4], 4);
+          c = depth_colour(z);
+        } else if (m.encoding == "16UC1") {
+          std::uint16_t v;
+          std::memcpy(&v, &m.data[i * 2], 2);
+          c = depth_colour(v == 0 ? NAN : v * 0.001f);
+        } else if (m.encoding == "mono16") {
+          // thermal: the mono8 window of the sensor, as grey
+          std::uint16_t v;
+          std::memcpy(&v, &m.data[i * 2], 2);
+          const SensorSpec* s = world.robots[static_cast<std::size_t>(f.robot)].spec.find_sensor(f.sensor);
+          const double t = (v * 0.01 - s->camera.mono8_min) / (s->camera.mono8_max - s->camera.mono8_min);
+          const auto g = static_cast<std::uint8_t>(std::clamp(std::lround(255 * t), 0L, 255L));
+          c = {g, g, g};
+        }
+        img.set(static_cast<int>(x), static_cast<int>(y), c);
+      }
+    }
+    const std::string name = (world.robots.size() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
+    img.write_png(dir / "sensors" / name);
+  }
+}
 
 void Session::write_outputs(const std::filesystem::path& dir, const RunResult& result) const {
   const World& world = sim_->world();
@@ -131,6 +181,7 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
   }
   img.write_png(dir / "overview.png");
 
+  write_camera_frames(dir);
   for (std::size_t r = 0; r < last_scans_.size(); ++r) {
     if (last_scans_[r].ranges.empty()) continue;
     const std::string name = world.robots.size() > 1 ? "laser_" + world.robots[r].name + ".png" : "laser.png";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "robots/drive_controller.h"
 #include "sensors/imu.h"
@@ -103,7 +104,13 @@ void Simulation::setup_topics() {
       s.topic = bus_.advertise(topic, topic_type(spec), spec.rate, false, s.robot);
       if (is_camera(spec.type)) {
         const std::string base = topic.substr(0, topic.rfind('/'));
-        s.extra_topic = bus_.advertise(base + "/camera_info", "sensor_msgs/CameraInfo", spec.rate, false, s.robot);
+        s.info_topic = bus_.advertise(base + "/camera_info", "sensor_msgs/CameraInfo", spec.rate, false, s.robot);
+        if (spec.type == SensorSpec::Type::depth_camera && spec.camera.point_cloud) {
+          s.extra_topic = bus_.advertise(base + "/points", "sensor_msgs/PointCloud2", spec.rate, false, s.robot);
+        }
+        if (spec.type == SensorSpec::Type::thermal_camera) {
+          s.extra_topic = bus_.advertise(base + "/image_mono8", "sensor_msgs/Image", spec.rate, false, s.robot);
+        }
       }
       SensorSlot slot;
       slot.rng = Rng(options_.seed, "sensor/" + robot.name + "/" + spec.name);
@@ -209,6 +216,7 @@ void Simulation::post_step() {
     publish_tf();
     while (next_tf_ <= now) next_tf_ += period_of(options_.tf_rate);
   }
+  if (cameras_) cameras_->deliver(world_, state_, now, [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
   if (now >= next_victim_check_ && !world_.victims.empty()) {
     check_victims();
     while (next_victim_check_ <= now) next_victim_check_ += period_of(options_.victim_check_rate);
@@ -291,7 +299,7 @@ void Simulation::sample(const SensorInstance& s) {
     case SensorSpec::Type::color_camera:
     case SensorSpec::Type::depth_camera:
     case SensorSpec::Type::thermal_camera:
-      if (cameras_) cameras_->sample(world_, state_, s, slot, [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
+      if (cameras_) cameras_->sample(world_, state_, s, slot);
       break;
   }
 }
@@ -341,7 +349,8 @@ void Simulation::check_victims() {
     for (const auto& s : spec.sensors) {
       if (s.type == SensorSpec::Type::thermal_camera) cam = &s;
     }
-    if (!cam) continue;
+    // with rendered cameras, victims are found in the thermal images instead
+    if (!cam || (cameras_ && cameras_->detects_victims(static_cast<int>(r)))) continue;
     const int link = spec.link_index(cam->link);
     const Pose3 X_WC = state_.robots[r].X_WL[static_cast<std::size_t>(link)] * cam->X_LS;
     const double tan_h = std::tan(cam->camera.hfov / 2);
@@ -365,6 +374,13 @@ void Simulation::check_victims() {
         }
       }
     }
+  }
+}
+
+void Simulation::flush_cameras() {
+  if (cameras_) {
+    cameras_->deliver(world_, state_, SimTime{std::numeric_limits<std::int64_t>::max()},
+                      [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
   }
 }
 

@@ -42,19 +42,27 @@ struct SensorInstance {
   int robot = 0;
   int index = 0;                       ///< into the robot's spec.sensors
   int slot = 0;                        ///< into State::sensors
-  int topic = -1;                      ///< Bus topic id
-  int extra_topic = -1;                ///< e.g. camera_info, point cloud
+  int topic = -1;                      ///< Bus topic id of the main output
+  int info_topic = -1;                 ///< cameras: camera_info
+  int extra_topic = -1;                ///< depth: points; thermal: image_mono8
   SimTime period;
 };
 
-/// A camera renderer: given a robot's camera sensor, produce its messages. The render thread
-/// service (src/render) implements it; the simulation only calls it.
+/// Renders camera sensors. The simulation hands it each camera sample as it falls due and,
+/// after every step, asks it to deliver finished frames; an implementation may render on
+/// another thread meanwhile (src/sensors/camera_service.h does), as long as what it delivers at
+/// a given step never depends on thread timing.
 class CameraService {
  public:
   virtual ~CameraService() = default;
-  /// Publishes the camera sensor's messages for `state` via `publish(topic, message)`.
-  virtual void sample(const World& world, const State& state, const SensorInstance& sensor, SensorSlot& slot,
-                      const std::function<void(int, msg::Message)>& publish) = 0;
+  /// A camera is due at `state.time`: take what it needs from `state` and start its frame;
+  /// draw any randomness from `slot.rng` now, on the simulation thread.
+  virtual void sample(const World& world, const State& state, const SensorInstance& sensor, SensorSlot& slot) = 0;
+  /// Publishes, in sample order, every frame due for delivery at or before `now` (waiting for
+  /// it if it is not finished), and may record victims it saw in `state.victims`.
+  virtual void deliver(const World& world, State& state, SimTime now, const std::function<void(int, msg::Message)>& publish) = 0;
+  /// True when this service decides which victims are seen (from thermal images) for `robot`.
+  virtual bool detects_victims(int robot) const = 0;
 };
 
 class Simulation {
@@ -95,6 +103,8 @@ class Simulation {
 
   /// Cameras are sampled through this service when one is attached (none: cameras are skipped).
   void set_camera_service(CameraService* service) { cameras_ = service; }
+  /// Publishes every camera frame still in flight (at the end of a run).
+  void flush_cameras();
 
   /// A copy of the state, and a way back to it (see Physics::restore for the fine print).
   State snapshot() const { return state_; }

@@ -2,6 +2,7 @@
 /// Sensor descriptions as data: what each sensor is, where it is mounted, how often it samples
 /// and how it is noisy. Samplers live in src/sensors; these are plain settings.
 
+#include <array>
 #include <string>
 
 #include "core/pose.h"
@@ -60,8 +61,15 @@ struct CameraSpec {
   double hfov = 1.2;                 ///< horizontal field of view (rad)
   double near_clip = 0.05, far_clip = 30.0;  ///< m
   double min_range = 0.1, max_range = 10.0;  ///< depth/thermal useful range (m)
-  NoiseSpec noise;                   ///< pixel noise (colour: 0..1; depth: metres at 1 m; thermal: K)
+  NoiseSpec noise;                   ///< pixel noise: colour in 0..1 units, depth in m (plus the quadratic term), thermal in K (NETD)
   double blur_sigma = 1.5;           ///< thermal: Gaussian blur (px)
+  /// colour: Brown distortion k1, k2, p1, p2, k3 (all zero = an ideal pinhole)
+  std::array<double, 5> distortion{0, 0, 0, 0, 0};
+  double exposure = 1.0;             ///< colour: linear gain before encoding
+  std::string depth_encoding = "32FC1";  ///< depth: 32FC1 (m) or 16UC1 (mm)
+  double depth_noise_quadratic = 0.0;    ///< depth: extra noise sigma = this x z^2 (structured-light sensors, ~0.0012 /m)
+  bool point_cloud = true;           ///< depth: also publish a PointCloud2
+  double mono8_min = 288.15, mono8_max = 313.15;  ///< thermal: temperature window (K) mapped to 0..255
 };
 
 /// What kind of sensor, and the settings of that kind.

@@ -233,3 +233,36 @@ TEST(RunCommand, RealtimeModeIsPacedByTheWallClock) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+TEST(RunCameras, NoEglIsSaidPlainlyWithExitCode2) {
+  // point libglvnd at no vendor at all: as on a machine without any EGL driver
+  const auto r = testing::run_command(std::string("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json '") + RESCUESIM_EXE +
+                                      "' run --duration 1 -q --out '" + testing::temp_dir("no-egl").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no EGL display"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--no-cameras"), std::string::npos) << r.err;
+}
+
+TEST(RunCameras, WithoutCamerasNoEglIsNeeded) {
+  const auto r = testing::run_command(std::string("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json '") + RESCUESIM_EXE +
+                                      "' run --duration 1 -q --no-cameras --out '" + testing::temp_dir("no-egl-ok").string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(RunCameras, ZeroOrHugeResolutionAndBadFovAreRejected) {
+  const auto dir = testing::temp_dir("cam-bad");
+  const char* bad[] = {"color_camera: {width: 0}", "depth_camera: {height: 100000}", "thermal_camera: {hfov: 180}",
+                       "color_camera: {hfov: 0}"};
+  for (const char* b : bad) {
+    testing::write_text(dir / "s.yaml", std::string("robots:\n  - name: r\n    sensors:\n      ") + b + "\n");
+    const auto r = testing::rescuesim("run '" + (dir / "s.yaml").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << b;
+    EXPECT_NE(r.err.find("robots[0].sensors."), std::string::npos) << b << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace rescuesim

@@ -8,6 +8,7 @@
 // on screen (glFrontFace(GL_CW)).
 
 #include "render/gl/gl_renderer.h"
+#include "render/image_blur.h"
 
 #include <algorithm>
 #include <cmath>
@@ -466,10 +467,11 @@ void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, Therma
   glClearNamedFramebufferfv(t.fbo.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
   draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
-  if (blur_sigma_px > 0) blur(t.kelvin.id(), t.tmp.id(), t.kelvin_tmp.id(), t.fbo.id(), w, h, blur_sigma_px);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo.id());
   glNamedFramebufferReadBuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0);
   glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.kelvin.size() * sizeof(float)), out.kelvin.data());
+  // the optics' blur on the CPU: on llvmpipe two float render passes cost several times more
+  gaussian_blur(out.kelvin, w, h, blur_sigma_px);
 }
 
 }  // namespace

@@ -70,13 +70,10 @@ std::unique_ptr<ThermalTargets> make_thermal_targets(int w, int h) {
   auto out = std::make_unique<ThermalTargets>();
   ThermalTargets& t = *out;
   t.kelvin = Texture::create_2d(GL_R32F, w, h);
-  t.kelvin_tmp = Texture::create_2d(GL_R32F, w, h);
   t.fbo = texture_fbo(t.kelvin);
-  t.tmp = texture_fbo(t.kelvin_tmp);
   t.depth_rb = Renderbuffer::create(GL_DEPTH_COMPONENT32F, w, h);
   glNamedFramebufferRenderbuffer(t.fbo.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_rb.id());
   t.fbo.check_complete("thermal");
-  t.tmp.check_complete("thermal blur");
   return out;
 }
 

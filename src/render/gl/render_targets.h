@@ -31,10 +31,10 @@ struct DepthTargets {
   Renderbuffer depth_rb;
 };
 
-/// Thermal pass targets: kelvin (R32F) with depth, and a second R32F for the blur.
+/// Thermal pass targets: kelvin (R32F) with depth (the blur runs on the CPU after readback).
 struct ThermalTargets {
-  Framebuffer fbo, tmp;
-  Texture kelvin, kelvin_tmp;
+  Framebuffer fbo;
+  Texture kelvin;
   Renderbuffer depth_rb;
 };
 

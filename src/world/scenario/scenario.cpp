@@ -65,6 +65,10 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   s.realtime = root.choice("mode", "lockstep", {"lockstep", "realtime"}) == "realtime";
   s.rate = root.number("rate", s.rate, 1e-3, 1e4);
   s.stop_when_all_found = root.boolean("stop_when_all_found", s.stop_when_all_found);
+  const YamlNode render = root.map("render");
+  s.render_quality = render.choice("quality", s.render_quality, {"low", "medium", "high"});
+  s.render_latency = render.number("latency", s.render_latency, -1, 10);
+  render.finish();
   const YamlNode physics = root.map("physics");
   s.physics_dt = physics.number("dt", s.physics_dt, 1e-4, 0.05);
   s.solver_iterations = static_cast<int>(physics.integer("solver_iterations", s.solver_iterations, 1, 1000));

@@ -39,6 +39,8 @@ struct Scenario {
   double physics_dt = 0.005;        ///< s
   int solver_iterations = 10;
   bool stop_when_all_found = false; ///< end the run once every victim has been seen
+  std::string render_quality = "low";  ///< camera images: low, medium or high (see docs/rendering.md)
+  double render_latency = -1;       ///< s from a camera's sample to its delivery; < 0: one camera period
 
   /// The world comes from exactly one of these.
   std::optional<std::filesystem::path> svg;  ///< resolved against the scenario file's folder
