@@ -28,7 +28,9 @@ build: deps $(BUILD)/CMakeCache.txt
 run: build
 	$(BUILD)/bin/rescuesim run $(RUN_ARGS)
 
+# the bridge tests drive reference npm clients (tests/js), installed into $(BUILD)/js
 test: build
+	scripts/install-test-js.sh $(BUILD)/js
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 bench: build

@@ -1,9 +1,13 @@
-# rescuesim_module(NAME <name> [DIRS <subdirs>...] DEPS <targets>...)
-# One folder = one static library `rs_<name>`, sources globbed from src/<name> (and the
-# listed subfolders). Includes are rooted at src/, so code writes #include "core/rng.h".
+# rescuesim_module(NAME <name> [DIR <folder under src>] [DIRS <subdirs>...] DEPS <targets>...)
+# One folder = one static library `rs_<name>`, sources globbed from src/<name> (or src/<DIR>,
+# e.g. bridges/ros1) and the listed subfolders. Includes are rooted at src/, so code writes
+# #include "core/rng.h".
 function(rescuesim_module)
-  cmake_parse_arguments(M "" "NAME" "DIRS;DEPS;PRIVATE_DEPS" ${ARGN})
-  set(dir ${RESCUESIM_SOURCE_DIR}/src/${M_NAME})
+  cmake_parse_arguments(M "" "NAME;DIR" "DIRS;DEPS;PRIVATE_DEPS" ${ARGN})
+  if(NOT M_DIR)
+    set(M_DIR ${M_NAME})
+  endif()
+  set(dir ${RESCUESIM_SOURCE_DIR}/src/${M_DIR})
   file(GLOB sources CONFIGURE_DEPENDS ${dir}/*.cpp)
   foreach(sub ${M_DIRS})
     file(GLOB more CONFIGURE_DEPENDS ${dir}/${sub}/*.cpp)

@@ -7,9 +7,22 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
 #include "app/commands.h"
+#include "core/log.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
+#include "sim/bridge.h"
+#ifdef RESCUESIM_HAS_ROS1
+#include "bridges/ros1/ros1_bridge.h"
+#endif
+#ifdef RESCUESIM_HAS_ROS2
+#include "bridges/ros2/ros2_bridge.h"
+#endif
 
 namespace rescuesim::app {
 
@@ -29,7 +42,42 @@ struct RunCommand {
   bool quiet = false;
   bool no_cameras = false;
   std::string quality;
+  // bridges
+  bool ros1 = false, ros2 = false;
+  bool use_sim_time = false;
+  bool lockstep = false;
+  bool keep_controllers = false;
+  bool no_controllers = false;
+  std::string ros2_distro = "humble";
+  std::optional<int> ros_domain;
 };
+
+/// The bridges asked for, not yet started. Throws Error (exit 2) for one this build lacks.
+std::vector<std::unique_ptr<Bridge>> make_bridges(const RunCommand& c) {
+  std::vector<std::unique_ptr<Bridge>> bridges;
+  if (c.ros1) {
+#ifdef RESCUESIM_HAS_ROS1
+    Ros1Options o;
+    o.use_sim_time = c.use_sim_time;
+    bridges.push_back(make_ros1_bridge(o));
+#else
+    throw Error("--ros1: this rescuesim was built without the ROS 1 bridge (roscpp not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  if (c.ros2) {
+#ifdef RESCUESIM_HAS_ROS2
+    Ros2Options o;
+    if (c.ros_domain) o.domain_id = *c.ros_domain;
+    o.distro = c.ros2_distro == "humble" ? Ros2Distro::humble : Ros2Distro::iron_or_newer;
+    bridges.push_back(make_ros2_bridge(o));
+#else
+    throw Error("--ros2: this rescuesim was built without the ROS 2 bridge (Cyclone DDS not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  return bridges;
+}
 
 /// One line of progress: a bar, sim time, real-time factor, victims.
 void print_progress(const RunResult& r, double duration, bool tty) {
@@ -51,8 +99,14 @@ int run(const RunCommand& c) {
     s.seed = *c.seed;
     if (s.maze) s.maze->seed = *c.seed;
   }
-  if (c.duration) s.duration = *c.duration;
-  if (c.realtime) s.realtime = true;
+  const bool ros = c.ros1 || c.ros2;
+  if (c.duration) {
+    s.duration = *c.duration;
+  } else if (ros) {
+    s.duration = std::numeric_limits<double>::infinity();  // like a ROS simulator: until Ctrl-C
+  }
+  if (c.realtime || (ros && !c.lockstep)) s.realtime = true;
+  if (c.lockstep) s.realtime = false;
   if (c.rate) s.rate = *c.rate;
   if (!c.world_svg.empty()) {
     s.svg = c.world_svg;
@@ -61,13 +115,23 @@ int run(const RunCommand& c) {
   if (!c.quality.empty()) s.render_quality = c.quality;
   SessionOptions so;
   so.cameras = !c.no_cameras;
+  // with a ROS bridge, ROS drives the robots: the built-in controllers stay off unless kept
+  so.controllers = !c.no_controllers && (!ros || c.keep_controllers);
+  auto bridges = make_bridges(c);
   Session session(s, models, so);
   print_diagnostics(session.diagnostics());
   const fs::path out = c.out.empty() ? fs::path("runs") / s.name : fs::path(c.out);
   const WorldSpec& w = session.world_spec();
-  std::printf("scenario %s (seed %llu, %s, %.0f s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
-              s.realtime ? "realtime" : "lockstep", s.duration, w.name.c_str(), world_summary(w).c_str());
+  const bool forever = !std::isfinite(s.duration);
+  std::printf("scenario %s (seed %llu, %s, %s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
+              s.realtime ? "realtime" : "lockstep", forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
+              w.name.c_str(), world_summary(w).c_str());
   if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
+  if (!so.controllers) std::printf("  controllers   off (robots wait for cmd_vel)\n");
+  for (auto& b : bridges) {
+    b->start(session.sim());
+    std::printf("  bridge        %s started\n", b->name().c_str());
+  }
   std::fflush(stdout);
 
   // Ctrl-C stops the run cleanly: the outputs of what ran are still written
@@ -75,16 +139,27 @@ int run(const RunCommand& c) {
   std::signal(SIGINT, on_sigint);
   const bool tty = ::isatty(STDERR_FILENO);
   double next_line = 0;
+  std::signal(SIGTERM, on_sigint);
+  // progress lines every tenth of the run, or every 10 s of sim time when it runs until stopped
+  const double line_every = forever ? 10.0 : s.duration / 10;
   const RunResult r = session.run(&g_interrupted, [&](const RunResult& p) {
     if (c.quiet) return;
     if (tty || p.sim_time >= next_line) {
-      print_progress(p, s.duration, tty);
-      next_line = p.sim_time + s.duration / 10;
+      print_progress(p, forever ? 0 : s.duration, tty);
+      next_line = p.sim_time + line_every;
     }
   });
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  for (auto& b : bridges) {
+    b->stop();
+    const BridgeStats st = b->stats();
+    std::printf("bridge %s: %llu messages sent, %llu dropped (slow subscribers), %llu commands received, %llu rejected\n",
+                b->name().c_str(), static_cast<unsigned long long>(st.sent), static_cast<unsigned long long>(st.dropped),
+                static_cast<unsigned long long>(st.received), static_cast<unsigned long long>(st.rejected));
+  }
   if (!c.quiet) {
-    print_progress(r, s.duration, tty);
+    print_progress(r, forever ? 0 : s.duration, tty);
     if (tty) std::fprintf(stderr, "\n");
   }
   session.write_outputs(out, r);
@@ -114,7 +189,12 @@ void add_run_command(CLI::App& app, Action& action) {
       "Examples:\n"
       "  rescuesim run\n"
       "  rescuesim run worlds/arena.yaml --seed 3\n"
-      "  rescuesim run --world worlds/office.svg --duration 60 --out runs/office");
+      "  rescuesim run --world worlds/office.svg --duration 60 --out runs/office\n\n"
+      "As a ROS simulator (docs/ros.md): --ros1 and/or --ros2 run in realtime until Ctrl-C, with\n"
+      "the built-in controllers off, so ROS nodes drive the robot through /cmd_vel:\n"
+      "  roscore &  rescuesim run --ros1 --use-sim-time\n"
+      "  rescuesim run --ros2 --ros-domain 7 --duration 600\n"
+      "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
   cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
@@ -125,6 +205,15 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_flag("--quiet,-q", c->quiet, "no progress bar");
   cmd->add_flag("--no-cameras", c->no_cameras, "switch off the colour, depth and thermal cameras (no OpenGL needed; faster)");
   cmd->add_option("--quality", c->quality, "camera rendering quality")->check(CLI::IsMember({"low", "medium", "high"}));
+  cmd->add_flag("--ros1", c->ros1, "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
+  cmd->add_flag("--ros2", c->ros2, "be a ROS 2 participant on ROS_DOMAIN_ID (Cyclone DDS, ROS 2 wire conventions; docs/ros.md)");
+  cmd->add_flag("--use-sim-time", c->use_sim_time, "ROS 1: set the /use_sim_time parameter so nodes follow /clock");
+  cmd->add_option("--ros2-distro", c->ros2_distro, "ROS 2 discovery info layout: humble (24-byte Gid) or iron (16-byte, Iron and newer)")
+      ->check(CLI::IsMember({"humble", "iron"}));
+  cmd->add_option("--ros-domain", c->ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
+  cmd->add_flag("--lockstep", c->lockstep, "with a ROS bridge: step as fast as possible instead of realtime");
+  cmd->add_flag("--keep-controllers", c->keep_controllers, "with a ROS bridge: keep the scenario's built-in controllers driving");
+  cmd->add_flag("--no-controllers", c->no_controllers, "switch the scenario's built-in controllers off (robots wait for cmd_vel)");
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "core/log.h"
@@ -189,7 +190,9 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   const double wall_before = wall_time_;
-  const SimTime end = SimTime::from_seconds(scenario_.duration);
+  // an infinite duration runs until `stop` (rescuesim run --ros1 without --duration)
+  const SimTime end = std::isfinite(scenario_.duration) ? SimTime::from_seconds(scenario_.duration)
+                                                        : SimTime{std::numeric_limits<std::int64_t>::max()};
   const SimTime start_time = sim_->time();
   auto last_report = t0;
   stop_reason_ = "duration";

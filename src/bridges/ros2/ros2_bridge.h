@@ -1,0 +1,27 @@
+#pragma once
+/// The ROS 2 bridge: a Cyclone DDS participant that follows ROS 2's conventions (topic `/scan`
+/// is DDS topic `rt/scan` of type `sensor_msgs::msg::dds_::LaserScan_`, XCDR1 little endian),
+/// so ROS 2 nodes on rmw_cyclonedds or rmw_fastrtps see its topics and its node. See docs/ros.md.
+
+#include <memory>
+#include <string>
+
+#include "sim/bridge.h"
+
+namespace rescuesim {
+
+/// Size of rmw_dds_common Gid in ros_discovery_info: 24 bytes up to Humble, 16 from Iron on.
+enum class Ros2Distro { humble, iron_or_newer };
+
+struct Ros2Options {
+  int domain_id = -1;              ///< -1: ROS_DOMAIN_ID from the environment, else 0
+  std::string node_name = "rescuesim";
+  std::string node_namespace = "/";
+  Ros2Distro distro = Ros2Distro::humble;
+  std::size_t queue_size = 64;     ///< messages buffered before the oldest is dropped
+};
+
+/// Throws rescuesim::Error on start() when the DDS participant cannot be created.
+std::unique_ptr<Bridge> make_ros2_bridge(const Ros2Options& options = {});
+
+}  // namespace rescuesim

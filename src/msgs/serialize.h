@@ -1,0 +1,64 @@
+#pragma once
+/// Wire formats of the neutral messages (msgs/messages.h):
+///   ROS 1      the TCPROS serialisation (little endian, no alignment, Header with seq),
+///              the full message definition (gendeps --cat style) and its MD5 as ROS 1 computes it;
+///   ROS 2      CDR / XCDR1 little endian with the 4-byte encapsulation header 00 01 00 00
+///              (alignment counted after it), the `ros2msg` schema text (MCAP ros2 profile);
+///   JSON       one object per message with ROS field names (for Foxglove's json encoding),
+///              and a JSON Schema per type.
+/// Decoders are bounds-checked: malformed bytes from the network give an Error naming the
+/// type and the field, never a crash or an out-of-range read.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "msgs/messages.h"
+
+namespace rescuesim::msg {
+
+/// Everything a transport needs to know about one message type.
+struct TypeSupport {
+  std::string ros1_name;        ///< "sensor_msgs/LaserScan"
+  std::string ros2_name;        ///< "sensor_msgs/msg/LaserScan"
+  std::string dds_name;         ///< "sensor_msgs::msg::dds_::LaserScan_"
+  std::string ros1_md5;         ///< 32 lowercase hex digits, as rosmsg md5 prints
+  std::string ros1_definition;  ///< full text: the type's own .msg, then for each dependency a
+                                ///< line of 80 '=', "MSG: pkg/Type" and its .msg (as roscpp's
+                                ///< message_definition and rosbag store it)
+  std::string ros2_definition;  ///< `ros2msg` schema: same layout with ROS 2 types (builtin_interfaces/Time, no seq)
+  std::string json_schema;      ///< JSON Schema (draft 07) of to_json's output
+  std::size_t variant_index;    ///< index of the alternative in msg::Message
+};
+
+/// The type support for a ROS 1 type name ("sensor_msgs/LaserScan") or ROS 2 name
+/// ("sensor_msgs/msg/LaserScan"), or nullptr when the type is not one of msg::Message's.
+const TypeSupport* find_type(std::string_view name);
+/// The type support of a message's alternative.
+const TypeSupport& type_of(const Message& m);
+/// Every supported type, in msg::Message alternative order.
+const std::vector<TypeSupport>& all_types();
+
+/// ROS 1 serialisation (appended to `out`); `seq` fills std_msgs/Header.seq of stamped messages.
+void to_ros1(const Message& m, std::vector<std::uint8_t>& out, std::uint32_t seq = 0);
+/// CDR (XCDR1, little endian) with the encapsulation header, appended to `out`.
+void to_cdr(const Message& m, std::vector<std::uint8_t>& out);
+/// One JSON object (compact) with ROS field names; stamps as {"sec":..,"nsec":..}; byte arrays
+/// (Image.data, PointCloud2.data) base64-encoded strings, as Foxglove's json encoding expects.
+std::string to_json(const Message& m);
+
+/// Decoders: the bytes must hold exactly one message of `type` (trailing bytes are an error).
+/// Throw rescuesim::Error ("sensor_msgs/LaserScan: ranges: sequence of 4000000000 elements
+/// needs 16000000000 bytes, 12 left") on malformed input.
+Message from_ros1(const TypeSupport& type, std::span<const std::uint8_t> bytes);
+Message from_cdr(const TypeSupport& type, std::span<const std::uint8_t> bytes);
+
+/// The MD5 of a ROS 1 message text as `genmsg` computes it (comments and blank lines dropped,
+/// constants first, field types of non-builtin types replaced by their own MD5): exposed for
+/// tests. `text_of(type)` gives the .msg text of a dependency ("std_msgs/Header").
+std::string ros1_md5_of(std::string_view msg_text, std::string_view package,
+                        std::string (*text_of)(std::string_view type));
+
+}  // namespace rescuesim::msg
