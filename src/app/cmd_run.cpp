@@ -12,17 +12,12 @@
 #include <memory>
 #include <vector>
 
+#include "app/bridge_flags.h"
 #include "app/commands.h"
 #include "core/log.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
 #include "sim/bridge.h"
-#ifdef RESCUESIM_HAS_ROS1
-#include "bridges/ros1/ros1_bridge.h"
-#endif
-#ifdef RESCUESIM_HAS_ROS2
-#include "bridges/ros2/ros2_bridge.h"
-#endif
 
 namespace rescuesim::app {
 
@@ -42,42 +37,10 @@ struct RunCommand {
   bool quiet = false;
   bool no_cameras = false;
   std::string quality;
-  // bridges
-  bool ros1 = false, ros2 = false;
-  bool use_sim_time = false;
-  bool lockstep = false;
-  bool keep_controllers = false;
   bool no_controllers = false;
-  std::string ros2_distro = "humble";
-  std::optional<int> ros_domain;
+  BridgeFlags bridges;
 };
 
-/// The bridges asked for, not yet started. Throws Error (exit 2) for one this build lacks.
-std::vector<std::unique_ptr<Bridge>> make_bridges(const RunCommand& c) {
-  std::vector<std::unique_ptr<Bridge>> bridges;
-  if (c.ros1) {
-#ifdef RESCUESIM_HAS_ROS1
-    Ros1Options o;
-    o.use_sim_time = c.use_sim_time;
-    bridges.push_back(make_ros1_bridge(o));
-#else
-    throw Error("--ros1: this rescuesim was built without the ROS 1 bridge (roscpp not found at build time; "
-                "run scripts/install-deps.sh and rebuild)");
-#endif
-  }
-  if (c.ros2) {
-#ifdef RESCUESIM_HAS_ROS2
-    Ros2Options o;
-    if (c.ros_domain) o.domain_id = *c.ros_domain;
-    o.distro = c.ros2_distro == "humble" ? Ros2Distro::humble : Ros2Distro::iron_or_newer;
-    bridges.push_back(make_ros2_bridge(o));
-#else
-    throw Error("--ros2: this rescuesim was built without the ROS 2 bridge (Cyclone DDS not found at build time; "
-                "run scripts/install-deps.sh and rebuild)");
-#endif
-  }
-  return bridges;
-}
 
 /// One line of progress: a bar, sim time, real-time factor, victims.
 void print_progress(const RunResult& r, double duration, bool tty) {
@@ -99,14 +62,14 @@ int run(const RunCommand& c) {
     s.seed = *c.seed;
     if (s.maze) s.maze->seed = *c.seed;
   }
-  const bool ros = c.ros1 || c.ros2;
+  const bool ros = c.bridges.live();
   if (c.duration) {
     s.duration = *c.duration;
   } else if (ros) {
     s.duration = std::numeric_limits<double>::infinity();  // like a ROS simulator: until Ctrl-C
   }
-  if (c.realtime || (ros && !c.lockstep)) s.realtime = true;
-  if (c.lockstep) s.realtime = false;
+  if (c.realtime || (ros && !c.bridges.lockstep)) s.realtime = true;
+  if (c.bridges.lockstep) s.realtime = false;
   if (c.rate) s.rate = *c.rate;
   if (!c.world_svg.empty()) {
     s.svg = c.world_svg;
@@ -116,8 +79,8 @@ int run(const RunCommand& c) {
   SessionOptions so;
   so.cameras = !c.no_cameras;
   // with a ROS bridge, ROS drives the robots: the built-in controllers stay off unless kept
-  so.controllers = !c.no_controllers && (!ros || c.keep_controllers);
-  auto bridges = make_bridges(c);
+  so.controllers = !c.no_controllers && (!ros || c.bridges.keep_controllers);
+  auto bridges = make_bridges(c.bridges);
   Session session(s, models, so);
   print_diagnostics(session.diagnostics());
   const fs::path out = c.out.empty() ? fs::path("runs") / s.name : fs::path(c.out);
@@ -205,14 +168,7 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_flag("--quiet,-q", c->quiet, "no progress bar");
   cmd->add_flag("--no-cameras", c->no_cameras, "switch off the colour, depth and thermal cameras (no OpenGL needed; faster)");
   cmd->add_option("--quality", c->quality, "camera rendering quality")->check(CLI::IsMember({"low", "medium", "high"}));
-  cmd->add_flag("--ros1", c->ros1, "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
-  cmd->add_flag("--ros2", c->ros2, "be a ROS 2 participant on ROS_DOMAIN_ID (Cyclone DDS, ROS 2 wire conventions; docs/ros.md)");
-  cmd->add_flag("--use-sim-time", c->use_sim_time, "ROS 1: set the /use_sim_time parameter so nodes follow /clock");
-  cmd->add_option("--ros2-distro", c->ros2_distro, "ROS 2 discovery info layout: humble (24-byte Gid) or iron (16-byte, Iron and newer)")
-      ->check(CLI::IsMember({"humble", "iron"}));
-  cmd->add_option("--ros-domain", c->ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
-  cmd->add_flag("--lockstep", c->lockstep, "with a ROS bridge: step as fast as possible instead of realtime");
-  cmd->add_flag("--keep-controllers", c->keep_controllers, "with a ROS bridge: keep the scenario's built-in controllers driving");
+  add_bridge_flags(cmd, c->bridges);
   cmd->add_flag("--no-controllers", c->no_controllers, "switch the scenario's built-in controllers off (robots wait for cmd_vel)");
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }

@@ -60,7 +60,7 @@ RenderCameraService::RenderCameraService(const World& world, const CameraService
           shown = job->stamp;
         }
         const CameraView view = camera_view(world_, job->state, job->sensor.robot, *job->spec);
-        const msg::Header header{job->stamp, job->spec->frame_id};
+        const msg::Header header{job->stamp, job->sensor.frame_id};
         job->out.emplace_back(job->sensor.info_topic, camera_info(*job->spec, header));
         switch (job->spec->type) {
           case SensorSpec::Type::color_camera:

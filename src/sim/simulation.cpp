@@ -46,6 +46,9 @@ const char* topic_type(const SensorSpec& s) {
   return "";
 }
 
+/// The optical frame beside a camera's body frame, named as ROS drivers do.
+std::string optical_frame(const std::string& body_frame) { return body_frame + "_optical_frame"; }
+
 }  // namespace
 
 Simulation::Simulation(World world, const SimOptions& options) : world_(std::move(world)), options_(options) {
@@ -100,6 +103,8 @@ void Simulation::setup_topics() {
       s.index = static_cast<int>(i);
       s.slot = static_cast<int>(state_.sensors.size());
       s.period = period_of(spec.rate);
+      // images are in an optical frame (z forward, x right, y down) beside the camera's body frame (REP-103)
+      s.frame_id = frame_name(s.robot, is_camera(spec.type) ? optical_frame(spec.frame_id) : spec.frame_id);
       const std::string topic = topic_name(s.robot, spec.topic);
       s.topic = bus_.advertise(topic, topic_type(spec), spec.rate, false, s.robot);
       if (is_camera(spec.type)) {
@@ -230,7 +235,7 @@ void Simulation::sample(const SensorInstance& s) {
   const RobotState& rs = state_.robots[static_cast<std::size_t>(s.robot)];
   const SimTime now = state_.time;
   SensorSpec framed = spec;
-  framed.frame_id = frame_name(s.robot, spec.frame_id);
+  framed.frame_id = s.frame_id;
   auto rays = [&]() -> const RayScene& {
     if (!rays_current_) {
       rays_->update(state_);
@@ -316,6 +321,13 @@ void Simulation::publish_tf_static() {
     for (const auto& s : spec.sensors) {
       if (s.frame_id.empty() || s.frame_id == s.link || s.type == SensorSpec::Type::odometry || s.type == SensorSpec::Type::ground_truth) continue;
       tf.transforms.push_back(transform(SimTime{}, frame_name(ri, s.link), frame_name(ri, s.frame_id), s.X_LS));
+      if (is_camera(s.type)) {
+        // optical axes in the body frame: x_O = -y_B, y_O = -z_B, z_O = x_B
+        Eigen::Matrix3d R_BO;
+        R_BO << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+        tf.transforms.push_back(transform(SimTime{}, frame_name(ri, s.frame_id), frame_name(ri, optical_frame(s.frame_id)),
+                                          Pose3{Vec3::Zero(), Quat(R_BO)}));
+      }
     }
   }
   bus_.publish(tf_static_topic_, std::move(tf));

@@ -45,6 +45,7 @@ struct SensorInstance {
   int topic = -1;                      ///< Bus topic id of the main output
   int info_topic = -1;                 ///< cameras: camera_info
   int extra_topic = -1;                ///< depth: points; thermal: image_mono8
+  std::string frame_id;                ///< header frame of its messages, namespaced; cameras: the optical frame
   SimTime period;
 };
 

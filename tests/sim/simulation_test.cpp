@@ -53,6 +53,33 @@ TEST(Simulation, SensorsPublishAtTheirRatesWithExactStamps) {
   EXPECT_EQ(stamps["/tf_static"].size(), 1u);
 }
 
+TEST(Simulation, CamerasHaveOpticalFramesOnTfStatic) {
+  Simulation sim = make_sim(room_spec());
+  msg::TFMessage tf;
+  sim.bus().subscribe("/tf_static", [&](const Topic&, const msg::Message& m) { tf = std::get<msg::TFMessage>(m); });
+  sim.step();
+  const msg::TransformStamped* optical = nullptr;
+  for (const auto& t : tf.transforms) {
+    if (t.child_frame_id == "camera_color_optical_frame") optical = &t;
+  }
+  ASSERT_NE(optical, nullptr);
+  EXPECT_EQ(optical->header.frame_id, "camera_color");
+  // the optical z axis (forward) is the body's x axis; optical x (right) is body -y; optical y (down) is body -z
+  EXPECT_TRUE((optical->transform.q * Vec3::UnitZ()).isApprox(Vec3::UnitX(), 1e-12));
+  EXPECT_TRUE((optical->transform.q * Vec3::UnitX()).isApprox(-Vec3::UnitY(), 1e-12));
+  EXPECT_TRUE((optical->transform.q * Vec3::UnitY()).isApprox(-Vec3::UnitZ(), 1e-12));
+  // and camera messages are stamped in it
+  for (const auto& s : sim.sensors()) {
+    const SensorSpec& spec = sim.world().robots[0].spec.sensors[static_cast<std::size_t>(s.index)];
+    if (spec.type == SensorSpec::Type::color_camera) {
+      EXPECT_EQ(s.frame_id, "camera_color_optical_frame");
+    }
+    if (spec.type == SensorSpec::Type::lidar) {
+      EXPECT_EQ(s.frame_id, "laser");
+    }
+  }
+}
+
 TEST(Simulation, ImuAtRestReadsGravityUp) {
   Simulation sim = make_sim(room_spec());
   sim.step_until(SimTime::from_seconds(1.0));

@@ -1,0 +1,50 @@
+#include "app/bridge_flags.h"
+
+#include "core/error.h"
+#ifdef RESCUESIM_HAS_ROS1
+#include "bridges/ros1/ros1_bridge.h"
+#endif
+#ifdef RESCUESIM_HAS_ROS2
+#include "bridges/ros2/ros2_bridge.h"
+#endif
+
+namespace rescuesim::app {
+
+void add_bridge_flags(CLI::App* cmd, BridgeFlags& f) {
+  cmd->add_flag("--ros1", f.ros1, "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
+  cmd->add_flag("--ros2", f.ros2, "be a ROS 2 participant on ROS_DOMAIN_ID (Cyclone DDS, ROS 2 wire conventions; docs/ros.md)");
+  cmd->add_flag("--use-sim-time", f.use_sim_time, "ROS 1: set the /use_sim_time parameter so nodes follow /clock");
+  cmd->add_option("--ros2-distro", f.ros2_distro, "ROS 2 discovery info layout: humble (24-byte Gid) or iron (16-byte, Iron and newer)")
+      ->check(CLI::IsMember({"humble", "iron"}));
+  cmd->add_option("--ros-domain", f.ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
+  cmd->add_flag("--lockstep", f.lockstep, "with a ROS bridge: step as fast as possible instead of realtime");
+  cmd->add_flag("--keep-controllers", f.keep_controllers, "with a ROS bridge: keep the scenario's built-in controllers driving");
+}
+
+std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f) {
+  std::vector<std::unique_ptr<Bridge>> bridges;
+  if (f.ros1) {
+#ifdef RESCUESIM_HAS_ROS1
+    Ros1Options o;
+    o.use_sim_time = f.use_sim_time;
+    bridges.push_back(make_ros1_bridge(o));
+#else
+    throw Error("--ros1: this rescuesim was built without the ROS 1 bridge (roscpp not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  if (f.ros2) {
+#ifdef RESCUESIM_HAS_ROS2
+    Ros2Options o;
+    if (f.ros_domain) o.domain_id = *f.ros_domain;
+    o.distro = f.ros2_distro == "humble" ? Ros2Distro::humble : Ros2Distro::iron_or_newer;
+    bridges.push_back(make_ros2_bridge(o));
+#else
+    throw Error("--ros2: this rescuesim was built without the ROS 2 bridge (Cyclone DDS not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  return bridges;
+}
+
+}  // namespace rescuesim::app
