@@ -8,6 +8,23 @@
 ///              and a JSON Schema per type.
 /// Decoders are bounds-checked: malformed bytes from the network give an Error naming the
 /// type and the field, never a crash or an out-of-range read.
+///
+/// Layout choices (one field list in msgs/message_fields.h drives every format):
+///   - ROS 2 layouts are Humble's. In particular sensor_msgs/Range has NO `float32 variance`
+///     (added in Iron); an Iron/Jazzy subscriber expects 4 more bytes, so /sonar needs a Humble
+///     peer or a per-distro bridge option. Everything else we use is unchanged Humble → Jazzy.
+///   - ROS 1 `std_msgs/Header.seq` is written from to_ros1's `seq` for the message's own header
+///     and 0 for nested headers (TFMessage, Path); decoders read and drop it.
+///   - std_msgs/Float64MultiArray: the layout is written empty; a received layout is
+///     validated and dropped (the neutral struct has no place for it).
+///   - Time: ROS 1 `time` is uint32 sec + uint32 nsec (negative stamps wrap); ROS 2 is int32 sec
+///     + uint32 nanosec.
+///   - CDR: sequences of primitives align their first element only when non-empty (as Fast-CDR
+///     and Cyclone do); from_cdr accepts encapsulation 00 01 (CDR_LE, XCDR1) only, and honours
+///     the options' two low bits as a count of trailing padding bytes (DDS-XTypes 7.6.3.1.2).
+///   - JSON uses ROS 1 field names (CameraInfo D/K/R/P), stamps {"sec","nsec"}, no Header.seq,
+///     and writes non-finite floats (REP-117 ±inf, NaN) as null; the schemas still declare them
+///     "number" because Foxglove's schema reader accepts only one type name per field.
 
 #include <cstdint>
 #include <span>
@@ -15,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "msgs/messages.h"
 
 namespace rescuesim::msg {
@@ -51,7 +69,9 @@ std::string to_json(const Message& m);
 
 /// Decoders: the bytes must hold exactly one message of `type` (trailing bytes are an error).
 /// Throw rescuesim::Error ("sensor_msgs/LaserScan: ranges: sequence of 4000000000 elements
-/// needs 16000000000 bytes, 12 left") on malformed input.
+/// needs 16000000000 bytes, 12 left") on malformed input; from_cdr's errors use the ROS 2 type
+/// and field names ("sensor_msgs/msg/CameraInfo: k: ..."). Counts are checked against the bytes
+/// left before anything is allocated.
 Message from_ros1(const TypeSupport& type, std::span<const std::uint8_t> bytes);
 Message from_cdr(const TypeSupport& type, std::span<const std::uint8_t> bytes);
 
