@@ -3,6 +3,13 @@
 /// It registers with the master at ROS_MASTER_URI, publishes every Bus topic with the same
 /// name and type (TF, /clock, sensors), and subscribes to each robot's cmd_vel
 /// (geometry_msgs/Twist) and head/command (std_msgs/Float64MultiArray). See docs/ros.md.
+///
+/// Messages travel as bytes made by rescuesim's own serialiser (msgs/serialize.h), advertised
+/// with its MD5 and definition, so rostopic and rosbag check them like any other node's. The
+/// simulation never waits for ROS: messages queue (bounded, oldest dropped) for a publisher
+/// thread; commands are decoded on a spinner thread and applied at the next step boundary. A
+/// master that goes away is noticed within master_check_period; the node registers everything
+/// again when it (or a new master at the same URI) answers. One ROS 1 bridge per process.
 
 #include <memory>
 #include <string>
@@ -15,6 +22,8 @@ struct Ros1Options {
   std::string node_name = "rescuesim";
   bool use_sim_time = false;       ///< set the /use_sim_time parameter to true on start
   std::size_t queue_size = 64;     ///< messages buffered per bridge before the oldest is dropped
+  double master_timeout = 3.0;     ///< s to wait for the master on start() before giving up
+  double master_check_period = 1.0;  ///< s between checks that the master is (still) there
 };
 
 /// Throws rescuesim::Error on start() when no master answers (the message names ROS_MASTER_URI).

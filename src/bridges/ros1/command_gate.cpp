@@ -1,0 +1,106 @@
+#include "bridges/ros1/command_gate.h"
+
+#include <cmath>
+
+#include "core/log.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+CommandGate::CommandGate(Simulation& sim, std::string source) : sim_(sim), source_(std::move(source)) {}
+
+void CommandGate::warn(const std::string& key, const std::string& text) {
+  Throttle* throttle = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    throttle = &throttles_.try_emplace(key).first->second;  // map nodes never move
+  }
+  std::uint64_t held = 0;
+  if (!throttle->allow(&held)) return;
+  if (held > 0) {
+    log::warn("{}: {} ({} more like it since the last report)", source_, text, held);
+  } else {
+    log::warn("{}: {}", source_, text);
+  }
+}
+
+void CommandGate::reject(const std::string& topic, const char* kind, const std::string& why) {
+  ++rejected_;
+  warn(topic + "#" + kind, "rejected a command on " + topic + ": " + why);
+}
+
+void CommandGate::malformed(const std::string& topic, const std::string& why) { reject(topic, "malformed", "malformed message: " + why); }
+
+bool CommandGate::velocity(int robot, const std::string& topic, const msg::Twist& t) {
+  // every component must be finite, even those a planar drive ignores
+  static const char* const kNames[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
+  for (int i = 0; i < 6; ++i) {
+    const double v = i < 3 ? t.linear[i] : t.angular[i - 3];
+    if (!std::isfinite(v)) {
+      reject(topic, "finite",
+             fmt::format("{} is {} (geometry_msgs/Twist values must be finite; the robot keeps its last command)", kNames[i], v));
+      return false;
+    }
+  }
+  const DriveSpec& d = sim_.world().robots.at(static_cast<std::size_t>(robot)).spec.drive;
+  if (std::abs(t.linear.x()) > d.max_linear) {
+    warn(topic + "#linear", fmt::format("{} linear.x = {:g} m/s is beyond the robot's max_linear: clamped to {:g} m/s", topic, t.linear.x(),
+                                        std::copysign(d.max_linear, t.linear.x())));
+  }
+  if (std::abs(t.angular.z()) > d.max_angular) {
+    warn(topic + "#angular", fmt::format("{} angular.z = {:g} rad/s is beyond the robot's max_angular: clamped to {:g} rad/s", topic,
+                                         t.angular.z(), std::copysign(d.max_angular, t.angular.z())));
+  }
+  if (!sim_.command_velocity(robot, t)) {
+    reject(topic, "refused", "the simulation refused it");
+    return false;
+  }
+  ++received_;
+  return true;
+}
+
+bool CommandGate::head(int robot, const std::string& topic, const std::vector<double>& positions) {
+  const RobotSpec& spec = sim_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+  if (positions.size() != spec.head_joints.size()) {
+    reject(topic, "size", fmt::format("{} positions, expected {} (rad, in the order {})", positions.size(), spec.head_joints.size(),
+                              joined(spec.head_joints)));
+    return false;
+  }
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (!std::isfinite(positions[i])) {
+      reject(topic, "finite", fmt::format("data[{}] ({}) is {} (positions must be finite)", i, spec.head_joints[i], positions[i]));
+      return false;
+    }
+  }
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const int j = spec.joint_index(spec.head_joints[i]);
+    if (j < 0) continue;
+    const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
+    if (positions[i] < js.lower || positions[i] > js.upper) {
+      const double limit = positions[i] < js.lower ? js.lower : js.upper;
+      warn(topic + "#limit" + std::to_string(i),
+           fmt::format("{} data[{}] ({}) = {:g} rad ({:.0f} deg) is beyond the joint's limits: clamped to {:g} rad ({:.0f} deg)", topic, i,
+                       js.name, positions[i], positions[i] * kDeg, limit, limit * kDeg));
+    }
+  }
+  if (!sim_.command_head(robot, positions)) {
+    reject(topic, "refused", "the simulation refused it");
+    return false;
+  }
+  ++received_;
+  return true;
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,510 @@
+// The ROS 1 bridge on roscpp: one node, pre-serialised messages out, checked commands in,
+// and a watch on the master so the simulation outlives it.
+
+#include "bridges/ros1/ros1_bridge.h"
+
+#include <ros/callback_queue.h>
+#include <ros/init.h>
+#include <ros/master.h>
+#include <ros/message_traits.h>
+#include <ros/network.h>
+#include <ros/node_handle.h>
+#include <ros/param.h>
+#include <ros/publisher.h>
+#include <ros/serialization.h>
+#include <ros/subscriber.h>
+#include <ros/this_node.h>
+#include <ros/xmlrpc_manager.h>
+#include <xmlrpcpp/XmlRpcException.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "bridges/ros1/command_gate.h"
+#include "bridges/ros1/ros1_console.h"
+#include "bridges/ros1/ros1_endpoint.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "msgs/serialize.h"
+#include "sim/simulation.h"
+
+namespace rescuesim::ros1_wire {
+
+/// A message already in ROS 1 wire format (without the 4-byte length roscpp adds), with the type
+/// it claims to be. roscpp sends and receives it like a generated message (the same trick as
+/// topic_tools::ShapeShifter): the traits below report the type's MD5, name and definition from
+/// rescuesim's TypeSupport, and the serializer copies the bytes.
+struct RawMessage {
+  const msg::TypeSupport* type = nullptr;
+  std::vector<std::uint8_t> bytes;
+};
+
+}  // namespace rescuesim::ros1_wire
+
+namespace ros::message_traits {
+
+// the static forms are what a subscription asks before it has a message: the bridge replaces
+// them with the real MD5 and type in its SubscribeOptions
+template <>
+struct MD5Sum<rescuesim::ros1_wire::RawMessage> {
+  static const char* value() { return "*"; }
+  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_md5.c_str() : "*"; }
+};
+template <>
+struct DataType<rescuesim::ros1_wire::RawMessage> {
+  static const char* value() { return "*"; }
+  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_name.c_str() : "*"; }
+};
+template <>
+struct Definition<rescuesim::ros1_wire::RawMessage> {
+  static const char* value() { return ""; }
+  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_definition.c_str() : ""; }
+};
+
+}  // namespace ros::message_traits
+
+namespace ros::serialization {
+
+template <>
+struct Serializer<rescuesim::ros1_wire::RawMessage> {
+  template <typename Stream>
+  static void write(Stream& stream, const rescuesim::ros1_wire::RawMessage& m) {
+    const auto n = static_cast<std::uint32_t>(m.bytes.size());
+    if (n > 0) std::memcpy(stream.advance(n), m.bytes.data(), n);
+  }
+  template <typename Stream>
+  static void read(Stream& stream, rescuesim::ros1_wire::RawMessage& m) {
+    const std::uint32_t n = stream.getLength();
+    m.bytes.assign(stream.getData(), stream.getData() + n);
+    stream.advance(n);
+  }
+  static std::uint32_t serializedLength(const rescuesim::ros1_wire::RawMessage& m) { return static_cast<std::uint32_t>(m.bytes.size()); }
+};
+
+}  // namespace ros::serialization
+
+namespace rescuesim {
+
+namespace {
+
+using ros1_wire::RawMessage;
+using Clock = std::chrono::steady_clock;
+
+/// roscpp is one node per process.
+std::atomic<bool> g_node_in_use{false};
+
+constexpr std::uint32_t kRosPublishQueue = 20;   ///< roscpp's outgoing queue per subscriber connection
+constexpr std::uint32_t kRosSubscribeQueue = 10;
+
+const char* env(const char* name) { return std::getenv(name); }
+
+/// The master's process id, or nothing when it does not answer (one try, no waiting).
+std::optional<int> master_pid() {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getPid", args, result, payload, false)) return std::nullopt;
+  if (payload.getType() != XmlRpc::XmlRpcValue::TypeInt) return 0;
+  return static_cast<int>(payload);
+}
+
+class Ros1Bridge final : public Bridge {
+ public:
+  explicit Ros1Bridge(const Ros1Options& options) : options_(options), queue_(std::max<std::size_t>(1, options.queue_size)) {}
+  /// Without stop(), the Bus subscription is left to the simulation (which then must not publish
+  /// again): stop() belongs on the simulation thread, the destructor may run anywhere.
+  ~Ros1Bridge() override { shut_down(); }
+
+  std::string name() const override { return "ros1"; }
+  void start(Simulation& sim) override;
+  void stop() override;
+  BridgeStats stats() const override {
+    BridgeStats s;
+    s.sent = sent_.load();
+    s.dropped = queue_.dropped();
+    s.received = gate_ ? gate_->received() : 0;
+    s.rejected = gate_ ? gate_->rejected() : 0;
+    return s;
+  }
+
+ private:
+  /// A Bus topic as published to ROS.
+  struct Output {
+    std::string name;
+    bool latched = false;
+    const msg::TypeSupport* type = nullptr;  ///< nullptr: no ROS 1 serialiser, not published
+    ros::Publisher pub;                      ///< made on start, used by both threads (roscpp locks inside)
+  };
+  /// A command topic of a robot.
+  struct Input {
+    std::string topic;
+    int robot = 0;
+    bool head = false;                        ///< head/command, else cmd_vel
+    const msg::TypeSupport* type = nullptr;
+    ros::Subscriber sub;                      ///< spinner thread only (after start)
+    int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
+  };
+  struct Outgoing {
+    int topic;
+    std::uint32_t seq;  ///< std_msgs/Header.seq
+    msg::Message message;
+  };
+
+  void advertise_all();
+  void subscribe(std::size_t input);
+  bool register_again();
+  void publish_loop();
+  void publish(const Outgoing& item, RawMessage& raw);
+  void refresh_wanted();
+  void spin_loop();
+  void watch_master();
+  void check_input_publishers();
+  void on_command(std::size_t input, const RawMessage& raw);
+  void shut_down();
+
+  Ros1Options options_;
+  Simulation* sim_ = nullptr;
+  std::unique_ptr<CommandGate> gate_;
+  Ros1Endpoint endpoint_;
+  int bus_handle_ = -1;
+  bool started_ = false;
+
+  BoundedQueue<Outgoing> queue_;
+  std::vector<Output> outputs_;  ///< by Bus topic id
+  std::unique_ptr<std::atomic<bool>[]> wanted_;  ///< by Bus topic id: someone subscribes, or latched
+  std::vector<std::uint32_t> seq_;  ///< by Bus topic id: next Header.seq (simulation thread only)
+  std::vector<Input> inputs_;
+  std::unique_ptr<ros::NodeHandle> nh_;
+  ros::CallbackQueue callbacks_;
+  std::thread publisher_, spinner_;
+  std::atomic<bool> stopping_{false};
+  std::atomic<Clock::rep> drain_until_{Clock::time_point::max().time_since_epoch().count()};
+  std::atomic<std::uint64_t> sent_{0};
+
+  // master watch (spinner thread only), and type mismatches (publisher thread only)
+  bool connected_ = true;
+  int master_pid_ = -1;
+  bool shutdown_reported_ = false;
+  std::set<int> mismatch_reported_;  ///< topics whose messages could not be published (type mismatch, serialiser error)
+};
+
+void Ros1Bridge::start(Simulation& sim) {
+  if (started_) throw Error("ROS 1: the bridge is already started");
+  if (g_node_in_use.exchange(true)) throw Error("ROS 1: only one ROS 1 bridge per process (roscpp runs one node per process)");
+  sim_ = &sim;
+  gate_ = std::make_unique<CommandGate>(sim, "ROS 1");
+  endpoint_ = resolve_ros1_endpoint(env("ROS_MASTER_URI"), env("ROS_HOSTNAME"), env("ROS_IP"));
+  try {
+    route_rosconsole_to_log();
+    ros::M_string remappings{{"__master", endpoint_.master_uri}};
+    if (!endpoint_.hostname.empty()) remappings["__hostname"] = endpoint_.hostname;
+    // rescuesim handles SIGINT itself: roscpp must not install its handler
+    ros::init(remappings, options_.node_name, ros::init_options::NoSigintHandler);
+    // calls to a vanished master give up after this instead of retrying forever
+    ros::master::setRetryTimeout(ros::WallDuration(1.0));
+
+    // the master must answer before the node starts (roscpp would wait for it forever)
+    const auto deadline = Clock::now() + std::chrono::duration<double>(options_.master_timeout);
+    std::optional<int> pid;
+    while (!(pid = master_pid())) {
+      if (Clock::now() >= deadline) {
+        throw Error(fmt::format("ROS 1: no master at {} (ROS_MASTER_URI); start roscore first", endpoint_.master_uri));
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    master_pid_ = *pid;
+    ros::start();
+    nh_ = std::make_unique<ros::NodeHandle>();
+    nh_->setCallbackQueue(&callbacks_);
+
+    // every Bus topic goes out under its own name and type
+    for (const Topic& t : sim.bus().topics()) {
+      Output o;
+      o.name = t.name;
+      o.latched = t.latched;
+      o.type = msg::find_type(t.type);
+      if (!o.type) log::warn("ROS 1: {} has type {}, which has no ROS 1 serialiser: not published", t.name, t.type);
+      outputs_.push_back(std::move(o));
+    }
+    // commands: each robot's cmd_vel and head/command
+    for (int r = 0; r < static_cast<int>(sim.world().robots.size()); ++r) {
+      Input v{sim.topic_name(r, "cmd_vel"), r, false, msg::find_type("geometry_msgs/Twist"), {}};
+      Input h{sim.topic_name(r, "head/command"), r, true, msg::find_type("std_msgs/Float64MultiArray"), {}};
+      RS_DEMAND(v.type && h.type, "the serialiser lacks geometry_msgs/Twist or std_msgs/Float64MultiArray");
+      inputs_.push_back(std::move(v));
+      inputs_.push_back(std::move(h));
+    }
+    advertise_all();
+    if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
+  } catch (const ros::Exception& e) {
+    g_node_in_use = false;
+    throw Error(fmt::format("ROS 1: {} (master {})", e.what(), endpoint_.master_uri));
+  } catch (...) {
+    g_node_in_use = false;
+    throw;
+  }
+
+  // the simulation thread only copies into the queue, and only what someone listens to;
+  // serialising happens on the publisher thread. One Header.seq counter per topic counts every
+  // message the simulation produced.
+  wanted_ = std::make_unique<std::atomic<bool>[]>(outputs_.size());
+  for (std::size_t i = 0; i < outputs_.size(); ++i) wanted_[i] = outputs_[i].type && outputs_[i].latched;
+  seq_.assign(outputs_.size(), 0);
+  bus_handle_ = sim.bus().subscribe("", [this](const Topic& t, const msg::Message& m) {
+    const auto id = static_cast<std::size_t>(t.id);
+    if (id >= seq_.size()) return;  // Bus topics are fixed at set-up
+    const std::uint32_t seq = seq_[id]++;
+    if (wanted_[id].load(std::memory_order_relaxed)) queue_.push(Outgoing{t.id, seq, m});
+  });
+  publisher_ = std::thread([this] { publish_loop(); });
+  spinner_ = std::thread([this] { spin_loop(); });
+  started_ = true;
+  log::info("ROS 1: node {} registered with the master at {}, reachable as {}: {} topics out, {} in", ros::this_node::getName(),
+            endpoint_.master_uri, ros::network::getHost(), outputs_.size(), inputs_.size());
+}
+
+void Ros1Bridge::advertise_all() {
+  for (Output& o : outputs_) {
+    if (!o.type) continue;
+    ros::AdvertiseOptions ao(o.name, kRosPublishQueue, o.type->ros1_md5, o.type->ros1_name, o.type->ros1_definition);
+    ao.latch = o.latched;
+    ao.callback_queue = &callbacks_;
+    o.pub = nh_->advertise(ao);
+  }
+  for (std::size_t i = 0; i < inputs_.size(); ++i) subscribe(i);
+}
+
+void Ros1Bridge::subscribe(std::size_t i) {
+  Input& in = inputs_[i];
+  in.sub.shutdown();
+  // the subscription asks for the command type's MD5: roscpp refuses publishers of other types
+  using Helper = ros::SubscriptionCallbackHelperT<const boost::shared_ptr<const RawMessage>&>;
+  ros::SubscribeOptions so(in.topic, kRosSubscribeQueue, in.type->ros1_md5, in.type->ros1_name);
+  so.helper = boost::make_shared<Helper>([this, i](const boost::shared_ptr<const RawMessage>& m) { on_command(i, *m); });
+  so.callback_queue = &callbacks_;
+  in.sub = nh_->subscribe(so);
+  in.unconnected_checks = 0;
+}
+
+bool Ros1Bridge::register_again() {
+  // roscpp registers with the master only when it advertises or subscribes, and never again.
+  // Telling a new master through its API what this node already publishes (rather than
+  // re-advertising) keeps the connections subscribers made before the outage, and the latched
+  // /tf_static, alive; new subscribers find the node through the new master.
+  const std::string me = ros::this_node::getName();
+  const std::string api = ros::XMLRPCManager::instance()->getServerURI();
+  const auto call = [&](const char* method, const std::string& topic, const std::string& type, XmlRpc::XmlRpcValue& payload) {
+    XmlRpc::XmlRpcValue args, result;
+    args[0] = me;
+    args[1] = topic;
+    args[2] = type;
+    args[3] = api;
+    return ros::master::execute(method, args, result, payload, false);
+  };
+  XmlRpc::XmlRpcValue payload;
+  for (const Output& o : outputs_) {
+    if (o.type && !call("registerPublisher", o.name, o.type->ros1_name, payload)) return false;
+  }
+  // roscpp's own log topic
+  if (!call("registerPublisher", "/rosout", "rosgraph_msgs/Log", payload)) return false;
+  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+    const Input& in = inputs_[i];
+    if (!call("registerSubscriber", in.topic, in.type->ros1_name, payload)) return false;
+    // publishers that found the new master first are only named in this answer (the master
+    // tells subscribers of later ones): subscribing anew connects to them
+    bool others = false;
+    for (int i = 0; payload.getType() == XmlRpc::XmlRpcValue::TypeArray && i < payload.size(); ++i) {
+      if (std::string(payload[i]) != api) others = true;
+    }
+    if (others) subscribe(i);
+  }
+  return true;
+}
+
+void Ros1Bridge::publish_loop() {
+  RawMessage raw;  // its buffer is reused from message to message
+  for (;;) {
+    std::optional<Outgoing> item = queue_.pop(std::chrono::milliseconds(100));
+    if (!item) {
+      if (queue_.closed()) return;  // closed and drained
+      continue;
+    }
+    // on stop, what is queued goes out up to a short deadline
+    if (Clock::now().time_since_epoch().count() > drain_until_.load()) return;
+    publish(*item, raw);
+  }
+}
+
+void Ros1Bridge::publish(const Outgoing& item, RawMessage& raw) {
+  const msg::Message& message = item.message;
+  Output& o = outputs_[static_cast<std::size_t>(item.topic)];
+  if (!o.type) return;
+  if (message.index() != o.type->variant_index) {
+    if (mismatch_reported_.insert(item.topic).second) {
+      log::error("ROS 1: a {} message on {} (declared {}): not published", msg::type_name(message), o.name, o.type->ros1_name);
+    }
+    return;
+  }
+  if (!o.pub || !ros::ok()) return;
+  // nobody listening: nothing to serialise (latched topics keep their last message for latecomers)
+  if (!o.latched && o.pub.getNumSubscribers() == 0) return;
+  raw.type = o.type;
+  raw.bytes.clear();
+  try {
+    msg::to_ros1(message, raw.bytes, item.seq);
+    o.pub.publish(raw);
+    ++sent_;
+  } catch (const std::exception& e) {
+    // a bug, not bad input: say it once per topic and keep the other topics going
+    if (mismatch_reported_.insert(item.topic).second) log::error("ROS 1: {} not published: {}", o.name, e.what());
+  }
+}
+
+void Ros1Bridge::spin_loop() {
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.master_check_period));
+  auto next_check = Clock::now() + period;
+  while (!stopping_.load()) {
+    callbacks_.callAvailable(ros::WallDuration(0.05));
+    refresh_wanted();
+    if (Clock::now() >= next_check) {
+      // an answer of an unexpected shape (XmlRpcValue throws on a wrong type) must not end the thread
+      try {
+        watch_master();
+      } catch (const XmlRpc::XmlRpcException& e) {
+        log::debug("ROS 1: unexpected answer from the master at {}: {}", endpoint_.master_uri, e.getMessage());
+      } catch (const std::exception& e) {
+        log::debug("ROS 1: checking the master at {}: {}", endpoint_.master_uri, e.what());
+      }
+      next_check = Clock::now() + period;
+    }
+  }
+}
+
+void Ros1Bridge::refresh_wanted() {
+  // a topic nobody subscribes to costs the simulation thread nothing (not even a copy)
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    const Output& o = outputs_[i];
+    if (o.type && !o.latched) wanted_[i].store(o.pub.getNumSubscribers() > 0, std::memory_order_relaxed);
+  }
+}
+
+void Ros1Bridge::watch_master() {
+  if (!ros::ok()) {
+    // the master told the node to shut down, usually because another node took its name
+    if (!shutdown_reported_) {
+      log::warn("ROS 1: roscpp shut the node {} down (did another node register under that name?); still simulating without ROS 1",
+                options_.node_name);
+      shutdown_reported_ = true;
+    }
+    return;
+  }
+  const std::optional<int> pid = master_pid();
+  if (!pid) {
+    if (connected_) {
+      log::warn("ROS 1 master at {} lost; still simulating, retrying every {:g} s", endpoint_.master_uri, options_.master_check_period);
+      connected_ = false;
+    }
+    return;
+  }
+  if (connected_ && *pid == master_pid_) {
+    check_input_publishers();
+    return;
+  }
+  // a master is back, or a new one answers at the same URI: it knows nothing of this node
+  const bool restarted = connected_;
+  const bool registered = register_again();
+  if (registered && options_.use_sim_time) ros::param::set("/use_sim_time", true);
+  // gone again while registering: try again at the next check
+  if (!registered || master_pid() != pid) {
+    connected_ = false;
+    return;
+  }
+  master_pid_ = *pid;
+  connected_ = true;
+  const auto topics = std::count_if(outputs_.begin(), outputs_.end(), [](const Output& o) { return o.type != nullptr; });
+  log::warn("ROS 1 master at {} {}: reconnected; registered {} topics and {} command subscriptions again", endpoint_.master_uri,
+            restarted ? "was restarted" : "is back", topics, inputs_.size());
+}
+
+void Ros1Bridge::check_input_publishers() {
+  // a publisher of another type on a command topic cannot connect (roscpp and rospy refuse the
+  // md5 when connecting): compare the master's publishers of each command topic with those the
+  // subscription is connected to, and say so once when some stay unconnected for two checks
+  XmlRpc::XmlRpcValue args, result, state, types;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", args, result, state, false)) return;
+  if (state.getType() != XmlRpc::XmlRpcValue::TypeArray || state.size() < 1) return;
+  XmlRpc::XmlRpcValue& publishers = state[0];
+  std::map<std::string, std::string> registered_type;
+  if (ros::master::execute("getTopicTypes", args, result, types, false) && types.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    for (int i = 0; i < types.size(); ++i) registered_type[std::string(types[i][0])] = std::string(types[i][1]);
+  }
+  for (Input& in : inputs_) {
+    std::vector<std::string> nodes;
+    for (int i = 0; i < publishers.size(); ++i) {
+      if (std::string(publishers[i][0]) != in.topic) continue;
+      for (int j = 0; j < publishers[i][1].size(); ++j) {
+        const std::string node = publishers[i][1][j];
+        if (node != ros::this_node::getName()) nodes.push_back(node);
+      }
+    }
+    const bool missing = in.sub.getNumPublishers() < nodes.size();
+    in.unconnected_checks = missing ? in.unconnected_checks + 1 : 0;
+    if (in.unconnected_checks != 2) continue;  // new publishers take a moment to connect; warn once
+    std::string list;
+    for (const auto& n : nodes) list += (list.empty() ? "" : ", ") + n;
+    const std::string type = registered_type.count(in.topic) ? registered_type[in.topic] : "";
+    log::warn("ROS 1: {} has {} publisher(s) ({}) but rescuesim is connected to {}{}: their messages do not arrive (a message type "
+              "other than {}, or a host name rescuesim cannot reach); still simulating",
+              in.topic, nodes.size(), list, in.sub.getNumPublishers(),
+              !type.empty() && type != in.type->ros1_name ? fmt::format("; the master has the topic as {}", type) : std::string(),
+              in.type->ros1_name);
+  }
+}
+
+void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
+  const Input& in = inputs_[input];
+  try {
+    const msg::Message m = msg::from_ros1(*in.type, raw.bytes);
+    if (in.head) {
+      gate_->head(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data);
+    } else {
+      gate_->velocity(in.robot, in.topic, std::get<msg::Twist>(m));
+    }
+  } catch (const std::exception& e) {
+    gate_->malformed(in.topic, e.what());
+  }
+}
+
+void Ros1Bridge::stop() {
+  if (!started_) return;
+  // the Bus belongs to the simulation thread, which calls stop()
+  sim_->bus().unsubscribe(bus_handle_);
+  shut_down();
+}
+
+void Ros1Bridge::shut_down() {
+  if (!started_) return;
+  started_ = false;
+  drain_until_ = (Clock::now() + std::chrono::seconds(1)).time_since_epoch().count();
+  queue_.close();
+  if (publisher_.joinable()) publisher_.join();
+  stopping_ = true;
+  if (spinner_.joinable()) spinner_.join();
+  for (Output& o : outputs_) o.pub.shutdown();
+  for (Input& in : inputs_) in.sub.shutdown();
+  nh_.reset();
+  // unregisters from the master (without waiting for one that is gone)
+  ros::shutdown();
+}
+
+}  // namespace
+
+std::unique_ptr<Bridge> make_ros1_bridge(const Ros1Options& options) { return std::make_unique<Ros1Bridge>(options); }
+
+}  // namespace rescuesim

@@ -1,0 +1,379 @@
+// rescuesim as a ROS 1 node, checked with the real ROS 1 tools: a roscore of the test's own,
+// `rescuesim run --ros1` in realtime on a small room, and rostopic / rosbag / rosparam reading
+// what it publishes. Expected values come from the room's geometry and the scenario's sensor
+// settings (tests/bridges/ros1/ros1_rig.h), not from earlier output.
+
+#include <gtest/gtest.h>
+
+#include <future>
+#include <semaphore>
+
+#include "bridges/ros1/ros1_rig.h"
+
+namespace rescuesim {
+namespace {
+
+using namespace testing;
+
+/// A rospy publisher of "geometry_msgs/Twist" (name and MD5 right, so roscpp connects) whose
+/// messages are 3 bytes instead of 48.
+const char* kTruncatedTwistPy = R"(import rospy
+from geometry_msgs.msg import Twist
+
+class Truncated(Twist):
+    def serialize(self, buff):
+        buff.write(b"\x01\x02\x03")
+
+rospy.init_node("truncated_twist", anonymous=True)
+pub = rospy.Publisher("/cmd_vel", Truncated, queue_size=1)
+rate = rospy.Rate(10)
+while not rospy.is_shutdown():
+    pub.publish(Truncated())
+    rate.sleep()
+)";
+
+#define SKIP_WITHOUT_ROS1()                               \
+  do {                                                    \
+    const std::string missing = ros1_tools_missing();     \
+    if (!missing.empty()) GTEST_SKIP() << missing;        \
+  } while (0)
+
+/// A roscore and rescuesim on it, for one test.
+class Ros1Run : public ::testing::Test {
+ protected:
+  void start(const std::string& name, const std::vector<std::string>& args) {
+    dir_ = temp_dir("ros1-" + name);
+    master_ = std::make_unique<RosMaster>(dir_);
+    ASSERT_TRUE(master_->start()) << "roscore did not come up on port " << master_->port();
+    ASSERT_TRUE(sim_.start(*master_, dir_, args)) << sim_.output();
+  }
+  /// One message of `topic` as rostopic prints it (extra options before the topic).
+  std::string echo(const std::string& topic, const std::string& options = "") {
+    return master_->run("rostopic echo -n 1 " + options + " " + topic, kToolSeconds).out;
+  }
+
+  fs::path dir_;
+  std::unique_ptr<RosMaster> master_;
+  Simulator sim_;
+};
+
+TEST(Ros1Bridge, NoMasterIsABadInputErrorNamingTheUri) {
+  SKIP_WITHOUT_ROS1();
+  const auto dir = temp_dir("ros1-no-master");
+  RosMaster nobody(dir);  // never started: its port has no master
+  const auto t0 = std::chrono::steady_clock::now();
+  const CommandResult r = run_command("env " + nobody.env_prefix() + "timeout 30 '" RESCUESIM_EXE "' run '" + write_room(dir).string() +
+                                      "' --ros1 --no-cameras --duration 5 --out '" + (dir / "out").string() + "'");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("ROS 1: no master at " + nobody.uri() + " (ROS_MASTER_URI); start roscore first"), std::string::npos) << r.err;
+  EXPECT_LT(seconds, 15.0);  // about 3 s of waiting, not forever
+}
+
+TEST_F(Ros1Run, EverySensorTopicCarriesWhatTheScenarioConfigures) {
+  SKIP_WITHOUT_ROS1();
+  start("echo", {"--duration", "120", "--use-sim-time"});
+  // every echo at once (each rostopic is a Python process that takes a while to start)
+  const std::vector<std::pair<std::string, std::string>> topics = {
+      {"/scan", ""},
+      {"/sonar/front_left", ""},
+      {"/imu/data", ""},
+      {"/odom", ""},
+      {"/ground_truth/pose", ""},
+      {"/joint_states", ""},
+      {"/camera/color/image_raw", "--noarr"},
+      {"/camera/color/camera_info", ""},
+      {"/camera/depth/image_raw", "--noarr"},
+      {"/camera/depth/points", "--noarr"},
+      {"/thermal/image_raw", "--noarr"},
+      {"/thermal/image_mono8", "--noarr"},
+      {"/tf", ""},
+      {"/tf_static", ""},
+  };
+  // the laser's rate on the wall clock, measured meanwhile (rostopic hz prints a running average)
+  auto rate = master_->spawn({"rostopic", "hz", "/scan"});
+  // a few echoes at a time (each rostopic is a Python process that takes a while to start)
+  std::counting_semaphore<> slots(4);
+  std::map<std::string, std::future<std::string>> pending;
+  for (const auto& [topic, options] : topics) {
+    pending[topic] = std::async(std::launch::async, [this, &slots, topic, options] {
+      slots.acquire();
+      const std::string out = echo(topic, options);
+      slots.release();
+      return out;
+    });
+  }
+  // /clock advances: two readings at least 2 s apart (a reading may be older than it looks: a
+  // slow starting subscriber reads what waited in its socket, so only the lower bound is sharp)
+  auto clock = std::async(std::launch::async, [this] {
+    const std::string first = echo("/clock");
+    std::this_thread::sleep_for(2s);
+    return stamp_of(echo("/clock")) - stamp_of(first);
+  });
+  auto sim_time = std::async(std::launch::async, [this] { return master_->run("rosparam get /use_sim_time", kToolSeconds).out; });
+  std::map<std::string, std::string> got;
+  for (auto& [topic, f] : pending) {
+    got[topic] = f.get();
+    EXPECT_FALSE(got[topic].empty()) << "nothing on " << topic;
+  }
+
+  // laser: 180 degrees in 181 beams; straight ahead the east wall's inner face (x = 5.9) seen
+  // from the laser at x = 1 + 0.26; sideways the walls at y = 0.1 and 3.9
+  const std::string& scan = got["/scan"];
+  EXPECT_EQ(field(scan, "frame_id"), "laser");
+  const double increment = number(scan, "angle_increment");
+  EXPECT_NEAR(increment, M_PI / 180, 1e-6);
+  const std::vector<double> ranges = numbers(scan, "ranges");
+  ASSERT_EQ(ranges.size(), static_cast<std::size_t>(std::lround(M_PI / increment)) + 1);
+  EXPECT_NEAR(ranges[90], 5.9 - 1.26, 0.08);
+  EXPECT_NEAR(ranges[0], 1.9, 0.08);
+  EXPECT_NEAR(ranges[180], 1.9, 0.08);
+  EXPECT_EQ(number(scan, "range_max"), 20.0);
+
+  const std::string& sonar = got["/sonar/front_left"];
+  EXPECT_EQ(field(sonar, "frame_id"), "sonar_front_left");
+  EXPECT_EQ(field(sonar, "radiation_type"), "0");
+  EXPECT_NEAR(number(sonar, "max_range"), 4.0, 1e-6);
+
+  // at rest the IMU feels gravity upward
+  const std::string& imu = got["/imu/data"];
+  EXPECT_EQ(field(imu, "frame_id"), "imu_link");
+  EXPECT_NEAR(number(imu, "z", imu.find("linear_acceleration")), 9.81, 0.5);
+
+  EXPECT_EQ(field(got["/odom"], "frame_id"), "odom");
+  EXPECT_EQ(field(got["/odom"], "child_frame_id"), "base_link");
+  // ground truth: the robot's start at (1, 2) in map
+  const std::string& truth = got["/ground_truth/pose"];
+  EXPECT_EQ(field(truth, "frame_id"), "map");
+  EXPECT_NEAR(number(truth, "x", truth.find("position")), 1.0, 0.05);
+  EXPECT_NEAR(number(truth, "y", truth.find("position")), 2.0, 0.05);
+
+  // the wheels and the head joints, by name
+  const std::string& joints = got["/joint_states"];
+  for (const char* joint : {"front_left_wheel_joint", "rear_right_wheel_joint", "mast_yaw", "shoulder_pitch", "elbow_pitch", "head_tilt"}) {
+    EXPECT_NE(joints.find(std::string("- ") + joint + "\n"), std::string::npos) << joints;
+  }
+  EXPECT_EQ(numbers(joints, "position").size(), 8u) << joints;
+
+  // cameras at the scenario's sizes; pinhole focal length (w / 2) / tan(hfov / 2)
+  const std::string& color = got["/camera/color/image_raw"];
+  EXPECT_EQ(field(color, "width"), "160");
+  EXPECT_EQ(field(color, "height"), "120");
+  EXPECT_EQ(field(color, "encoding"), "rgb8");
+  EXPECT_EQ(field(color, "step"), "480");
+  const std::vector<double> k = numbers(got["/camera/color/camera_info"], "K");
+  ASSERT_EQ(k.size(), 9u) << got["/camera/color/camera_info"];
+  EXPECT_NEAR(k[0], 80 / std::tan(35 * M_PI / 180), 0.5);
+  EXPECT_NEAR(k[2], 80, 0.6);
+  EXPECT_EQ(field(got["/camera/color/camera_info"], "width"), "160");
+  EXPECT_EQ(field(got["/camera/color/camera_info"], "frame_id"), field(color, "frame_id"));
+
+  const std::string& depth = got["/camera/depth/image_raw"];
+  EXPECT_EQ(field(depth, "encoding"), "32FC1");
+  EXPECT_EQ(field(depth, "width"), "80");
+  EXPECT_EQ(field(depth, "step"), "320");
+  const std::string& points = got["/camera/depth/points"];
+  EXPECT_EQ(number(points, "height") * number(points, "width"), 80.0 * 60.0) << points;
+  EXPECT_EQ(number(points, "row_step"), number(points, "width") * number(points, "point_step")) << points;
+
+  EXPECT_EQ(field(got["/thermal/image_raw"], "encoding"), "mono16");
+  EXPECT_EQ(field(got["/thermal/image_raw"], "step"), "160");
+  EXPECT_EQ(field(got["/thermal/image_mono8"], "encoding"), "mono8");
+  EXPECT_EQ(field(got["/thermal/image_mono8"], "step"), "80");
+
+  // TF: odometry moves base_link in odom; the static tree places the laser and the cameras
+  EXPECT_NE(got["/tf"].find("child_frame_id: \"base_link\""), std::string::npos) << got["/tf"];
+  EXPECT_NE(got["/tf"].find("frame_id: \"odom\""), std::string::npos) << got["/tf"];
+  const std::string& tf_static = got["/tf_static"];
+  EXPECT_NE(tf_static.find("child_frame_id: \"laser\""), std::string::npos) << tf_static;
+  EXPECT_NE(tf_static.find("child_frame_id: \"" + field(color, "frame_id") + "\""), std::string::npos) << tf_static;
+
+  EXPECT_GT(clock.get(), 1.0);
+
+  // realtime: the laser's 10 Hz on the wall clock, over at least 5 s of measuring
+  ASSERT_TRUE(wait_until([&] { return rate->output().find("average rate: ") != std::string::npos; }, kPatience)) << rate->output();
+  std::this_thread::sleep_for(5s);
+  rate->interrupt();
+  const std::string hz = rate->output();
+  const auto at = hz.rfind("average rate: ");
+  EXPECT_NEAR(std::stod(hz.substr(at + 14)), 10.0, 2.0) << hz;
+  std::printf("rostopic hz /scan: %s\n", hz.substr(at, hz.find('\n', at) - at).c_str());
+
+  EXPECT_EQ(sim_time.get(), "true\n");
+  EXPECT_TRUE(sim_.running());
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+}
+
+TEST_F(Ros1Run, CmdVelDrivesTheRobotAndBadCommandsAreRefused) {
+  SKIP_WITHOUT_ROS1();
+  start("drive", {"--duration", "120", "--no-cameras"});
+  const auto x_now = [&] {
+    const std::string truth = echo("/ground_truth/pose");
+    return number(truth, "x", truth.find("position"));
+  };
+  const auto pub = [&](const std::string& topic, const std::string& type, const std::string& value) {
+    return master_->spawn({"rostopic", "pub", "-r", "10", topic, type, value});
+  };
+
+  // refused: NaN speeds, a head command of the wrong length, a message of another type on
+  // cmd_vel, and bytes that claim to be a Twist (name and MD5) but are 3 bytes long
+  auto nan = pub("/cmd_vel", "geometry_msgs/Twist", "{linear: {x: .nan}}");
+  auto short_head = pub("/head/command", "std_msgs/Float64MultiArray", "{data: [0.5]}");
+  auto other = pub("/cmd_vel", "std_msgs/String", "hello");
+  write_text(dir_ / "truncated_twist.py", kTruncatedTwistPy);
+  auto truncated = master_->spawn({"/usr/bin/python3", (dir_ / "truncated_twist.py").string()});
+  const double x0 = x_now();
+  ASSERT_NEAR(x0, 1.0, 0.05);
+  EXPECT_TRUE(sim_.says("rejected a command on /cmd_vel: linear.x is", kPatience)) << sim_.output();
+  EXPECT_TRUE(std::regex_search(sim_.output(), std::regex("rejected a command on /cmd_vel: linear.x is -?nan"))) << sim_.output();
+  EXPECT_TRUE(sim_.says("rejected a command on /head/command: 1 positions, expected 4", kPatience)) << sim_.output();
+  EXPECT_TRUE(sim_.says("rejected a command on /cmd_vel: malformed message: geometry_msgs/Twist: linear.x", kPatience)) << sim_.output();
+  EXPECT_NEAR(x_now(), x0, 0.03) << "the robot moved on refused commands";
+  nan->interrupt();
+  short_head->interrupt();
+  truncated->interrupt();
+  // the String publisher cannot connect (md5 mismatch): rescuesim says so and goes on
+  EXPECT_TRUE(sim_.says("publisher(s) (", kPatience)) << sim_.output();
+  EXPECT_TRUE(std::regex_search(sim_.output(), std::regex("ROS 1: /cmd_vel has \\d publisher\\(s\\) \\(.*/rostopic_.*\\) but rescuesim is "
+                                                          "connected to \\d")))
+      << sim_.output();
+  other->interrupt();
+  EXPECT_TRUE(sim_.running());
+
+  // 0.3 m/s forward: once it has accelerated, odometry moves at that speed (50 messages = 1 s)
+  auto drive = pub("/cmd_vel", "geometry_msgs/Twist", "{linear: {x: 0.3}}");
+  const auto speed = [&] {
+    const std::string o = echo("/odom", "--noarr");
+    return number(o, "x", o.find("linear"));
+  };
+  ASSERT_TRUE(wait_until([&] { return speed() > 0.25; }, kPatience)) << "never reached 0.3 m/s";
+  const std::vector<std::string> odom = messages(master_->run("rostopic echo -n 50 --noarr /odom", kToolSeconds).out);
+  ASSERT_GE(odom.size(), 40u);
+  const std::string &a = odom.front(), &b = odom.back();
+  const double dt = stamp_of(b) - stamp_of(a);
+  const double dx = number(b, "x", b.find("position")) - number(a, "x", a.find("position"));
+  ASSERT_GT(dt, 0.5) << a << b;
+  EXPECT_NEAR(dx / dt, 0.3, 0.03) << "odometry moved " << dx << " m in " << dt << " s";
+  std::printf("odometry at cmd_vel 0.3 m/s: %.3f m/s over %.2f s of sim time\n", dx / dt, dt);
+  EXPECT_NEAR(number(b, "x", b.find("linear")), 0.3, 0.03) << b;
+  drive->interrupt();
+
+  // without commands the robot stops (command timeout 0.5 s); ground truth agrees it went forward
+  std::this_thread::sleep_for(1s);
+  const std::vector<std::string> still = messages(master_->run("rostopic echo -n 25 /ground_truth/pose", kToolSeconds).out);
+  ASSERT_GE(still.size(), 20u);
+  const double x1 = number(still.front(), "x"), x2 = number(still.back(), "x");
+  EXPECT_NEAR(x2, x1, 0.005) << "still moving after the command timeout";
+  EXPECT_GT(x1 - x0, 0.3) << "ground truth moved " << x1 - x0 << " m";
+
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+  const std::string out = sim_.output();
+  const std::regex stats(
+      "bridge ros1: (\\d+) messages sent, (\\d+) dropped \\(slow subscribers\\), (\\d+) commands received, (\\d+) rejected");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, stats)) << out;
+  EXPECT_GE(std::stoi(m[3]), 10);  // the 0.3 m/s twists at 10 Hz
+  EXPECT_GE(std::stoi(m[4]), 2);   // NaN twists and short head commands
+}
+
+TEST_F(Ros1Run, RosbagRecordsEveryTopicWithItsTypeAndRate) {
+  SKIP_WITHOUT_ROS1();
+  start("bag", {"--duration", "120"});
+  // nominal rates of the rescue robot's topics (src/robots/rescue_robot.cpp), /clock every 5 ms step
+  const std::vector<std::tuple<std::string, std::string, double>> topics = {
+      {"/clock", "rosgraph_msgs/Clock", 200},
+      {"/tf", "tf2_msgs/TFMessage", 100},  // 50 Hz twice: odom -> base_link, and the moving joints
+      {"/tf_static", "tf2_msgs/TFMessage", 0},
+      {"/scan", "sensor_msgs/LaserScan", 10},
+      {"/sonar/front_left", "sensor_msgs/Range", 10},
+      {"/sonar/rear_right", "sensor_msgs/Range", 10},
+      {"/imu/data", "sensor_msgs/Imu", 100},
+      {"/odom", "nav_msgs/Odometry", 50},
+      {"/ground_truth/pose", "geometry_msgs/PoseStamped", 50},
+      {"/joint_states", "sensor_msgs/JointState", 20},
+      {"/bumper", "rescuesim_msgs/Contacts", 20},
+      {"/camera/color/image_raw", "sensor_msgs/Image", 10},
+      {"/camera/color/camera_info", "sensor_msgs/CameraInfo", 10},
+      {"/camera/depth/image_raw", "sensor_msgs/Image", 10},
+      {"/camera/depth/points", "sensor_msgs/PointCloud2", 10},
+      {"/thermal/image_raw", "sensor_msgs/Image", 10},
+      {"/thermal/image_mono8", "sensor_msgs/Image", 10},
+  };
+  const fs::path bag = dir_ / "x.bag";
+  std::vector<std::string> record = {"rosbag", "record", "-q", "-O", bag.string()};
+  for (const auto& [topic, type, rate] : topics) record.push_back(topic);
+  // about 4 s once rosbag has started recording; Ctrl-C closes the bag
+  auto recorder = master_->spawn(record);
+  ASSERT_TRUE(wait_until([&] { return fs::exists(bag.string() + ".active"); }, kPatience)) << recorder->output();
+  std::this_thread::sleep_for(4s);
+  recorder->interrupt(30s);
+  const CommandResult info = master_->run("rosbag info --yaml '" + bag.string() + "'", kToolSeconds);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const double duration = number(info.out, "duration");
+  ASSERT_GT(duration, 2.0) << info.out;
+  std::printf("rosbag recorded %.2f s\n", duration);
+  for (const auto& [topic, type, rate] : topics) {
+    const auto at = info.out.find("topic: " + topic + "\n");
+    ASSERT_NE(at, std::string::npos) << topic << " missing in\n" << info.out;
+    EXPECT_EQ(field(info.out, "type", at), type) << topic;
+    const double count = number(info.out, "messages", at);
+    if (rate == 0) {
+      EXPECT_EQ(count, 1) << topic << " (latched, published once)";
+    } else {
+      // each subscription starts a little apart from the others: 20 % plus two messages
+      EXPECT_NEAR(count, rate * duration, 0.2 * rate * duration + 2) << topic;
+    }
+  }
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+}
+
+TEST_F(Ros1Run, TheSimulationOutlivesItsMasterAndRegistersWithTheNextOne) {
+  SKIP_WITHOUT_ROS1();
+  start("master-loss", {"--duration", "120", "--no-cameras", "--use-sim-time"});
+  const std::string before = echo("/scan");
+  ASSERT_FALSE(before.empty());
+  const auto wall_before = std::chrono::steady_clock::now();
+  // a subscriber connected before the outage (laser stamps only)
+  auto watcher = master_->spawn({"rostopic", "echo", "/scan/header/stamp"});
+  const auto last_stamp = [&] {
+    const std::string out = watcher->output();
+    const auto at = out.rfind("secs: ", out.rfind("nsecs: "));
+    return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 6));
+  };
+  ASSERT_TRUE(wait_until([&] { return last_stamp() >= 0; }, kPatience)) << watcher->output();
+
+  master_->kill();
+  EXPECT_TRUE(sim_.says("ROS 1 master at " + master_->uri() + " lost; still simulating, retrying", 10s)) << sim_.output();
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(sim_.running());
+
+  ASSERT_TRUE(master_->start());
+  EXPECT_TRUE(sim_.says("reconnected", 30s)) << sim_.output();
+  // the new master knows the topics, the command subscriptions, the parameter and the latched /tf_static
+  auto teleop = master_->spawn({"rostopic", "pub", "-r", "10", "/cmd_vel", "geometry_msgs/Twist", "{}"});
+  auto param = std::async(std::launch::async, [&] { return master_->run("rosparam get /use_sim_time", kToolSeconds).out; });
+  auto tf_static = std::async(std::launch::async, [&] { return echo("/tf_static"); });
+  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_before).count();
+  const std::string scan = echo("/scan");
+  EXPECT_EQ(field(scan, "frame_id"), "laser") << scan;
+  EXPECT_NE(tf_static.get().find("child_frame_id: \"laser\""), std::string::npos);
+  EXPECT_EQ(param.get(), "true\n");
+  // the subscriber from before still receives: data flows between nodes, not through the master
+  EXPECT_TRUE(wait_until([&] { return last_stamp() >= std::floor(stamp_of(scan)); }, 20s))
+      << "last stamp " << last_stamp() << ", now " << stamp_of(scan);
+  watcher->interrupt();
+
+  // and the simulation ran on at its realtime pace all the while
+  const double sim_seconds = stamp_of(scan) - stamp_of(before);
+  EXPECT_GT(sim_seconds, wall_seconds - 0.5) << "sim time " << sim_seconds << " s over " << wall_seconds << " s of wall time";
+  EXPECT_TRUE(sim_.running());
+  teleop->interrupt();
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+  std::smatch m;
+  const std::string out = sim_.output();
+  ASSERT_TRUE(std::regex_search(out, m, std::regex("(\\d+) commands received"))) << out;
+  EXPECT_GT(std::stoi(m[1]), 0) << "no cmd_vel arrived through the new master";
+}
+
+}  // namespace
+}  // namespace rescuesim
