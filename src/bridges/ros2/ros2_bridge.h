@@ -18,7 +18,8 @@ struct Ros2Options {
   std::string node_name = "rescuesim";
   std::string node_namespace = "/";
   Ros2Distro distro = Ros2Distro::humble;
-  std::size_t queue_size = 64;     ///< messages buffered before the oldest is dropped
+  std::size_t queue_size = 64;     ///< per topic: most messages buffered before the oldest is dropped
+                                   ///< (a topic buffers at most about one second of its messages)
 };
 
 /// Throws rescuesim::Error on start() when the DDS participant cannot be created.

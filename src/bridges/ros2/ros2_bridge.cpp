@@ -1,0 +1,261 @@
+// The ROS 2 bridge: every Bus topic becomes a DDS writer on rt/<topic> with ROS 2's type name,
+// carrying msgs/serialize.h's XCDR1 bytes; /cmd_vel and /head/command of each robot become
+// readers whose samples are decoded, checked and queued into the simulation; the participant
+// announces a node (rescuesim, namespace /) on ros_discovery_info so `ros2 node list` sees it.
+//
+// Threads: the Bus callback (simulation thread) only copies messages into bounded queues, one
+// per topic (so a burst of /clock at 200 Hz never pushes out an image or /tf_static); a sender
+// thread serialises and writes, a pass over every topic at a time; a receiver thread waits on
+// the readers.
+
+#include "bridges/ros2/ros2_bridge.h"
+
+#include <atomic>
+#include <thread>
+
+#include "bridges/ros2/command_input.h"
+#include "bridges/ros2/dds_participant.h"
+#include "bridges/ros2/ros2_conventions.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "msgs/serialize.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+
+namespace {
+
+using ros2::DdsParticipant;
+
+class Ros2Bridge final : public Bridge {
+ public:
+  explicit Ros2Bridge(const Ros2Options& options) : options_(options) {}
+  ~Ros2Bridge() override { stop(); }
+
+  std::string name() const override { return "ros2"; }
+  void start(Simulation& sim) override;
+  void stop() override;
+  BridgeStats stats() const override {
+    BridgeStats s;
+    s.sent = sent_.load();
+    s.dropped = failed_.load();
+    for (const auto& q : queues_) s.dropped += q->dropped();
+    s.received = received_.load();
+    s.rejected = rejected_.load();
+    return s;
+  }
+
+ private:
+  /// A command reader: whose commands, of which kind.
+  struct Input {
+    int reader;
+    int robot;
+    bool head;
+    std::string topic;  ///< ROS name, for warnings
+    std::unique_ptr<Throttle> malformed_warning = std::make_unique<Throttle>();
+    std::unique_ptr<Throttle> invalid_warning = std::make_unique<Throttle>();
+  };
+
+  void send_loop();
+  void refresh_listened();
+  void send(int writer, const msg::Message& m, std::vector<std::uint8_t>& buffer);
+  void receive_loop();
+  void receive(Input& input, std::span<const std::uint8_t> bytes);
+
+  Ros2Options options_;
+  Simulation* sim_ = nullptr;
+  std::unique_ptr<DdsParticipant> dds_;
+  std::vector<int> writer_of_topic_;  ///< by Bus topic id; -1 when not bridged
+  std::vector<std::string> writer_topic_;  ///< by writer index: ROS topic name, for warnings
+  std::vector<Input> inputs_;
+  std::vector<std::unique_ptr<BoundedQueue<msg::Message>>> queues_;  ///< by writer index
+  std::vector<std::atomic<bool>> listened_;  ///< by writer index: has matched readers (or is latched)
+  std::vector<bool> latched_;                ///< by writer index
+  BoundedQueue<char> doorbell_{1};  ///< rung after every push: wakes the sender
+  int subscription_ = -1;
+  std::thread sender_, receiver_;
+  std::atomic<bool> receiving_{false};
+  std::atomic<std::uint64_t> sent_{0}, failed_{0}, received_{0}, rejected_{0};
+  Throttle write_warning_;
+};
+
+void Ros2Bridge::start(Simulation& sim) {
+  if (dds_) throw Error("ROS 2 bridge: start() called twice");
+  sim_ = &sim;
+  const int domain = ros2::resolve_domain(options_.domain_id);
+  dds_ = std::make_unique<DdsParticipant>(domain, ros2::participant_user_data());
+  ros2::NodeEntities node;
+  node.node_name = options_.node_name;
+  node.node_namespace = options_.node_namespace;
+
+  // a writer per Bus topic, typed and named the ROS 2 way
+  const std::vector<Topic>& topics = sim.bus().topics();
+  writer_of_topic_.assign(topics.size(), -1);
+  for (const Topic& t : topics) {
+    const msg::TypeSupport* type = msg::find_type(t.type);
+    if (type == nullptr || !DdsParticipant::knows_type(type->dds_name)) {
+      log::warn("ROS 2 bridge: topic {} of type {} is not bridged (no ROS 2 type for it)", t.name, t.type);
+      continue;
+    }
+    const int w = dds_->create_writer(ros2::dds_topic_name(t.name), type->dds_name, ros2::writer_qos(t));
+    writer_of_topic_[static_cast<std::size_t>(t.id)] = w;
+    writer_topic_.push_back(t.name);
+    queues_.push_back(std::make_unique<BoundedQueue<msg::Message>>(ros2::queue_capacity(t, options_.queue_size)));
+    latched_.push_back(t.latched);
+    node.writers.push_back(dds_->writer_guid(w));
+  }
+
+  // command readers for every robot
+  for (std::size_t r = 0; r < sim.world().robots.size(); ++r) {
+    const int robot = static_cast<int>(r);
+    const std::string cmd_vel = sim.topic_name(robot, "cmd_vel");
+    const std::string head = sim.topic_name(robot, "head/command");
+    const int rv = dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos());
+    inputs_.push_back({rv, robot, false, cmd_vel});
+    node.readers.push_back(dds_->reader_guid(rv));
+    if (!sim.world().robots[r].spec.head_joints.empty()) {
+      const int rh = dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_",
+                                         ros2::command_reader_qos());
+      inputs_.push_back({rh, robot, true, head});
+      node.readers.push_back(dds_->reader_guid(rh));
+    }
+  }
+
+  // the node, for `ros2 node list` / `ros2 node info` (transient-local: late joiners get it too)
+  const int discovery = dds_->create_discovery_writer(ros2::gid_size(options_.distro));
+  const auto info = ros2::encode_discovery_info(dds_->participant_guid(), {node}, ros2::gid_size(options_.distro));
+  std::string error;
+  if (!dds_->write(discovery, info, &error)) throw Error("ROS 2 bridge: cannot publish ros_discovery_info: " + error);
+
+  // the simulation thread only copies into the queues, and only what someone listens to
+  listened_ = std::vector<std::atomic<bool>>(queues_.size());
+  refresh_listened();
+  subscription_ = sim.bus().subscribe("", [this](const Topic& topic, const msg::Message& m) {
+    const std::size_t id = static_cast<std::size_t>(topic.id);
+    if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;  // advertised after start: not bridged
+    const auto w = static_cast<std::size_t>(writer_of_topic_[id]);
+    if (!listened_[w].load(std::memory_order_relaxed)) return;
+    queues_[w]->push(m);
+    doorbell_.push(0);
+  });
+  receiving_ = true;
+  sender_ = std::thread([this] { send_loop(); });
+  receiver_ = std::thread([this] { receive_loop(); });
+  log::info("ROS 2 bridge: domain {}, node {}{}{}, {} topics out, {} command topics in", domain,
+            options_.node_namespace, options_.node_namespace.ends_with('/') ? "" : "/", options_.node_name,
+            node.writers.size(), inputs_.size());
+}
+
+void Ros2Bridge::stop() {
+  if (!dds_) return;
+  if (subscription_ >= 0) {
+    sim_->bus().unsubscribe(subscription_);
+    subscription_ = -1;
+  }
+  // the sender drains what is queued, then ends
+  for (auto& q : queues_) q->close();
+  doorbell_.close();
+  if (sender_.joinable()) sender_.join();
+  receiving_ = false;
+  dds_->wake();
+  if (receiver_.joinable()) receiver_.join();
+  dds_.reset();
+}
+
+void Ros2Bridge::send_loop() {
+  std::vector<std::uint8_t> buffer;
+  std::optional<std::chrono::steady_clock::time_point> closed_at;
+  auto next_refresh = std::chrono::steady_clock::now();
+  for (;;) {
+    doorbell_.pop(std::chrono::milliseconds(50));
+    if (std::chrono::steady_clock::now() >= next_refresh) {
+      refresh_listened();
+      next_refresh = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+    }
+    // passes of at most one message per topic, oldest first, until every queue is empty
+    for (bool any = true; any;) {
+      any = false;
+      for (std::size_t w = 0; w < queues_.size(); ++w) {
+        if (auto m = queues_[w]->pop(std::chrono::milliseconds(0))) {
+          send(static_cast<int>(w), *m, buffer);
+          any = true;
+        }
+      }
+      // stop() waits for what is queued, but not for ever
+      if (doorbell_.closed()) {
+        const auto now = std::chrono::steady_clock::now();
+        if (!closed_at) closed_at = now;
+        if (now - *closed_at > std::chrono::seconds(2)) return;
+      }
+    }
+    if (doorbell_.closed()) return;
+  }
+}
+
+void Ros2Bridge::refresh_listened() {
+  // a topic nobody reads is neither copied nor serialised; latched ones always are, for latecomers
+  for (std::size_t w = 0; w < listened_.size(); ++w) {
+    listened_[w].store(latched_[w] || dds_->matched_readers(static_cast<int>(w)) > 0, std::memory_order_relaxed);
+  }
+}
+
+void Ros2Bridge::send(int writer, const msg::Message& m, std::vector<std::uint8_t>& buffer) {
+  buffer.clear();
+  msg::to_cdr(m, buffer);
+  ros2::adapt_to_distro(m, options_.distro, buffer);
+  std::string error;
+  if (dds_->write(writer, buffer, &error)) {
+    ++sent_;
+    return;
+  }
+  ++failed_;
+  std::uint64_t held = 0;
+  if (write_warning_.allow(&held)) {
+    log::warn("ROS 2 bridge: cannot publish on {}: {} ({} more failures held back)", writer_topic_[static_cast<std::size_t>(writer)],
+              error, held);
+  }
+}
+
+void Ros2Bridge::receive_loop() {
+  while (receiving_.load()) {
+    dds_->wait(std::chrono::milliseconds(200));
+    for (Input& in : inputs_) {
+      dds_->take(in.reader, [&](std::span<const std::uint8_t> bytes) { receive(in, bytes); });
+    }
+  }
+}
+
+void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
+  std::string problem;
+  bool malformed = false;
+  if (in.head) {
+    const auto joints = sim_->world().robots[static_cast<std::size_t>(in.robot)].spec.head_joints.size();
+    auto c = ros2::check_head_command(bytes, joints);
+    if (c.value && sim_->command_head(in.robot, *c.value)) {
+      ++received_;
+      return;
+    }
+    problem = c.value ? "refused by the simulation" : c.problem;
+    malformed = c.malformed;
+  } else {
+    auto c = ros2::check_twist(bytes);
+    if (c.value && sim_->command_velocity(in.robot, *c.value)) {
+      ++received_;
+      return;
+    }
+    problem = c.value ? "refused by the simulation" : c.problem;
+    malformed = c.malformed;
+  }
+  ++rejected_;
+  // one warning every 2 s per topic and kind of trouble, so one bad sender cannot hide another
+  std::uint64_t held = 0;
+  if ((malformed ? in.malformed_warning : in.invalid_warning)->allow(&held)) {
+    log::warn("ROS 2 bridge: rejected a command on {}: {} ({} more like it since the last warning)", in.topic, problem, held);
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Bridge> make_ros2_bridge(const Ros2Options& options) { return std::make_unique<Ros2Bridge>(options); }
+
+}  // namespace rescuesim
