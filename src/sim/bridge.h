@@ -43,6 +43,8 @@ class Bridge {
 
 /// A bounded multi-producer queue; push never blocks: when full, the oldest item is dropped
 /// (and counted). pop waits until an item arrives, the timeout passes or the queue is closed.
+/// push_wait is the lossless alternative: it waits for room instead (a lockstep recording
+/// blocks the simulation thread rather than drop, which keeps the run deterministic).
 template <class T>
 class BoundedQueue {
  public:
@@ -65,6 +67,19 @@ class BoundedQueue {
     return !dropped;
   }
 
+  /// Like push, but waits while the queue is full instead of dropping; returns false (and
+  /// drops the item) only when the queue is closed.
+  bool push_wait(T item) {
+    {
+      std::unique_lock lock(mutex_);
+      room_.wait(lock, [&] { return items_.size() < capacity_ || closed_; });
+      if (closed_) return false;
+      items_.push_back(std::move(item));
+    }
+    ready_.notify_one();
+    return true;
+  }
+
   /// The oldest item, or nothing after `timeout` or once closed and drained.
   template <class Rep, class Period>
   std::optional<T> pop(std::chrono::duration<Rep, Period> timeout) {
@@ -73,6 +88,7 @@ class BoundedQueue {
     if (items_.empty()) return std::nullopt;
     T item = std::move(items_.front());
     items_.pop_front();
+    room_.notify_one();
     return item;
   }
 
@@ -83,6 +99,7 @@ class BoundedQueue {
       closed_ = true;
     }
     ready_.notify_all();
+    room_.notify_all();
   }
   bool closed() const {
     std::lock_guard lock(mutex_);
@@ -100,6 +117,7 @@ class BoundedQueue {
  private:
   mutable std::mutex mutex_;
   std::condition_variable ready_;
+  std::condition_variable room_;  ///< signalled when an item leaves (push_wait waits on it)
   std::deque<T> items_;
   std::size_t capacity_;
   std::uint64_t dropped_ = 0;

@@ -1,0 +1,177 @@
+#pragma once
+/// Internal to the Foxglove bridge: its class and the state shared by its three threads, split
+/// over foxglove_bridge.cpp (start and stop, the simulation thread's copies, the serialiser
+/// thread that encodes and fans messages out) and client_requests.cpp (what clients ask for on
+/// the I/O thread: subscriptions, client channels, commands).
+///
+/// Locking: `mutex_` guards channels and clients; it may be held while queueing frames on the
+/// server (whose own locks are inner), never the other way round.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "bridges/foxglove/foxglove_bridge.h"
+#include "bridges/foxglove/protocol.h"
+#include "bridges/foxglove/scene.h"
+#include "bridges/foxglove/ws_server.h"
+#include "sim/bus.h"
+
+namespace rescuesim {
+class Simulation;
+}  // namespace rescuesim
+
+namespace rescuesim::foxglove {
+
+/// Bus topics the simulation thread can check without a lock (more are always forwarded).
+constexpr std::size_t kMaxTopics = 4096;
+/// The scene channel's id; Bus topic t is channel t + 2.
+constexpr std::uint32_t kSceneChannel = 1;
+constexpr std::uint32_t channel_of(int topic) { return static_cast<std::uint32_t>(topic) + 2; }
+
+/// Holds a share of a byte budget while a message copy is alive (in the queue or being sent).
+class BudgetShare {
+ public:
+  BudgetShare() = default;
+  BudgetShare(std::atomic<std::size_t>& used, std::size_t bytes) : used_(&used), bytes_(bytes) { used.fetch_add(bytes); }
+  BudgetShare(BudgetShare&& o) noexcept : used_(std::exchange(o.used_, nullptr)), bytes_(o.bytes_) {}
+  BudgetShare& operator=(BudgetShare&& o) noexcept {
+    if (this != &o) {
+      release();
+      used_ = std::exchange(o.used_, nullptr);
+      bytes_ = o.bytes_;
+    }
+    return *this;
+  }
+  BudgetShare(const BudgetShare&) = delete;
+  BudgetShare& operator=(const BudgetShare&) = delete;
+  ~BudgetShare() { release(); }
+
+ private:
+  void release() {
+    if (used_) used_->fetch_sub(bytes_);
+    used_ = nullptr;
+  }
+  std::atomic<std::size_t>* used_ = nullptr;
+  std::size_t bytes_ = 0;
+};
+
+/// What the simulation thread hands to the serialiser thread.
+struct Outgoing {
+  enum class Kind { message, scene };
+  Kind kind = Kind::message;
+  int topic = -1;
+  SimTime at;                    ///< sim time when it was published
+  msg::Message message;          ///< Kind::message
+  BudgetShare budget;            ///< Kind::message: its bytes, counted against FoxgloveOptions::bridge_queue_bytes
+  SceneState scene;              ///< Kind::scene
+};
+
+/// A server channel with who subscribes to it.
+struct ChannelState {
+  Channel channel;
+  int topic = -1;                                  ///< Bus topic, -1 for the scene
+  bool latched = false;
+  Payload last;                                    ///< latched channels: the message a new subscriber gets
+  std::uint64_t last_stamp = 0;
+  std::map<ClientId, std::uint32_t> subscribers;   ///< client -> its subscription id
+};
+
+/// What a client channel publishes to.
+struct CommandTarget {
+  enum class Kind { twist, head };
+  Kind kind = Kind::twist;
+  int robot = 0;
+  ClientChannel channel;
+};
+
+/// One connected client.
+struct ClientState {
+  std::map<std::uint32_t, std::uint32_t> subscriptions;  ///< subscription id -> channel id
+  std::map<std::uint32_t, CommandTarget> publishers;     ///< client channel id -> target
+  std::uint64_t dropped = 0;
+  std::unique_ptr<Throttle> drop_warning = std::make_unique<Throttle>(std::chrono::seconds(2));
+};
+
+/// The bridge: a Bridge to the simulation, a ServerHandler to the WebSocket server.
+class FoxgloveBridge final : public Bridge, private ServerHandler {
+ public:
+  explicit FoxgloveBridge(const FoxgloveOptions& options) : options_(options), queue_(std::max<std::size_t>(options.bridge_queue, 1)) {}
+  ~FoxgloveBridge() override { stop(); }
+
+  std::string name() const override { return "foxglove"; }
+  void start(Simulation& sim) override;
+  void stop() override;
+  BridgeStats stats() const override;
+
+ private:
+  // simulation thread
+  void on_bus(const Topic& topic, const msg::Message& m);
+  /// Adds a Bus topic's channel (call with mutex_ held, or before the threads start).
+  void add_topic(const Topic& t, std::vector<Channel>* added);
+  SceneState scene_state() const;
+  // serialiser thread
+  void run();
+  void handle(Outgoing& item);
+  void broadcast_time(std::int64_t ns);
+  void deliver(const std::vector<std::pair<ClientId, std::uint32_t>>& subscribers, std::uint64_t stamp, const Payload& payload);
+  void note_drops(ClientId client, std::size_t n);
+  // I/O thread (ServerHandler)
+  void on_open(ClientId client, const std::string& remote) override;
+  void on_text(ClientId client, std::string_view text) override;
+  void on_binary(ClientId client, std::span<const std::uint8_t> bytes) override;
+  void on_oversize(ClientId client, std::size_t size, bool text) override;
+  void on_close(ClientId client) override;
+  void subscribe(ClientId client, const Subscribe& s);
+  void unsubscribe(ClientId client, const Unsubscribe& u);
+  void client_advertise(ClientId client, const ClientAdvertise& a);
+  void client_unadvertise(ClientId client, const ClientUnadvertise& u);
+  void apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload);
+  void reply(ClientId client, StatusLevel level, const std::string& message);
+  void reject(ClientId client, const std::string& message);
+
+  FoxgloveOptions options_;
+  Simulation* sim_ = nullptr;
+  bool started_ = false, stopped_ = false;
+  int bus_handle_ = -1;
+  int clock_topic_ = -1;
+  std::unique_ptr<WsServer> server_;
+  std::string server_info_;
+
+  // simulation thread
+  std::size_t known_topics_ = 0;
+  SimTime next_scene_;
+  SimTime scene_period_;
+  std::unique_ptr<std::atomic<int>[]> wanted_{new std::atomic<int>[kMaxTopics]()};  ///< subscriptions per Bus topic
+  std::atomic<std::int64_t> latest_time_{-1};
+  std::atomic<std::size_t> queued_bytes_{0};     ///< message copies not yet sent
+  std::atomic<std::uint64_t> over_budget_{0};    ///< messages not copied: the budget was used up
+
+  // serialiser thread
+  BoundedQueue<Outgoing> queue_;
+  std::thread worker_;
+  std::unique_ptr<SceneBuilder> scene_;
+  SceneState last_scene_;  ///< what the scene's latched message shows
+
+  // shared between the serialiser and I/O threads
+  mutable std::mutex mutex_;
+  std::map<std::uint32_t, ChannelState> channels_;
+  std::map<ClientId, ClientState> clients_;
+
+  std::vector<std::string> twist_topics_, head_topics_;  ///< per robot
+  std::vector<std::size_t> head_sizes_;
+  std::atomic<std::uint64_t> received_{0}, rejected_{0};
+  Throttle client_log_{std::chrono::seconds(5)};
+  Throttle error_log_{std::chrono::seconds(5)};
+};
+
+}  // namespace rescuesim::foxglove

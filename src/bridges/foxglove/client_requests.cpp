@@ -1,0 +1,262 @@
+// What Foxglove clients ask for, on the server's I/O thread: subscriptions (with the latched
+// message of a channel sent at once), client channels for /cmd_vel and /head/command, and
+// their commands, checked and passed to the simulation. Anything malformed is answered with
+// a status error to that client only.
+
+#include <cmath>
+#include <variant>
+
+#include "bridges/foxglove/bridge_impl.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "sim/simulation.h"
+
+namespace rescuesim::foxglove {
+
+void FoxgloveBridge::on_open(ClientId client, const std::string&) {
+  std::lock_guard lock(mutex_);
+  clients_.try_emplace(client);
+  std::vector<Channel> all;
+  for (const auto& [id, c] : channels_) all.push_back(c.channel);
+  server_->send_control(client, server_info_);
+  server_->send_control(client, advertise(all));
+}
+
+void FoxgloveBridge::on_close(ClientId client) {
+  std::lock_guard lock(mutex_);
+  const auto it = clients_.find(client);
+  if (it == clients_.end()) return;
+  for (const auto& [sub, channel] : it->second.subscriptions) {
+    auto c = channels_.find(channel);
+    if (c == channels_.end()) continue;
+    c->second.subscribers.erase(client);
+    if (c->second.topic >= 0 && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+  }
+  clients_.erase(it);
+}
+
+void FoxgloveBridge::reply(ClientId client, StatusLevel level, const std::string& message) {
+  server_->send_status(client, status(level, message));
+  std::uint64_t held = 0;
+  if (level == StatusLevel::error && client_log_.allow(&held)) log::info("foxglove: client {}: {}", client, message);
+}
+
+void FoxgloveBridge::reject(ClientId client, const std::string& message) {
+  ++rejected_;
+  reply(client, StatusLevel::error, message);
+}
+
+void FoxgloveBridge::on_text(ClientId client, std::string_view text) {
+  ClientRequest request;
+  try {
+    request = parse_client_text(text);
+  } catch (const Error& e) {
+    reply(client, StatusLevel::error, e.message());
+    return;
+  }
+  std::visit(
+      [&](const auto& r) {
+        using T = std::decay_t<decltype(r)>;
+        if constexpr (std::is_same_v<T, Subscribe>) {
+          subscribe(client, r);
+        } else if constexpr (std::is_same_v<T, Unsubscribe>) {
+          unsubscribe(client, r);
+        } else if constexpr (std::is_same_v<T, ClientAdvertise>) {
+          client_advertise(client, r);
+        } else if constexpr (std::is_same_v<T, ClientUnadvertise>) {
+          client_unadvertise(client, r);
+        } else {
+          reply(client, StatusLevel::error, "op '" + r.op + "' is not supported by rescuesim (capabilities: clientPublish, time)");
+        }
+      },
+      request);
+}
+
+void FoxgloveBridge::subscribe(ClientId client, const Subscribe& s) {
+  std::vector<std::string> errors;
+  {
+    std::lock_guard lock(mutex_);
+    const auto cit = clients_.find(client);
+    if (cit == clients_.end()) return;
+    ClientState& cs = cit->second;
+    for (const auto& [sub, channel] : s.subscriptions) {
+      if (cs.subscriptions.count(sub)) {
+        errors.push_back("subscribe: subscription id " + std::to_string(sub) + " is already in use");
+        continue;
+      }
+      const auto it = channels_.find(channel);
+      if (it == channels_.end()) {
+        errors.push_back("subscribe: unknown channel id " + std::to_string(channel));
+        continue;
+      }
+      ChannelState& c = it->second;
+      if (c.subscribers.count(client)) {
+        errors.push_back("subscribe: channel " + std::to_string(channel) + " (" + c.channel.topic +
+                         ") is already subscribed with subscription id " + std::to_string(c.subscribers.at(client)));
+        continue;
+      }
+      cs.subscriptions[sub] = channel;
+      c.subscribers[client] = sub;
+      if (c.topic >= 0 && static_cast<std::size_t>(c.topic) < kMaxTopics) ++wanted_[static_cast<std::size_t>(c.topic)];
+      // latched channels (the scene, /tf_static) start with their last message
+      if (c.last) server_->send_data(client, message_data_header(sub, c.last_stamp), c.last);
+    }
+  }
+  for (const auto& e : errors) reply(client, StatusLevel::error, e);
+}
+
+void FoxgloveBridge::unsubscribe(ClientId client, const Unsubscribe& u) {
+  std::vector<std::string> errors;
+  {
+    std::lock_guard lock(mutex_);
+    const auto cit = clients_.find(client);
+    if (cit == clients_.end()) return;
+    ClientState& cs = cit->second;
+    for (std::uint32_t sub : u.subscription_ids) {
+      const auto it = cs.subscriptions.find(sub);
+      if (it == cs.subscriptions.end()) {
+        errors.push_back("unsubscribe: unknown subscription id " + std::to_string(sub));
+        continue;
+      }
+      auto c = channels_.find(it->second);
+      if (c != channels_.end()) {
+        c->second.subscribers.erase(client);
+        if (c->second.topic >= 0 && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+      }
+      cs.subscriptions.erase(it);
+    }
+  }
+  for (const auto& e : errors) reply(client, StatusLevel::error, e);
+}
+
+void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a) {
+  std::vector<std::string> errors;
+  {
+    std::lock_guard lock(mutex_);
+    const auto cit = clients_.find(client);
+    if (cit == clients_.end()) return;
+    ClientState& cs = cit->second;
+    for (const ClientChannel& ch : a.channels) {
+      const std::string where = "advertise: channel " + std::to_string(ch.id) + " (" + ch.topic + "): ";
+      if (cs.publishers.count(ch.id)) {
+        errors.push_back(where + "channel id already advertised; unadvertise it first");
+        continue;
+      }
+      if (ch.encoding != "cdr" && ch.encoding != "json") {
+        errors.push_back(where + "encoding '" + ch.encoding + "' is not supported (use cdr or json)");
+        continue;
+      }
+      CommandTarget target;
+      target.channel = ch;
+      bool found = false;
+      for (std::size_t r = 0; r < twist_topics_.size() && !found; ++r) {
+        if (ch.topic == twist_topics_[r]) {
+          target.kind = CommandTarget::Kind::twist;
+          target.robot = static_cast<int>(r);
+          found = true;
+        } else if (ch.topic == head_topics_[r] && head_sizes_[r] > 0) {
+          target.kind = CommandTarget::Kind::head;
+          target.robot = static_cast<int>(r);
+          found = true;
+        }
+      }
+      if (!found) {
+        std::string accepted;
+        for (std::size_t r = 0; r < twist_topics_.size(); ++r) {
+          accepted += (accepted.empty() ? "" : ", ") + twist_topics_[r] + " (geometry_msgs/msg/Twist)";
+          if (head_sizes_[r] > 0) accepted += ", " + head_topics_[r] + " (std_msgs/msg/Float64MultiArray)";
+        }
+        errors.push_back(where + "rescuesim does not take this topic; it takes " + accepted);
+        continue;
+      }
+      const bool twist = target.kind == CommandTarget::Kind::twist;
+      const std::string ros2 = twist ? "geometry_msgs/msg/Twist" : "std_msgs/msg/Float64MultiArray";
+      const std::string ros1 = twist ? "geometry_msgs/Twist" : "std_msgs/Float64MultiArray";
+      if (!ch.schema_name.empty() && ch.schema_name != ros2 && ch.schema_name != ros1) {
+        errors.push_back(where + "schema '" + ch.schema_name + "' does not match " + ros2);
+        continue;
+      }
+      cs.publishers[ch.id] = std::move(target);
+    }
+  }
+  for (const auto& e : errors) reply(client, StatusLevel::error, e);
+}
+
+void FoxgloveBridge::client_unadvertise(ClientId client, const ClientUnadvertise& u) {
+  std::vector<std::string> errors;
+  {
+    std::lock_guard lock(mutex_);
+    const auto cit = clients_.find(client);
+    if (cit == clients_.end()) return;
+    for (std::uint32_t id : u.channel_ids) {
+      if (cit->second.publishers.erase(id) == 0) errors.push_back("unadvertise: unknown client channel id " + std::to_string(id));
+    }
+  }
+  for (const auto& e : errors) reply(client, StatusLevel::error, e);
+}
+
+void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> bytes) {
+  ClientMessage m;
+  try {
+    m = parse_client_binary(bytes);
+  } catch (const Error& e) {
+    reject(client, e.message());
+    return;
+  }
+  CommandTarget target;
+  {
+    std::lock_guard lock(mutex_);
+    const auto cit = clients_.find(client);
+    if (cit == clients_.end()) return;
+    const auto it = cit->second.publishers.find(m.channel);
+    if (it == cit->second.publishers.end()) {
+      target.robot = -1;
+    } else {
+      target = it->second;
+    }
+  }
+  if (target.robot < 0) {
+    reject(client, "client message data on unknown channel id " + std::to_string(m.channel) + " (advertise the channel first)");
+    return;
+  }
+  apply(client, target, m.payload);
+}
+
+void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload) {
+  const std::string& topic = target.channel.topic;
+  try {
+    if (target.kind == CommandTarget::Kind::twist) {
+      const msg::Twist t = decode_twist(target.channel.encoding, payload);
+      static const char* names[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
+      const double values[6] = {t.linear.x(), t.linear.y(), t.linear.z(), t.angular.x(), t.angular.y(), t.angular.z()};
+      for (int i = 0; i < 6; ++i) {
+        if (!std::isfinite(values[i])) return reject(client, topic + ": rejected: " + names[i] + " is not finite");
+      }
+      if (!sim_->command_velocity(target.robot, t)) return reject(client, topic + ": rejected by the simulation");
+    } else {
+      const msg::Float64MultiArray a = decode_multi_array(target.channel.encoding, payload);
+      const std::size_t want = head_sizes_[static_cast<std::size_t>(target.robot)];
+      if (a.data.size() != want) {
+        return reject(client, topic + ": rejected: expected " + std::to_string(want) + " joint positions (rad), got " + std::to_string(a.data.size()));
+      }
+      for (std::size_t i = 0; i < a.data.size(); ++i) {
+        if (!std::isfinite(a.data[i])) return reject(client, topic + ": rejected: data[" + std::to_string(i) + "] is not finite");
+      }
+      if (!sim_->command_head(target.robot, a.data)) return reject(client, topic + ": rejected by the simulation");
+    }
+  } catch (const Error& e) {
+    return reject(client, topic + ": " + e.message());
+  }
+  ++received_;
+}
+
+void FoxgloveBridge::on_oversize(ClientId client, std::size_t size, bool text) {
+  const std::string what = std::string(text ? "text" : "binary") + " message of " + std::to_string(size) + " bytes exceeds the limit of " +
+                           std::to_string(options_.max_client_frame) + " bytes and was discarded";
+  if (text) {
+    reply(client, StatusLevel::error, what);
+  } else {
+    reject(client, what);
+  }
+}
+}  // namespace rescuesim::foxglove

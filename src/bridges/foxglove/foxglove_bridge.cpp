@@ -1,0 +1,317 @@
+// The Foxglove bridge's data path: start and stop, the copies the simulation thread makes of
+// what clients subscribed to, and the serialiser thread that encodes each message once and
+// queues it for every subscriber (see bridge_impl.h for the threads and their locks).
+
+#include "bridges/foxglove/foxglove_bridge.h"
+
+#include <cmath>
+#include <cstdio>
+#include <variant>
+
+#include "bridges/foxglove/bridge_impl.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "msgs/serialize.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+
+namespace foxglove {
+
+namespace {
+
+/// Bytes of a message copy, roughly (the big arrays; 256 for the rest).
+std::size_t approx_bytes(const msg::Message& m) {
+  return std::visit(
+      [](const auto& x) -> std::size_t {
+        if constexpr (requires { x.data.size(); }) {
+          return 256 + x.data.size() * sizeof(x.data[0]);
+        } else if constexpr (requires { x.ranges.size(); }) {
+          return 256 + 4 * (x.ranges.size() + x.intensities.size());
+        } else {
+          return 256;
+        }
+      },
+      m);
+}
+
+std::string mib(std::size_t bytes) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.1f MiB", static_cast<double>(bytes) / (1 << 20));
+  return s;
+}
+
+}  // namespace
+
+void FoxgloveBridge::start(Simulation& sim) {
+  if (started_) return;
+  sim_ = &sim;
+  const World& world = sim.world();
+  const Bus& bus = sim.bus();
+  clock_topic_ = bus.find("/clock");
+
+  // every Bus topic becomes a cdr channel with its ROS 2 schema
+  for (const Topic& t : bus.topics()) add_topic(t, nullptr);
+  known_topics_ = bus.topics().size();
+
+  // the scene, drawn where the 3D panel can place it: in "map" when the simulation publishes
+  // map -> odom, else in the first robot's odom frame at the robot's start pose
+  if (!options_.scene_topic.empty() && bus.find(options_.scene_topic) < 0) {
+    SceneFrames frames;
+    if (!sim.options().publish_map_to_odom && !world.robots.empty()) {
+      frames.world_frame = sim.frame_name(0, "odom");
+      frames.X_FW = sim.options().tf_from_ground_truth ? Pose3{} : world.robots[0].X_W_start.inverse();
+    }
+    for (std::size_t r = 0; r < world.robots.size(); ++r) {
+      std::vector<std::string> links;
+      for (const LinkSpec& l : world.robots[r].spec.links) links.push_back(sim.frame_name(static_cast<int>(r), l.name));
+      frames.link_frames.push_back(std::move(links));
+    }
+    scene_ = std::make_unique<SceneBuilder>(world, frames);
+    ChannelState scene;
+    scene.channel = {kSceneChannel, options_.scene_topic, "json", "foxglove.SceneUpdate", scene_update_schema(), "jsonschema"};
+    scene.latched = true;
+    last_scene_ = scene_state();
+    const std::string full = scene_->full(sim.time(), last_scene_);
+    scene.last = std::make_shared<const std::vector<std::uint8_t>>(full.begin(), full.end());
+    scene.last_stamp = static_cast<std::uint64_t>(sim.time().ns);
+    channels_[kSceneChannel] = std::move(scene);
+    scene_period_ = SimTime::from_seconds(options_.scene_rate > 0 ? 1.0 / options_.scene_rate : 0.5);
+  } else if (!options_.scene_topic.empty()) {
+    log::warn("foxglove: no scene topic: {} is already a simulation topic", options_.scene_topic);
+  }
+
+  // what clients may publish: each robot's cmd_vel and head command
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    twist_topics_.push_back(sim.topic_name(static_cast<int>(r), "cmd_vel"));
+    head_topics_.push_back(sim.topic_name(static_cast<int>(r), "head/command"));
+    head_sizes_.push_back(world.robots[r].spec.head_joints.size());
+  }
+
+  std::string robots;
+  for (const auto& r : world.robots) robots += (robots.empty() ? "" : ", ") + r.name;
+  server_info_ = server_info(
+      "rescuesim", {"clientPublish", "time"}, {"cdr", "json"},
+      {{"world", world.name}, {"seed", std::to_string(sim.options().seed)}, {"robots", robots}, {"scene_topic", options_.scene_topic}},
+      std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch()).count()));
+
+  ServerLimits limits;
+  limits.max_clients = options_.max_clients;
+  limits.max_frame = options_.max_client_frame;
+  limits.queue_bytes = options_.client_queue_bytes;
+  limits.queue_messages = options_.client_queue_messages;
+  server_ = WsServer::start(options_.host, options_.port, kSubprotocol, limits, *this);
+  log::info("foxglove: listening on ws://{}:{} ({} channels)", options_.host, server_->port(), channels_.size());
+
+  started_ = true;
+  worker_ = std::thread([this] { run(); });
+  bus_handle_ = sim.bus().subscribe("", [this](const Topic& t, const msg::Message& m) { on_bus(t, m); });
+}
+
+void FoxgloveBridge::stop() {
+  if (!started_ || stopped_) return;
+  stopped_ = true;
+  sim_->bus().unsubscribe(bus_handle_);
+  queue_.close();
+  if (worker_.joinable()) worker_.join();
+  server_->shutdown(std::chrono::milliseconds(500));
+}
+
+BridgeStats FoxgloveBridge::stats() const {
+  BridgeStats s;
+  if (server_) {
+    const ClientCounters c = server_->totals();
+    s.sent = c.sent;
+    s.dropped = c.dropped;
+  }
+  s.dropped += queue_.dropped() + over_budget_;
+  s.received = received_;
+  s.rejected = rejected_;
+  return s;
+}
+
+// ---- simulation thread ----
+
+SceneState FoxgloveBridge::scene_state() const {
+  const State& st = sim_->state();
+  SceneState s;
+  for (const BodyState& b : st.dynamics) s.rubble.push_back(b.X_WB);
+  for (const VictimState& v : st.victims) {
+    s.victim_found_at.push_back(v.first_seen.ns >= 0 ? v.first_seen.seconds() : -1.0);
+    s.victim_found_by.push_back(v.seen_by);
+  }
+  return s;
+}
+
+void FoxgloveBridge::on_bus(const Topic& topic, const msg::Message& m) {
+  const SimTime now = sim_->time();
+  if (topic.id == clock_topic_) latest_time_.store(now.ns, std::memory_order_relaxed);
+  // moving parts of the scene, at a low rate
+  if (scene_ && now >= next_scene_) {
+    next_scene_ = now + scene_period_;
+    Outgoing o;
+    o.kind = Outgoing::Kind::scene;
+    o.at = now;
+    o.scene = scene_state();
+    queue_.push(std::move(o));
+  }
+  // topics advertised after start become new channels, announced to every client at once
+  // (rare, so the simulation thread takes the lock itself rather than risk a dropped item)
+  const auto& topics = sim_->bus().topics();
+  if (known_topics_ < topics.size()) {
+    std::vector<Channel> added;
+    std::lock_guard lock(mutex_);
+    while (known_topics_ < topics.size()) add_topic(topics[known_topics_++], &added);
+    if (!added.empty()) {
+      const std::string text = advertise(added);
+      for (const auto& [id, c] : clients_) server_->send_control(id, text);
+    }
+  }
+  // only what some client wants (and latched topics, for later subscribers) is copied, and
+  // only while the copies waiting for the serialiser stay within their byte budget
+  const auto id = static_cast<std::size_t>(topic.id);
+  if (!topic.latched && id < kMaxTopics && wanted_[id].load(std::memory_order_relaxed) <= 0) return;
+  const std::size_t bytes = approx_bytes(m);
+  if (!topic.latched && queued_bytes_.load() + bytes > options_.bridge_queue_bytes) {
+    ++over_budget_;
+    return;
+  }
+  Outgoing o;
+  o.kind = Outgoing::Kind::message;
+  o.topic = topic.id;
+  o.at = now;
+  o.message = m;
+  o.budget = BudgetShare(queued_bytes_, bytes);
+  queue_.push(std::move(o));
+}
+
+// ---- serialiser thread ----
+
+void FoxgloveBridge::run() {
+  std::int64_t last_time = -1;
+  auto last_time_sent = std::chrono::steady_clock::now();
+  for (;;) {
+    std::optional<Outgoing> item = queue_.pop(std::chrono::milliseconds(5));
+    // sim time at most every 5 ms of wall time (each client keeps only the latest)
+    const std::int64_t t = latest_time_.load(std::memory_order_relaxed);
+    const auto wall = std::chrono::steady_clock::now();
+    if (t >= 0 && t != last_time && wall - last_time_sent >= std::chrono::milliseconds(5)) {
+      broadcast_time(t);
+      last_time = t;
+      last_time_sent = wall;
+    }
+    if (!item) {
+      if (queue_.closed()) break;
+      continue;
+    }
+    try {
+      handle(*item);
+    } catch (const std::exception& e) {
+      std::uint64_t held = 0;
+      if (error_log_.allow(&held)) log::error("foxglove: {} (and {} more)", e.what(), held);
+    }
+  }
+}
+
+void FoxgloveBridge::broadcast_time(std::int64_t ns) {
+  std::vector<ClientId> ids;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, c] : clients_) ids.push_back(id);
+  }
+  const std::vector<std::uint8_t> frame = time_frame(static_cast<std::uint64_t>(ns));
+  for (ClientId id : ids) server_->send_time(id, frame);
+}
+
+void FoxgloveBridge::handle(Outgoing& item) {
+  switch (item.kind) {
+    case Outgoing::Kind::scene: {
+      if (same_scene(item.scene, last_scene_)) return;  // nothing moved
+      last_scene_ = std::move(item.scene);
+      const std::string moving = scene_->moving(item.at, last_scene_);
+      const std::string full = scene_->full(item.at, last_scene_);
+      const Payload full_payload = std::make_shared<const std::vector<std::uint8_t>>(full.begin(), full.end());
+      const Payload moving_payload = std::make_shared<const std::vector<std::uint8_t>>(moving.begin(), moving.end());
+      std::vector<std::pair<ClientId, std::uint32_t>> subs;
+      {
+        std::lock_guard lock(mutex_);
+        ChannelState& c = channels_.at(kSceneChannel);
+        c.last = full_payload;
+        c.last_stamp = static_cast<std::uint64_t>(item.at.ns);
+        subs.assign(c.subscribers.begin(), c.subscribers.end());
+      }
+      deliver(subs, static_cast<std::uint64_t>(item.at.ns), moving_payload);
+      return;
+    }
+    case Outgoing::Kind::message: break;
+  }
+  const std::uint32_t channel = channel_of(item.topic);
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = channels_.find(channel);
+    if (it == channels_.end() || (!it->second.latched && it->second.subscribers.empty())) return;
+  }
+  auto bytes = std::make_shared<std::vector<std::uint8_t>>();
+  msg::to_cdr(item.message, *bytes);
+  const Payload payload = std::move(bytes);
+  const auto stamp = static_cast<std::uint64_t>(std::max<std::int64_t>(item.at.ns, 0));
+  std::vector<std::pair<ClientId, std::uint32_t>> subs;
+  {
+    std::lock_guard lock(mutex_);
+    ChannelState& c = channels_.at(channel);
+    if (c.latched) {
+      c.last = payload;
+      c.last_stamp = stamp;
+    }
+    subs.assign(c.subscribers.begin(), c.subscribers.end());
+  }
+  deliver(subs, stamp, payload);
+}
+
+void FoxgloveBridge::deliver(const std::vector<std::pair<ClientId, std::uint32_t>>& subscribers, std::uint64_t stamp, const Payload& payload) {
+  for (const auto& [client, subscription] : subscribers) {
+    const std::size_t dropped = server_->send_data(client, message_data_header(subscription, stamp), payload);
+    if (dropped > 0) note_drops(client, dropped);
+  }
+}
+
+void FoxgloveBridge::note_drops(ClientId client, std::size_t n) {
+  std::uint64_t total = 0;
+  bool warn = false;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = clients_.find(client);
+    if (it == clients_.end()) return;
+    it->second.dropped += n;
+    total = it->second.dropped;
+    warn = it->second.drop_warning->allow();
+  }
+  if (!warn) return;
+  server_->send_status(client, status(StatusLevel::warning,
+                                                "rescuesim: this connection reads too slowly; " + std::to_string(total) +
+                                                    " messages dropped so far, oldest first (per-client queue limit " +
+                                                    mib(options_.client_queue_bytes) + " or " + std::to_string(options_.client_queue_messages) +
+                                                    " messages). Subscribe to fewer topics (images are large) or use a faster link."));
+  std::uint64_t held = 0;
+  if (client_log_.allow(&held)) log::info("foxglove: client {} is slow: {} messages dropped so far", client, total);
+}
+
+void FoxgloveBridge::add_topic(const Topic& t, std::vector<Channel>* added) {
+  const msg::TypeSupport* type = msg::find_type(t.type);
+  if (!type) {
+    log::warn("foxglove: topic {} not advertised: no serialiser for {}", t.name, t.type);
+    return;
+  }
+  ChannelState c;
+  c.channel = {channel_of(t.id), t.name, "cdr", type->ros2_name, type->ros2_definition, "ros2msg"};
+  c.topic = t.id;
+  c.latched = t.latched;
+  if (added) added->push_back(c.channel);
+  channels_[c.channel.id] = std::move(c);
+}
+
+}  // namespace foxglove
+
+std::unique_ptr<Bridge> make_foxglove_bridge(const FoxgloveOptions& options) { return std::make_unique<foxglove::FoxgloveBridge>(options); }
+
+}  // namespace rescuesim

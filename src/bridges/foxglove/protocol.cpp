@@ -1,0 +1,240 @@
+#include "bridges/foxglove/protocol.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/error.h"
+#include "msgs/serialize.h"
+
+namespace rescuesim::foxglove {
+
+namespace {
+
+using json = nlohmann::json;
+
+void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+void put_u64(std::vector<std::uint8_t>& out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+std::uint32_t get_u32(std::span<const std::uint8_t> b) {
+  return static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
+         static_cast<std::uint32_t>(b[3]) << 24;
+}
+
+/// A field of a JSON object that must be an array, with `where` naming it in errors.
+const json& array_field(const json& object, const char* key, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) throw Error(where + ": missing '" + key + "'");
+  if (!it->is_array()) throw Error(where + "." + key + ": expected an array");
+  return *it;
+}
+
+std::uint32_t u32_field(const json& object, const char* key, const std::string& where) {
+  if (!object.is_object()) throw Error(where + ": expected an object");
+  const auto it = object.find(key);
+  if (it == object.end()) throw Error(where + ": missing '" + key + "'");
+  if (!it->is_number_unsigned() || it->get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error(where + "." + key + ": expected an unsigned 32-bit integer, got " + it->dump());
+  }
+  return it->get<std::uint32_t>();
+}
+
+std::string string_field(const json& object, const char* key, const std::string& where, bool required) {
+  const auto it = object.find(key);
+  if (it == object.end() || (it->is_null() && !required)) {
+    if (required) throw Error(where + ": missing '" + key + "'");
+    return {};
+  }
+  if (!it->is_string()) throw Error(where + "." + key + ": expected a string, got " + it->dump());
+  return it->get<std::string>();
+}
+
+std::vector<std::uint32_t> u32_array(const json& request, const char* key, const std::string& op) {
+  std::vector<std::uint32_t> ids;
+  const json& a = array_field(request, key, op);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const json& v = a[i];
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max()) {
+      throw Error(op + "." + key + "[" + std::to_string(i) + "]: expected an unsigned 32-bit integer, got " + v.dump());
+    }
+    ids.push_back(v.get<std::uint32_t>());
+  }
+  return ids;
+}
+
+/// A number of a JSON object (0 when absent), finite or not: finiteness is the caller's check.
+double number_field(const json& object, const char* key, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) return 0.0;
+  if (!it->is_number()) throw Error(where + "." + key + ": expected a number, got " + it->dump());
+  return it->get<double>();
+}
+
+Vec3 vector3_field(const json& object, const char* key, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) return Vec3::Zero();
+  const std::string w = where + "." + key;
+  if (!it->is_object()) throw Error(w + ": expected an object with x, y, z");
+  return {number_field(*it, "x", w), number_field(*it, "y", w), number_field(*it, "z", w)};
+}
+
+json parse_json(std::span<const std::uint8_t> payload, const char* type) {
+  json j = json::parse(payload.begin(), payload.end(), nullptr, false);
+  if (j.is_discarded()) throw Error(std::string(type) + ": payload is not valid JSON");
+  if (!j.is_object()) throw Error(std::string(type) + ": expected a JSON object");
+  return j;
+}
+
+const msg::TypeSupport& type_support(const char* name) {
+  const msg::TypeSupport* t = msg::find_type(name);
+  if (!t) throw Error(std::string(name) + ": no type support in this build");
+  return *t;
+}
+
+}  // namespace
+
+std::string server_info(const std::string& name, const std::vector<std::string>& capabilities, const std::vector<std::string>& encodings,
+                        const std::vector<std::pair<std::string, std::string>>& metadata, const std::string& session_id) {
+  json meta = json::object();
+  for (const auto& [k, v] : metadata) meta[k] = v;
+  json j = {{"op", "serverInfo"}, {"name", name},     {"capabilities", capabilities}, {"supportedEncodings", encodings},
+            {"metadata", meta},   {"sessionId", session_id}};
+  return j.dump();
+}
+
+std::string advertise(const std::vector<Channel>& channels) {
+  json list = json::array();
+  for (const Channel& c : channels) {
+    list.push_back({{"id", c.id},
+                    {"topic", c.topic},
+                    {"encoding", c.encoding},
+                    {"schemaName", c.schema_name},
+                    {"schema", c.schema},
+                    {"schemaEncoding", c.schema_encoding}});
+  }
+  return json{{"op", "advertise"}, {"channels", list}}.dump();
+}
+
+std::string status(StatusLevel level, const std::string& message) {
+  // replace invalid UTF-8 (a client's bytes may be echoed in messages) instead of throwing
+  return json{{"op", "status"}, {"level", static_cast<int>(level)}, {"message", message}}.dump(-1, ' ', false,
+                                                                                             json::error_handler_t::replace);
+}
+
+std::vector<std::uint8_t> message_data_header(std::uint32_t subscription, std::uint64_t timestamp_ns) {
+  std::vector<std::uint8_t> h;
+  h.reserve(13);
+  h.push_back(0x01);
+  put_u32(h, subscription);
+  put_u64(h, timestamp_ns);
+  return h;
+}
+
+std::vector<std::uint8_t> time_frame(std::uint64_t timestamp_ns) {
+  std::vector<std::uint8_t> h;
+  h.reserve(9);
+  h.push_back(0x02);
+  put_u64(h, timestamp_ns);
+  return h;
+}
+
+ClientRequest parse_client_text(std::string_view text) {
+  const json j = json::parse(text.begin(), text.end(), nullptr, false);
+  if (j.is_discarded()) {
+    std::string head(text.substr(0, 40));
+    for (char& c : head) {
+      if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+    }
+    throw Error("malformed JSON text message (" + std::to_string(text.size()) + " bytes, starting '" + head + "')");
+  }
+  if (!j.is_object()) throw Error("text message must be a JSON object with an 'op' field");
+  const auto op_it = j.find("op");
+  if (op_it == j.end() || !op_it->is_string()) throw Error("text message has no string 'op' field");
+  const std::string op = op_it->get<std::string>();
+  if (op == "subscribe") {
+    Subscribe s;
+    const json& subs = array_field(j, "subscriptions", op);
+    for (std::size_t i = 0; i < subs.size(); ++i) {
+      const std::string where = op + ".subscriptions[" + std::to_string(i) + "]";
+      s.subscriptions.emplace_back(u32_field(subs[i], "id", where), u32_field(subs[i], "channelId", where));
+    }
+    return s;
+  }
+  if (op == "unsubscribe") return Unsubscribe{u32_array(j, "subscriptionIds", op)};
+  if (op == "advertise") {
+    ClientAdvertise a;
+    const json& chans = array_field(j, "channels", op);
+    for (std::size_t i = 0; i < chans.size(); ++i) {
+      const std::string where = op + ".channels[" + std::to_string(i) + "]";
+      ClientChannel c;
+      c.id = u32_field(chans[i], "id", where);
+      c.topic = string_field(chans[i], "topic", where, true);
+      c.encoding = string_field(chans[i], "encoding", where, true);
+      c.schema_name = string_field(chans[i], "schemaName", where, false);
+      a.channels.push_back(std::move(c));
+    }
+    return a;
+  }
+  if (op == "unadvertise") return ClientUnadvertise{u32_array(j, "channelIds", op)};
+  for (const char* known : {"getParameters", "setParameters", "subscribeParameterUpdates", "unsubscribeParameterUpdates",
+                            "subscribeConnectionGraph", "unsubscribeConnectionGraph", "fetchAsset"}) {
+    if (op == known) return Unsupported{op};
+  }
+  std::string shown = op.substr(0, 40);
+  throw Error("unknown op '" + shown + "' (this server understands subscribe, unsubscribe, advertise, unadvertise)");
+}
+
+ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes) {
+  if (bytes.empty()) throw Error("empty binary message");
+  const std::uint8_t opcode = bytes[0];
+  if (opcode == 0x02) throw Error("service call requests are not supported (no services are advertised)");
+  if (opcode != 0x01) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02x", opcode);
+    throw Error(std::string("unknown binary opcode ") + hex + " (only 0x01, client message data, is accepted)");
+  }
+  if (bytes.size() < 5) {
+    throw Error("client message data needs at least 5 bytes (opcode and channel id), got " + std::to_string(bytes.size()));
+  }
+  return {get_u32(bytes.subspan(1, 4)), bytes.subspan(5)};
+}
+
+msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload) {
+  if (encoding == "cdr") {
+    msg::Message m = msg::from_cdr(type_support("geometry_msgs/msg/Twist"), payload);
+    return std::get<msg::Twist>(m);
+  }
+  if (encoding == "json") {
+    const json j = parse_json(payload, "geometry_msgs/Twist");
+    msg::Twist t;
+    t.linear = vector3_field(j, "linear", "geometry_msgs/Twist");
+    t.angular = vector3_field(j, "angular", "geometry_msgs/Twist");
+    return t;
+  }
+  throw Error("unsupported encoding '" + std::string(encoding) + "'");
+}
+
+msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<const std::uint8_t> payload) {
+  if (encoding == "cdr") {
+    msg::Message m = msg::from_cdr(type_support("std_msgs/msg/Float64MultiArray"), payload);
+    return std::get<msg::Float64MultiArray>(m);
+  }
+  if (encoding == "json") {
+    const json j = parse_json(payload, "std_msgs/Float64MultiArray");
+    const json& data = array_field(j, "data", "std_msgs/Float64MultiArray");
+    msg::Float64MultiArray a;
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      if (!data[i].is_number()) throw Error("std_msgs/Float64MultiArray.data[" + std::to_string(i) + "]: expected a number, got " + data[i].dump());
+      a.data.push_back(data[i].get<double>());
+    }
+    return a;
+  }
+  throw Error("unsupported encoding '" + std::string(encoding) + "'");
+}
+
+}  // namespace rescuesim::foxglove

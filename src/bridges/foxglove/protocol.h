@@ -1,0 +1,93 @@
+#pragma once
+/// The Foxglove WebSocket protocol v1 (subprotocol `foxglove.websocket.v1`) as data: the JSON
+/// messages the server sends, the binary frame layouts (little endian), and parsers for what
+/// clients send. Parsers throw rescuesim::Error with a message fit for a `status` reply
+/// ("subscribe: subscriptions[1].channelId: expected an unsigned 32-bit integer").
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "msgs/messages.h"
+
+namespace rescuesim::foxglove {
+
+/// The subprotocol clients must offer.
+inline constexpr const char* kSubprotocol = "foxglove.websocket.v1";
+
+/// A server channel as advertised.
+struct Channel {
+  std::uint32_t id = 0;
+  std::string topic;
+  std::string encoding;          ///< "cdr" or "json"
+  std::string schema_name;       ///< "sensor_msgs/msg/LaserScan", "foxglove.SceneUpdate"
+  std::string schema;            ///< ros2msg text or JSON Schema
+  std::string schema_encoding;   ///< "ros2msg" or "jsonschema"
+};
+
+/// Status levels.
+enum class StatusLevel { info = 0, warning = 1, error = 2 };
+
+/// {"op":"serverInfo",...} with the given capabilities and client-publish encodings.
+std::string server_info(const std::string& name, const std::vector<std::string>& capabilities,
+                        const std::vector<std::string>& encodings, const std::vector<std::pair<std::string, std::string>>& metadata,
+                        const std::string& session_id);
+/// {"op":"advertise","channels":[...]}.
+std::string advertise(const std::vector<Channel>& channels);
+/// {"op":"status","level":..,"message":..}.
+std::string status(StatusLevel level, const std::string& message);
+
+/// Binary message data header: 0x01 | u32 subscription id | u64 timestamp (ns).
+std::vector<std::uint8_t> message_data_header(std::uint32_t subscription, std::uint64_t timestamp_ns);
+/// Binary time: 0x02 | u64 timestamp (ns).
+std::vector<std::uint8_t> time_frame(std::uint64_t timestamp_ns);
+
+/// A channel a client advertises for publishing.
+struct ClientChannel {
+  std::uint32_t id = 0;
+  std::string topic;
+  std::string encoding;
+  std::string schema_name;       ///< may be empty
+};
+
+/// Client requests (text frames).
+struct Subscribe {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> subscriptions;  ///< (subscription id, channel id)
+};
+struct Unsubscribe {
+  std::vector<std::uint32_t> subscription_ids;
+};
+struct ClientAdvertise {
+  std::vector<ClientChannel> channels;
+};
+struct ClientUnadvertise {
+  std::vector<std::uint32_t> channel_ids;
+};
+/// An op this server knows but does not offer (parameters, services, ...).
+struct Unsupported {
+  std::string op;
+};
+using ClientRequest = std::variant<Subscribe, Unsubscribe, ClientAdvertise, ClientUnadvertise, Unsupported>;
+
+/// Parses a client text frame; throws Error for malformed JSON, a missing or unknown `op`, or
+/// fields of the wrong type.
+ClientRequest parse_client_text(std::string_view text);
+
+/// A client binary frame 0x01 | u32 channel id | payload.
+struct ClientMessage {
+  std::uint32_t channel = 0;
+  std::span<const std::uint8_t> payload;
+};
+/// Parses a client binary frame; throws Error for an empty frame, an unknown opcode or a
+/// frame too short for its header.
+ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes);
+
+/// Decodes a geometry_msgs/Twist in `encoding` ("cdr" or "json"); throws Error when malformed.
+msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload);
+/// Decodes a std_msgs/Float64MultiArray in `encoding`; throws Error when malformed.
+msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<const std::uint8_t> payload);
+
+}  // namespace rescuesim::foxglove

@@ -1,0 +1,157 @@
+// The Foxglove WebSocket protocol pieces without a network: frame layouts byte by byte, the
+// server's JSON messages, and how client requests and commands are parsed and refused.
+
+#include "bridges/foxglove/protocol.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "msgs/serialize.h"
+
+namespace rescuesim::foxglove {
+namespace {
+
+using json = nlohmann::json;
+
+std::span<const std::uint8_t> bytes_of(const std::string& s) { return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()}; }
+
+/// The message text of the Error `f` throws ("" when it does not throw).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.message();
+  }
+  return "";
+}
+
+TEST(FoxgloveProtocol, MessageDataHeaderIsOpcodeSubscriptionAndTimestampLittleEndian) {
+  const auto h = message_data_header(0x04030201u, 0x0c0b0a0908070605ull);
+  const std::vector<std::uint8_t> want = {0x01, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x09, 0x0a, 0x0b, 0x0c};
+  EXPECT_EQ(h, want);
+}
+
+TEST(FoxgloveProtocol, TimeFrameIsOpcodeTwoAndNanoseconds) {
+  const auto t = time_frame(1'500'000'000ull);  // 1.5 s = 0x59682F00 ns
+  const std::vector<std::uint8_t> want = {0x02, 0x00, 0x2f, 0x68, 0x59, 0, 0, 0, 0};
+  EXPECT_EQ(t, want);
+}
+
+TEST(FoxgloveProtocol, ServerInfoAndAdvertiseAreTheSpecsJson) {
+  const json info = json::parse(server_info("rescuesim", {"clientPublish", "time"}, {"cdr", "json"}, {{"world", "room"}}, "42"));
+  EXPECT_EQ(info["op"], "serverInfo");
+  EXPECT_EQ(info["name"], "rescuesim");
+  EXPECT_EQ(info["capabilities"], json({"clientPublish", "time"}));
+  EXPECT_EQ(info["supportedEncodings"], json({"cdr", "json"}));
+  EXPECT_EQ(info["metadata"]["world"], "room");
+  EXPECT_EQ(info["sessionId"], "42");
+
+  const json adv = json::parse(advertise({{7, "/scan", "cdr", "sensor_msgs/msg/LaserScan", "float32 angle_min\n", "ros2msg"}}));
+  EXPECT_EQ(adv["op"], "advertise");
+  ASSERT_EQ(adv["channels"].size(), 1u);
+  EXPECT_EQ(adv["channels"][0]["id"], 7);
+  EXPECT_EQ(adv["channels"][0]["topic"], "/scan");
+  EXPECT_EQ(adv["channels"][0]["encoding"], "cdr");
+  EXPECT_EQ(adv["channels"][0]["schemaName"], "sensor_msgs/msg/LaserScan");
+  EXPECT_EQ(adv["channels"][0]["schemaEncoding"], "ros2msg");
+}
+
+TEST(FoxgloveProtocol, StatusSurvivesInvalidUtf8FromAClient) {
+  const json s = json::parse(status(StatusLevel::error, std::string("bad \xff\xfe bytes")));
+  EXPECT_EQ(s["op"], "status");
+  EXPECT_EQ(s["level"], 2);
+  EXPECT_NE(s["message"].get<std::string>().find("bad"), std::string::npos);
+}
+
+TEST(FoxgloveProtocol, ParsesSubscribeUnsubscribeAndClientAdvertise) {
+  const auto sub = std::get<Subscribe>(parse_client_text(R"({"op":"subscribe","subscriptions":[{"id":0,"channelId":3},{"id":1,"channelId":5}]})"));
+  ASSERT_EQ(sub.subscriptions.size(), 2u);
+  EXPECT_EQ(sub.subscriptions[1], std::make_pair(1u, 5u));
+  const auto unsub = std::get<Unsubscribe>(parse_client_text(R"({"op":"unsubscribe","subscriptionIds":[0,1]})"));
+  EXPECT_EQ(unsub.subscription_ids, (std::vector<std::uint32_t>{0, 1}));
+  const auto adv = std::get<ClientAdvertise>(
+      parse_client_text(R"({"op":"advertise","channels":[{"id":2,"topic":"/cmd_vel","encoding":"json","schemaName":"geometry_msgs/msg/Twist"}]})"));
+  ASSERT_EQ(adv.channels.size(), 1u);
+  EXPECT_EQ(adv.channels[0].topic, "/cmd_vel");
+  EXPECT_EQ(adv.channels[0].encoding, "json");
+  EXPECT_EQ(std::get<Unsupported>(parse_client_text(R"({"op":"setParameters","parameters":[]})")).op, "setParameters");
+}
+
+TEST(FoxgloveProtocol, MalformedRequestsNameWhatIsWrong) {
+  EXPECT_NE(error_of([] { parse_client_text("not json"); }).find("malformed JSON"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text("42"); }).find("JSON object"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":7})"); }).find("'op'"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":"dance"})"); }).find("unknown op 'dance'"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":"subscribe"})"); }).find("missing 'subscriptions'"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":-3}]})"); })
+                .find("subscriptions[0].channelId: expected an unsigned 32-bit integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":"subscribe","subscriptions":[{"id":4294967296,"channelId":1}]})"); })
+                .find("subscriptions[0].id"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_client_text(R"({"op":"advertise","channels":[{"id":1,"encoding":"cdr"}]})"); }).find("missing 'topic'"),
+            std::string::npos);
+}
+
+TEST(FoxgloveProtocol, ClientBinaryFramesAreCheckedBeforeUse) {
+  const std::vector<std::uint8_t> good = {0x01, 0x2a, 0, 0, 0, 9, 8};
+  const ClientMessage m = parse_client_binary(good);
+  EXPECT_EQ(m.channel, 42u);
+  ASSERT_EQ(m.payload.size(), 2u);
+  EXPECT_EQ(m.payload[0], 9);
+  EXPECT_NE(error_of([] { parse_client_binary({}); }).find("empty"), std::string::npos);
+  const std::vector<std::uint8_t> short_frame = {0x01, 0x2a, 0};
+  EXPECT_NE(error_of([&] { parse_client_binary(short_frame); }).find("at least 5 bytes"), std::string::npos);
+  const std::vector<std::uint8_t> service = {0x02, 0, 0, 0, 0};
+  EXPECT_NE(error_of([&] { parse_client_binary(service); }).find("service"), std::string::npos);
+  const std::vector<std::uint8_t> unknown = {0x7f, 0, 0, 0, 0};
+  EXPECT_NE(error_of([&] { parse_client_binary(unknown); }).find("0x7f"), std::string::npos);
+}
+
+TEST(FoxgloveProtocol, DecodesTwistFromCdrAndJson) {
+  msg::Twist t;
+  t.linear = Vec3(0.3, 0, 0);
+  t.angular = Vec3(0, 0, -0.5);
+  std::vector<std::uint8_t> cdr;
+  msg::to_cdr(msg::Message{t}, cdr);
+  ASSERT_EQ(cdr.size(), 4u + 6 * 8);  // encapsulation + six float64
+  const msg::Twist from_cdr = decode_twist("cdr", cdr);
+  EXPECT_EQ(from_cdr.linear, t.linear);
+  EXPECT_EQ(from_cdr.angular, t.angular);
+
+  const msg::Twist from_json = decode_twist("json", bytes_of(R"({"linear":{"x":0.3,"y":0,"z":0},"angular":{"x":0,"y":0,"z":-0.5}})"));
+  EXPECT_EQ(from_json.linear, t.linear);
+  EXPECT_EQ(from_json.angular, t.angular);
+  // fields left out are zero, as a teleop panel that sets only some would mean
+  EXPECT_EQ(decode_twist("json", bytes_of(R"({"angular":{"z":1}})")).angular.z(), 1.0);
+}
+
+TEST(FoxgloveProtocol, MalformedCommandsAreErrorsNotCrashes) {
+  std::vector<std::uint8_t> cdr;
+  msg::to_cdr(msg::Message{msg::Twist{}}, cdr);
+  cdr.resize(20);
+  EXPECT_NE(error_of([&] { decode_twist("cdr", cdr); }), "");
+  EXPECT_NE(error_of([] { decode_twist("json", bytes_of("{")); }).find("not valid JSON"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_twist("json", bytes_of(R"({"linear":{"x":"fast"}})")); }).find("linear.x"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_twist("json", bytes_of(R"({"linear":[1,2,3]})")); }).find("linear"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_twist("protobuf", bytes_of("")); }).find("encoding"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_multi_array("json", bytes_of(R"({"data":[1,"two"]})")); }).find("data[1]"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_multi_array("json", bytes_of(R"({"layout":{}})")); }).find("missing 'data'"), std::string::npos);
+}
+
+TEST(FoxgloveProtocol, DecodesHeadCommandFromCdrAndJson) {
+  msg::Float64MultiArray a;
+  a.data = {0.1, -0.2, 0.3, 0.0};
+  std::vector<std::uint8_t> cdr;
+  msg::to_cdr(msg::Message{a}, cdr);
+  EXPECT_EQ(decode_multi_array("cdr", cdr).data, a.data);
+  EXPECT_EQ(decode_multi_array("json", bytes_of(R"({"layout":{"dim":[],"data_offset":0},"data":[0.1,-0.2,0.3,0]})")).data, a.data);
+}
+
+}  // namespace
+}  // namespace rescuesim::foxglove
