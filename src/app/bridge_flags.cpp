@@ -7,6 +7,13 @@
 #ifdef RESCUESIM_HAS_ROS2
 #include "bridges/ros2/ros2_bridge.h"
 #endif
+#ifdef RESCUESIM_HAS_FOXGLOVE
+#include "bridges/foxglove/foxglove_bridge.h"
+#endif
+#ifdef RESCUESIM_HAS_MCAP
+#include "bridges/mcap/mcap_bridge.h"
+#include "bridges/mcap/run_record.h"
+#endif
 
 namespace rescuesim::app {
 
@@ -17,11 +24,20 @@ void add_bridge_flags(CLI::App* cmd, BridgeFlags& f) {
   cmd->add_option("--ros2-distro", f.ros2_distro, "ROS 2 discovery info layout: humble (24-byte Gid) or iron (16-byte, Iron and newer)")
       ->check(CLI::IsMember({"humble", "iron"}));
   cmd->add_option("--ros-domain", f.ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
-  cmd->add_flag("--lockstep", f.lockstep, "with a ROS bridge: step as fast as possible instead of realtime");
-  cmd->add_flag("--keep-controllers", f.keep_controllers, "with a ROS bridge: keep the scenario's built-in controllers driving");
+  cmd->add_option("--foxglove", f.foxglove,
+                  "serve Foxglove/Lichtblick on ws://HOST:PORT (default port 8765; 0 picks a free one, logged at --log-level info; docs/foxglove.md)")
+      ->expected(0, 1)
+      ->default_str("8765")
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--foxglove-host", f.foxglove_host, "interface the Foxglove server listens on (default 127.0.0.1; 0.0.0.0 for every one)");
+  cmd->add_option("--record", f.record,
+                  "record every topic to this MCAP file (ros2 profile, zstd chunks, indexed: open it in Foxglove or "
+                  "'rescuesim replay' it; docs/recording.md)");
+  cmd->add_flag("--lockstep", f.lockstep, "with a ROS or Foxglove bridge: step as fast as possible instead of realtime");
+  cmd->add_flag("--keep-controllers", f.keep_controllers, "with a ROS or Foxglove bridge: keep the scenario's built-in controllers driving");
 }
 
-std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f) {
+std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f, [[maybe_unused]] const RunContext& run) {
   std::vector<std::unique_ptr<Bridge>> bridges;
   if (f.ros1) {
 #ifdef RESCUESIM_HAS_ROS1
@@ -41,6 +57,29 @@ std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f) {
     bridges.push_back(make_ros2_bridge(o));
 #else
     throw Error("--ros2: this rescuesim was built without the ROS 2 bridge (Cyclone DDS not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  if (f.foxglove) {
+#ifdef RESCUESIM_HAS_FOXGLOVE
+    FoxgloveOptions o;
+    o.port = *f.foxglove;
+    o.host = f.foxglove_host;
+    bridges.push_back(make_foxglove_bridge(o));
+#else
+    throw Error("--foxglove: this rescuesim was built without the Foxglove bridge (Boost.Beast headers not found at build time; "
+                "run scripts/install-deps.sh and rebuild)");
+#endif
+  }
+  if (!f.record.empty()) {
+#ifdef RESCUESIM_HAS_MCAP
+    McapOptions o;
+    o.path = f.record;
+    o.library = std::string("rescuesim ") + RESCUESIM_VERSION;
+    if (run.scenario && run.world) describe_run(o, *run.scenario, *run.world, run.cameras, RESCUESIM_VERSION);
+    bridges.push_back(make_mcap_recorder(o));
+#else
+    throw Error("--record: this rescuesim was built without the MCAP recorder (libzstd/liblz4 not found at build time; "
                 "run scripts/install-deps.sh and rebuild)");
 #endif
   }

@@ -11,6 +11,11 @@
 
 #include "sim/bridge.h"
 
+namespace rescuesim {
+struct Scenario;
+struct WorldSpec;
+}  // namespace rescuesim
+
 namespace rescuesim::app {
 
 struct BridgeFlags {
@@ -20,15 +25,26 @@ struct BridgeFlags {
   std::optional<int> ros_domain;
   bool lockstep = false;          ///< with a ROS or Foxglove bridge: step as fast as possible anyway
   bool keep_controllers = false;  ///< with a ROS or Foxglove bridge: keep the built-in controllers
+  std::optional<int> foxglove;    ///< --foxglove[=PORT]: serve the Foxglove WebSocket protocol on this port
+  std::string foxglove_host = "127.0.0.1";  ///< interface the Foxglove server listens on
+  std::string record;             ///< --record FILE.mcap: record every topic (not a live transport: runs stay lockstep)
 
   /// True when a live transport (ROS or Foxglove) is attached: runs default to realtime,
   /// until Ctrl-C, with the built-in controllers off.
-  bool live() const { return ros1 || ros2; }
+  bool live() const { return ros1 || ros2 || foxglove.has_value(); }
 };
 
 /// Registers the bridge flags on a subcommand.
 void add_bridge_flags(CLI::App* cmd, BridgeFlags& flags);
+/// The run a recording describes (scenario text, world, seed), so `rescuesim replay` can
+/// rebuild it; the scenario's mode also makes recording lossless (lockstep) or bounded (realtime).
+struct RunContext {
+  const Scenario* scenario = nullptr;
+  const WorldSpec* world = nullptr;
+  bool cameras = true;  ///< false: recorded with --no-cameras
+};
+
 /// The bridges asked for, not yet started. Throws Error (exit 2) for one this build lacks.
-std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& flags);
+std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& flags, const RunContext& run = {});
 
 }  // namespace rescuesim::app

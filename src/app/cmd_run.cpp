@@ -80,8 +80,8 @@ int run(const RunCommand& c) {
   so.cameras = !c.no_cameras;
   // with a ROS bridge, ROS drives the robots: the built-in controllers stay off unless kept
   so.controllers = !c.no_controllers && (!ros || c.bridges.keep_controllers);
-  auto bridges = make_bridges(c.bridges);
   Session session(s, models, so);
+  auto bridges = make_bridges(c.bridges, {&session.scenario(), &session.world_spec(), so.cameras});
   print_diagnostics(session.diagnostics());
   const fs::path out = c.out.empty() ? fs::path("runs") / s.name : fs::path(c.out);
   const WorldSpec& w = session.world_spec();

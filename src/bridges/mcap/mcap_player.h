@@ -1,0 +1,72 @@
+#pragma once
+/// Replay of a rescuesim recording: the simulation it ran is rebuilt from the recording (see
+/// run_record.h) but never stepped; recorded topics it lacks are advertised on its Bus; then the
+/// recorded messages are decoded and published on that Bus in file (= log-time) order, paced
+/// to the wall clock, so bridges attached to it (ROS 1, ROS 2, Foxglove, even a recorder)
+/// re-publish the recording as if it were running. The simulation's clock follows the replay
+/// (its State is restored at each new log time), so bridges that read sim time see replay time.
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+
+#include "bridges/mcap/mcap_reader.h"
+#include "bridges/mcap/run_record.h"
+#include "msgs/serialize.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+
+/// Where a replay is.
+struct PlayProgress {
+  double log_time = 0;        ///< s since the first message
+  double duration = 0;        ///< s from the first to the last message (statistics)
+  double wall_time = 0;       ///< s since play() began
+  std::uint64_t messages = 0; ///< published so far
+};
+
+/// How a replay went.
+struct PlayResult {
+  std::uint64_t messages = 0;   ///< published on the Bus
+  std::uint64_t skipped = 0;    ///< not published: a type rescuesim does not know, or bytes that did not decode
+  double duration = 0;          ///< s of log time replayed
+  double wall_time = 0;         ///< s it took
+  bool interrupted = false;     ///< stopped by the caller
+};
+
+class McapPlayer {
+ public:
+  /// Opens and checks the recording, rebuilds its simulation and advertises its topics.
+  /// Throws Error naming the file for a damaged file or one rescuesim did not record.
+  McapPlayer(const std::filesystem::path& path, const ModelMap& models);
+  ~McapPlayer();
+
+  /// The rebuilt simulation: attach bridges to it before play().
+  Simulation& sim() { return *sim_; }
+  const mcap::McapReader& reader() const { return reader_; }
+  const RecordedRun& run() const { return run_; }
+
+  /// Publishes every message, the one at log time t at wall time (t - t_first) / rate after
+  /// the start (rate: sim seconds per wall second, > 0). Returns when done or once `stop` is
+  /// set; `progress` is called about every 0.1 s of wall time.
+  PlayResult play(double rate, const std::atomic<bool>* stop = nullptr,
+                  const std::function<void(const PlayProgress&)>& progress = nullptr);
+
+ private:
+  struct Route {
+    int topic = -1;                           ///< Bus topic, -1: not replayed
+    const msg::TypeSupport* type = nullptr;
+  };
+  const Route& route(const mcap::Channel& channel);
+
+  mcap::McapReader reader_;
+  RecordedRun run_;
+  std::unique_ptr<Simulation> sim_;
+  State clock_state_;                          ///< restored with each new log time
+  std::map<std::uint16_t, Route> routes_;      ///< by channel id
+};
+
+}  // namespace rescuesim
