@@ -7,9 +7,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 #include <nlohmann/json.hpp>
 
+#include "app/bench_batch.h"
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "physics/physics.h"
@@ -21,6 +23,10 @@
 #include "robots/rescue_robot.h"
 #include "sensors/lidar.h"
 #include "session/session.h"
+#ifdef RESCUESIM_HAS_MCAP
+#include "bridges/mcap/mcap_bridge.h"
+#include "bridges/mcap/run_record.h"
+#endif
 
 namespace rescuesim::app {
 
@@ -34,6 +40,7 @@ struct BenchOptions {
   double seconds = 1.0;         ///< per ray measurement
   double scenario_time = 180;   ///< sim seconds of the default scenario
   int physics_steps = 4000;
+  int batch_trials = 4;         ///< per batch measurement (0: skip)
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -138,8 +145,32 @@ json bench_cameras(const World& world, double seconds) {
   return j;
 }
 
+#ifdef RESCUESIM_HAS_MCAP
+/// What an MCAP recording cost: sizes, compression, and write throughput beside bare zstd.
+json recording_figures(const McapRecordingStats& st, double sim_time, double finish_s) {
+  const double mb = 1e-6;
+  const double uncompressed = static_cast<double>(st.writer.uncompressed_bytes) * mb;
+  // our whole write path (CDR, chunking, CRCs, zstd, file) beside the zstd part of it alone
+  const double ours = st.busy_seconds > 0 ? uncompressed / st.busy_seconds : 0.0;
+  const double bare = st.writer.compress_seconds > 0 ? uncompressed / st.writer.compress_seconds : 0.0;
+  json j = figure(ours, "MB/s", bare, "bare zstd level 3 on the same chunks, timed inside the same recording", 0.7);
+  j["file_mb"] = static_cast<double>(st.writer.file_bytes) * mb;
+  j["uncompressed_mb"] = uncompressed;
+  j["compression_ratio"] = st.writer.compressed_bytes > 0 ? static_cast<double>(st.writer.uncompressed_bytes) / static_cast<double>(st.writer.compressed_bytes) : 0.0;
+  j["file_mb_per_sim_s"] = sim_time > 0 ? static_cast<double>(st.writer.file_bytes) * mb / sim_time : 0.0;
+  j["messages"] = st.writer.messages;
+  j["chunks"] = st.writer.chunks;
+  j["dropped"] = st.dropped;
+  j["recorder_busy_s"] = st.busy_seconds;
+  j["finish_s"] = finish_s;
+  if (!st.error.empty()) j["error"] = st.error;
+  return j;
+}
+#endif
+
 /// Runs a scenario in a child process; returns its result and the child's peak memory (MB).
-json run_child(const Scenario& scenario, const ModelMap& models, bool cameras) {
+/// With `record`, an MCAP recorder is attached and its figures are added under "recording".
+json run_child(const Scenario& scenario, const ModelMap& models, bool cameras, [[maybe_unused]] const std::filesystem::path& record = {}) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = ::fork();
@@ -150,9 +181,27 @@ json run_child(const Scenario& scenario, const ModelMap& models, bool cameras) {
       SessionOptions so;
       so.cameras = cameras;
       Session session(scenario, models, so);
+#ifdef RESCUESIM_HAS_MCAP
+      std::unique_ptr<McapRecorder> recorder;
+      if (!record.empty()) {
+        McapOptions mo;
+        mo.path = record;
+        describe_run(mo, session.scenario(), session.world_spec(), cameras, RESCUESIM_VERSION);
+        recorder = std::make_unique<McapRecorder>(mo);
+        recorder->start(session.sim());
+      }
+#endif
       const RunResult r = session.run();
       out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
              {"victims_found", r.victims_found}, {"collisions", r.collisions}};
+#ifdef RESCUESIM_HAS_MCAP
+      if (recorder) {
+        const auto t0 = Clock::now();
+        recorder->stop();
+        out["recording"] = recording_figures(recorder->recording(), r.sim_time, since(t0));
+        std::filesystem::remove(record);
+      }
+#endif
     } catch (const std::exception& e) {
       out = {{"error", e.what()}};
     }
@@ -172,6 +221,39 @@ json run_child(const Scenario& scenario, const ModelMap& models, bool cameras) {
   json j = text.empty() ? json{{"error", "child process died"}} : json::parse(text);
   j["peak_memory_mb"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
   return j;
+}
+
+/// MCAP recording: the default scenario with and without --record in the same bench run (its
+/// real-time factor both ways), then with every camera on for the write throughput.
+json bench_recording([[maybe_unused]] const Scenario& def, [[maybe_unused]] const ModelMap& models) {
+#ifdef RESCUESIM_HAS_MCAP
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / ("rescuesim-bench-" + std::to_string(::getpid()) + ".mcap");
+  json j;
+  const auto pair = [&](const Scenario& s, bool cameras) {
+    const json without = run_child(s, models, cameras);
+    const json with = run_child(s, models, cameras, file);
+    const double a = without.value("real_time_factor", 0.0), b = with.value("real_time_factor", 0.0);
+    json p = figure(b, "x real time", a, "the same run without recording, in this bench run", 0.8);
+    p["real_time_factor_without"] = a;
+    p["real_time_factor_with"] = b;
+    p["recording"] = with.value("recording", json());
+    if (with.contains("error")) p["error"] = with["error"];
+    return p;
+  };
+  Scenario plain = def;
+  plain.duration = std::min(def.duration, 60.0);
+  std::fprintf(stderr, "bench: MCAP recording, default scenario without cameras, %.0f s ...\n", plain.duration);
+  j["default_scenario"] = pair(plain, false);
+  Scenario full = def;
+  full.duration = std::min(def.duration, 20.0);
+  std::fprintf(stderr, "bench: MCAP recording, every sensor (shipped cameras), %.0f s ...\n", full.duration);
+  j["full_sensors"] = pair(full, true);
+  j["note"] = "ratio = real-time factor with recording / without; recording.value = MB/s of uncompressed chunk data "
+              "through the recorder thread (CDR, chunking, CRC, zstd, file), beside zstd alone on the same chunks";
+  return j;
+#else
+  return json{{"error", "built without the MCAP recorder"}};
+#endif
 }
 
 int run_bench(const BenchOptions& o) {
@@ -227,6 +309,9 @@ int run_bench(const BenchOptions& o) {
   json d2 = run_child(shipped, models, true);
   d2["note"] = "the shipped camera settings: colour 640x480, depth 320x240, thermal 160x120, all 10 Hz";
   report["default_scenario_cameras_shipped"] = d2;
+  report["mcap_recording"] = bench_recording(def, models);
+  if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
+  report["python_step"] = bench_python_step();
 
   const std::string text = report.dump(2) + "\n";
   std::fputs(text.c_str(), stdout);
@@ -244,11 +329,17 @@ void add_bench_command(CLI::App& app, Action& action) {
       "rays/s beside bare Embree rtcIntersect16 on the same triangles; the default scenario's\n"
       "real-time factor and peak memory (run in a child process); and a 300-rubble maze.\n"
       "Targets (2-core machine): physics >= 0.8x bare, lidar >= 0.7x bare, default >= 30x real\n"
-      "time, 300 rubble >= 10x real time.");
+      "time, 300 rubble >= 10x real time. MCAP recording (mcap_recording): the default run's real-time\n"
+      "factor with and without --record (target >= 0.8x), and the recorder's write MB/s with every\n"
+      "camera on, beside zstd alone on the same chunks. Batch (batch): trials/hour of the default\n"
+      "scenario without cameras at --jobs 1 and 2 (target >= 1000 at 2), beside the same trials in\n"
+      "this process; python_step: Python Env.step() beside the same steps in C++ (target <= 10%).");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--physics-steps", o->physics_steps, "steps per physics measurement")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--batch-trials", o->batch_trials, "trials per batch measurement (twice as many at --jobs 2; 0 skips)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
 }
 

@@ -24,6 +24,8 @@ void add_run_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_snapshot_command(CLI::App& app, Action& action);
 void add_view_command(CLI::App& app, Action& action);
+void add_replay_command(CLI::App& app, Action& action);
+void add_batch_command(CLI::App& app, Action& action);
 
 /// Several lines describing a world: size, counts of each kind, starts.
 std::string world_summary(const WorldSpec& world);

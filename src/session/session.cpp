@@ -156,6 +156,15 @@ double Session::coverage() const {
   return free > 0 ? static_cast<double>(seen) / free : 0.0;
 }
 
+bool Session::step_until(SimTime t) {
+  while (sim_->time() < t) {
+    sim_->step();
+    record();
+    if (sim_->in_trouble()) return false;
+  }
+  return true;
+}
+
 RunResult Session::result() const {
   const State& s = sim_->state();
   RunResult r;

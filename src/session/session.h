@@ -76,8 +76,15 @@ class Session {
   /// `progress` is called from the stepping thread about every 0.1 s of wall time.
   RunResult run(const std::atomic<bool>* stop = nullptr, const std::function<void(const RunResult&)>& progress = nullptr);
 
+  /// Steps to sim time `t` (no further when already there), recording the trajectory and
+  /// coverage as run() does; for callers that drive the robots between steps (the Python API).
+  /// Returns false as soon as numerical trouble stops the simulation.
+  bool step_until(SimTime t);
+
   /// The result so far (also valid during or after a run).
   RunResult result() const;
+  /// Fraction of free floor passed within 1 m of so far (see docs/outputs.md).
+  double coverage() const;
   const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
 
   /// Writes summary.json, overview.png, trajectory.csv, world.svg and sensors/laser.png into
@@ -88,7 +95,6 @@ class Session {
   struct Controllers;
   void record();
   void write_camera_frames(const std::filesystem::path& dir) const;
-  double coverage() const;
   bool world_has_no_thermal() const;
 
   Scenario scenario_;

@@ -105,6 +105,8 @@ Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models
 
 Scenario default_scenario(const ModelMap& models) { return parse_scenario(kDefaultScenarioYaml, "<built-in>", models); }
 
+std::string default_scenario_text() { return kDefaultScenarioYaml; }
+
 WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
   WorldSpec w;
   if (scenario.svg) {

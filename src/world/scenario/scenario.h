@@ -64,6 +64,8 @@ Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models
 
 /// The built-in default scenario (worlds/default.yaml, compiled in).
 Scenario default_scenario(const ModelMap& models);
+/// The YAML text of the built-in default scenario.
+std::string default_scenario_text();
 
 /// Builds the scenario's world: loads the SVG or generates the maze (seeded from the scenario
 /// seed unless the maze sets its own), places the scenario's robots, and adds diagnostics from

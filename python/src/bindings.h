@@ -1,0 +1,15 @@
+#pragma once
+// Internal to the extension: the parts of the module, each bound in its own file.
+
+#include <pybind11/pybind11.h>
+
+namespace rescuesim::python {
+
+/// rescuesim._rescuesim.Scenario and the functions that make one (bind_scenario.cpp).
+void bind_scenarios(pybind11::module_& m);
+/// EnvOptions, EnvCore, VecEnvCore (module.cpp).
+void bind_environments(pybind11::module_& m);
+/// TrialOptions, run_trial, ResultsFile, merge_results, ... (bind_batch.cpp).
+void bind_batch(pybind11::module_& m);
+
+}  // namespace rescuesim::python
