@@ -157,7 +157,10 @@ void add_run_command(CLI::App& app, Action& action) {
       "the built-in controllers off, so ROS nodes drive the robot through /cmd_vel:\n"
       "  roscore &  rescuesim run --ros1 --use-sim-time\n"
       "  rescuesim run --ros2 --ros-domain 7 --duration 600\n"
-      "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers");
+      "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers\n\n"
+      "Watch in Foxglove or Lichtblick (docs/foxglove.md), record for later (docs/recording.md):\n"
+      "  rescuesim run --foxglove --keep-controllers     then open ws://127.0.0.1:8765\n"
+      "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
   cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
