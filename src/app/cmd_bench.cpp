@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench_batch.h"
+#include "app/bench_child.h"
+#include "app/bench_ros.h"
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "physics/physics.h"
@@ -41,6 +43,9 @@ struct BenchOptions {
   double scenario_time = 180;   ///< sim seconds of the default scenario
   int physics_steps = 4000;
   int batch_trials = 4;         ///< per batch measurement (0: skip)
+  bool ros = true;              ///< the ROS figures (latency, bridge cost)
+  bool ros_only = false;        ///< only the ROS figures
+  BenchRosOptions ros_options;
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -171,55 +176,36 @@ json recording_figures(const McapRecordingStats& st, double sim_time, double fin
 /// Runs a scenario in a child process; returns its result and the child's peak memory (MB).
 /// With `record`, an MCAP recorder is attached and its figures are added under "recording".
 json run_child(const Scenario& scenario, const ModelMap& models, bool cameras, [[maybe_unused]] const std::filesystem::path& record = {}) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(fds[0]);
+  ChildReport child = run_in_child([&] {
     json out;
-    try {
-      SessionOptions so;
-      so.cameras = cameras;
-      Session session(scenario, models, so);
+    SessionOptions so;
+    so.cameras = cameras;
+    Session session(scenario, models, so);
 #ifdef RESCUESIM_HAS_MCAP
-      std::unique_ptr<McapRecorder> recorder;
-      if (!record.empty()) {
-        McapOptions mo;
-        mo.path = record;
-        describe_run(mo, session.scenario(), session.world_spec(), cameras, RESCUESIM_VERSION);
-        recorder = std::make_unique<McapRecorder>(mo);
-        recorder->start(session.sim());
-      }
-#endif
-      const RunResult r = session.run();
-      out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
-             {"victims_found", r.victims_found}, {"collisions", r.collisions}};
-#ifdef RESCUESIM_HAS_MCAP
-      if (recorder) {
-        const auto t0 = Clock::now();
-        recorder->stop();
-        out["recording"] = recording_figures(recorder->recording(), r.sim_time, since(t0));
-        std::filesystem::remove(record);
-      }
-#endif
-    } catch (const std::exception& e) {
-      out = {{"error", e.what()}};
+    std::unique_ptr<McapRecorder> recorder;
+    if (!record.empty()) {
+      McapOptions mo;
+      mo.path = record;
+      describe_run(mo, session.scenario(), session.world_spec(), cameras, RESCUESIM_VERSION);
+      recorder = std::make_unique<McapRecorder>(mo);
+      recorder->start(session.sim());
     }
-    const std::string text = out.dump();
-    (void)!::write(fds[1], text.data(), text.size());
-    ::_exit(0);
-  }
-  ::close(fds[1]);
-  std::string text;
-  char buf[4096];
-  ssize_t n;
-  while ((n = ::read(fds[0], buf, sizeof buf)) > 0) text.append(buf, static_cast<std::size_t>(n));
-  ::close(fds[0]);
-  int status = 0;
-  struct rusage ru {};
-  ::wait4(pid, &status, 0, &ru);
-  json j = text.empty() ? json{{"error", "child process died"}} : json::parse(text);
-  j["peak_memory_mb"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+#endif
+    const RunResult r = session.run();
+    out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
+           {"victims_found", r.victims_found}, {"collisions", r.collisions}};
+#ifdef RESCUESIM_HAS_MCAP
+    if (recorder) {
+      const auto t0 = Clock::now();
+      recorder->stop();
+      out["recording"] = recording_figures(recorder->recording(), r.sim_time, since(t0));
+      std::filesystem::remove(record);
+    }
+#endif
+    return out;
+  });
+  json j = std::move(child.report);
+  j["peak_memory_mb"] = static_cast<double>(child.usage.ru_maxrss) / 1024.0;
   return j;
 }
 
@@ -266,6 +252,13 @@ int run_bench(const BenchOptions& o) {
   json report;
   report["rescuesim"] = RESCUESIM_VERSION;
   report["machine"] = {{"cores", std::thread::hardware_concurrency()}};
+  if (o.ros_only) {
+    report["ros"] = bench_ros(def, models, o.ros_options);
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   std::fprintf(stderr, "bench: physics ...\n");
   report["physics"] = bench_physics(world, o.physics_steps);
   std::fprintf(stderr, "bench: lidar rays ...\n");
@@ -312,6 +305,7 @@ int run_bench(const BenchOptions& o) {
   report["mcap_recording"] = bench_recording(def, models);
   if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
   report["python_step"] = bench_python_step();
+  if (o.ros) report["ros"] = bench_ros(def, models, o.ros_options);
 
   const std::string text = report.dump(2) + "\n";
   std::fputs(text.c_str(), stdout);
@@ -333,14 +327,28 @@ void add_bench_command(CLI::App& app, Action& action) {
       "factor with and without --record (target >= 0.8x), and the recorder's write MB/s with every\n"
       "camera on, beside zstd alone on the same chunks. Batch (batch): trials/hour of the default\n"
       "scenario without cameras at --jobs 1 and 2 (target >= 1000 at 2), beside the same trials in\n"
-      "this process; python_step: Python Env.step() beside the same steps in C++ (target <= 10%).");
+      "this process; python_step: Python Env.step() beside the same steps in C++ (target <= 10%).\n"
+      "ROS (ros; about a minute; --no-ros skips it, --ros-only runs nothing else): latency from\n"
+      "publication on the Bus to a subscriber in another process on loopback (median, p99, samples) for\n"
+      "/scan and a 640x480 rgb8 image over ROS 1 (a roscpp node; roscore is started on a free port)\n"
+      "and ROS 2 (a Cyclone DDS reader), in realtime runs; and the real-time factor with --ros1 --ros2\n"
+      "attached and subscribed beside the same lockstep run without bridges (target >= 0.9x; also\n"
+      "with /scan subscribers alone). A transport this build or machine lacks is reported as skipped,\n"
+      "with the reason (docs/ros.md).");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--physics-steps", o->physics_steps, "steps per physics measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--batch-trials", o->batch_trials, "trials per batch measurement (twice as many at --jobs 2; 0 skips)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost)");
+  cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
+  cmd->add_option("--ros-latency-time", o->ros_options.latency_seconds, "wall seconds of each realtime ROS latency run")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--ros-cost-time", o->ros_options.rtf_seconds, "sim seconds of each lockstep run with and without bridges")
+      ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
+  add_bench_probe_command(app, action);
 }
 
 }  // namespace rescuesim::app

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "bridges/ros2/dds_loopback.h"
 #include "support/command.h"
 
 extern char** environ;
@@ -28,6 +29,7 @@ TEST(Ros2Interop, Skipped) { GTEST_SKIP() << "ROS 2 interop tests skipped: " << 
 
 using testing::slurp;
 using testing::temp_dir;
+using testing::pin_dds_to_loopback;
 using testing::write_text;
 
 /// A 6 m x 4 m room with the robot at (1, 2) m facing +x, and a scenario that leaves it to ROS.
@@ -45,30 +47,6 @@ std::filesystem::path write_scenario(const std::filesystem::path& dir, bool came
   return dir / "scenario.yaml";
 }
 
-/// Pins Cyclone (rescuesim) and Fast DDS (the peer) to 127.0.0.1 without multicast.
-void pin_to_loopback(const std::filesystem::path& dir) {
-  write_text(dir / "cyclonedds.xml",
-             "<CycloneDDS><Domain Id=\"any\">\n"
-             "  <General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>\n"
-             "  <Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>\n"
-             "</Domain></CycloneDDS>\n");
-  write_text(dir / "fastdds.xml",
-             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-             "<profiles xmlns=\"http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles\">\n"
-             "  <transport_descriptors><transport_descriptor>\n"
-             "    <transport_id>loopback</transport_id><type>UDPv4</type>\n"
-             "    <interfaceWhiteList><address>127.0.0.1</address></interfaceWhiteList>\n"
-             "    <receiveBufferSize>4194304</receiveBufferSize>\n"
-             "  </transport_descriptor></transport_descriptors>\n"
-             "  <participant profile_name=\"ros2_peer\" is_default_profile=\"true\"><rtps>\n"
-             "    <userTransports><transport_id>loopback</transport_id></userTransports>\n"
-             "    <useBuiltinTransports>false</useBuiltinTransports>\n"
-             "    <builtin><initialPeersList><locator><udpv4><address>127.0.0.1</address></udpv4></locator></initialPeersList></builtin>\n"
-             "  </rtps></participant>\n"
-             "</profiles>\n");
-  ::setenv("CYCLONEDDS_URI", ("file://" + (dir / "cyclonedds.xml").string()).c_str(), 1);
-  ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", (dir / "fastdds.xml").string().c_str(), 1);
-}
 
 /// A domain of this test's own, so tests running in parallel do not see each other.
 int test_domain(int salt) { return 1 + static_cast<int>((::getpid() * 2 + salt) % 80); }
@@ -125,7 +103,7 @@ std::string peer_summary(const Session& s) { return s.report.is_discarded() ? "(
 Session run_with_peer(const std::string& name, const std::string& mode, bool cameras, int salt) {
   const auto dir = temp_dir(name);
   const auto scenario = write_scenario(dir, cameras);
-  pin_to_loopback(dir);
+  pin_dds_to_loopback(dir);
   const int domain = test_domain(salt);
   Session s;
   const auto t0 = std::chrono::steady_clock::now();
