@@ -29,65 +29,12 @@
 #include "bridges/ros1/command_gate.h"
 #include "bridges/ros1/ros1_console.h"
 #include "bridges/ros1/ros1_endpoint.h"
+#include "bridges/ros1/ros1_raw_message.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "msgs/serialize.h"
 #include "sim/simulation.h"
 
-namespace rescuesim::ros1_wire {
-
-/// A message already in ROS 1 wire format (without the 4-byte length roscpp adds), with the type
-/// it claims to be. roscpp sends and receives it like a generated message (the same trick as
-/// topic_tools::ShapeShifter): the traits below report the type's MD5, name and definition from
-/// rescuesim's TypeSupport, and the serializer copies the bytes.
-struct RawMessage {
-  const msg::TypeSupport* type = nullptr;
-  std::vector<std::uint8_t> bytes;
-};
-
-}  // namespace rescuesim::ros1_wire
-
-namespace ros::message_traits {
-
-// the static forms are what a subscription asks before it has a message: the bridge replaces
-// them with the real MD5 and type in its SubscribeOptions
-template <>
-struct MD5Sum<rescuesim::ros1_wire::RawMessage> {
-  static const char* value() { return "*"; }
-  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_md5.c_str() : "*"; }
-};
-template <>
-struct DataType<rescuesim::ros1_wire::RawMessage> {
-  static const char* value() { return "*"; }
-  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_name.c_str() : "*"; }
-};
-template <>
-struct Definition<rescuesim::ros1_wire::RawMessage> {
-  static const char* value() { return ""; }
-  static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_definition.c_str() : ""; }
-};
-
-}  // namespace ros::message_traits
-
-namespace ros::serialization {
-
-template <>
-struct Serializer<rescuesim::ros1_wire::RawMessage> {
-  template <typename Stream>
-  static void write(Stream& stream, const rescuesim::ros1_wire::RawMessage& m) {
-    const auto n = static_cast<std::uint32_t>(m.bytes.size());
-    if (n > 0) std::memcpy(stream.advance(n), m.bytes.data(), n);
-  }
-  template <typename Stream>
-  static void read(Stream& stream, rescuesim::ros1_wire::RawMessage& m) {
-    const std::uint32_t n = stream.getLength();
-    m.bytes.assign(stream.getData(), stream.getData() + n);
-    stream.advance(n);
-  }
-  static std::uint32_t serializedLength(const rescuesim::ros1_wire::RawMessage& m) { return static_cast<std::uint32_t>(m.bytes.size()); }
-};
-
-}  // namespace ros::serialization
 
 namespace rescuesim {
 
