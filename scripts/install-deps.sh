@@ -23,6 +23,8 @@ packages=(
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   libros-rosgraph-msgs-dev python3-sensor-msgs python3-nav-msgs
   python3-tf2-msgs python3-geometry-msgs
+  # SLAM demonstration (docs/demos.md): MRPT's ICP scan-matching SLAM
+  libmrpt-slam-dev
   # ROS 2 wire compatibility: Cyclone DDS, and Fast DDS as a second vendor for tests
   cyclonedds-dev cyclonedds-tools libfastrtps-dev fastddsgen
   # Python API and scale-out
