@@ -7,6 +7,7 @@
 
 #include "core/log.h"
 #include "session/camera_service.h"
+#include "session/explorer_settings.h"
 #include "session/session_controllers.h"
 
 namespace rescuesim {
@@ -76,10 +77,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
       throw Error({scenario_.source_file, 0, "robots[" + std::to_string(r) + "].controller"},
                   "the " + configs[r].controller + " needs an enabled planar laser on base_link and odometry");
     }
-    autonomy::ExplorerConfig ec;
-    // the robot as a disc around base_link: half the diagonal of its footprint with wheels
-    ec.robot_radius = 0.41;
-    if (configs[r].controller == "wall_follower") ec.frontier_trips = false;  // never plans: pure wall following
+    const autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller);
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(laser->X_LS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
