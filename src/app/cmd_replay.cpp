@@ -83,7 +83,9 @@ int replay(const ReplayCommand& c) {
   bool told_commands = false;
   double next_line = 0;
   const PlayResult r = player.play(c.rate, &g_replay_interrupted, [&](const PlayProgress& p) {
-    // nothing is simulated: commands that bridges take in are queued but never applied
+    // nothing is simulated: commands that bridges take in are queued but never applied, so
+    // they are dropped here rather than left to pile up over a long replay
+    player.sim().discard_commands();
     for (const auto& b : bridges) {
       if (!told_commands && b->stats().received > 0) {
         std::fprintf(stderr, "%sreplay: commands received through %s are ignored (a replay re-publishes a recording; nothing is simulated)\n",

@@ -147,6 +147,13 @@ bool Simulation::command_head(int robot, const std::vector<double>& positions) {
   return true;
 }
 
+std::size_t Simulation::discard_commands() {
+  std::lock_guard lock(commands_mutex_);
+  const std::size_t n = commands_.size();
+  commands_.clear();
+  return n;
+}
+
 void Simulation::pre_step() {
   // commands queued since the last step, in arrival order
   std::vector<Command> pending;

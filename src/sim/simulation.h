@@ -94,6 +94,9 @@ class Simulation {
   bool command_velocity(int robot, const msg::Twist& twist);
   /// Head joint position targets (rad), one per head joint in RobotSpec::head_joints order.
   bool command_head(int robot, const std::vector<double>& positions);
+  /// Drops the commands queued for the next step; returns how many. For owners that publish
+  /// without stepping (rescuesim replay), so what bridges take in does not pile up.
+  std::size_t discard_commands();
 
   /// Robot index by name, or -1.
   int robot_index(const std::string& name) const;

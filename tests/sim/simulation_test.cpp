@@ -177,6 +177,20 @@ TEST(Simulation, CommandTimeoutStopsTheRobot) {
   EXPECT_LT(sim.state().robots[0].base.v_WB.norm(), 0.02);
 }
 
+TEST(Simulation, DiscardedCommandsAreNeverApplied) {
+  Simulation sim = make_sim(room_spec());
+  msg::Twist t;
+  t.linear.x() = 0.5;
+  ASSERT_TRUE(sim.command_velocity(0, t));
+  ASSERT_TRUE(sim.command_head(0, {0.4, 0, 1.5, -1.2}));
+  EXPECT_EQ(sim.discard_commands(), 2u);
+  EXPECT_EQ(sim.discard_commands(), 0u);
+  sim.step_until(SimTime::from_seconds(0.5));
+  // no command reached the drive: the robot still stands where it started
+  EXPECT_LT(sim.state().robots[0].base.v_WB.norm(), 1e-3);
+  EXPECT_LT(truth_from_start(sim).x, 1e-3);
+}
+
 TEST(Simulation, TroubleStopsTheRunWithAClearMessage) {
   WorldSpec w = room_spec();
   RubbleSpec box;
