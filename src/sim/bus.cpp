@@ -16,7 +16,6 @@ int Bus::advertise(const std::string& name, const std::string& type, double rate
   topics_.push_back({id, name, type, rate, latched, robot});
   counts_.push_back(0);
   latched_.emplace_back();
-  has_latched_.push_back(false);
   rebuild_index();
   return id;
 }
@@ -24,22 +23,45 @@ int Bus::advertise(const std::string& name, const std::string& type, double rate
 void Bus::publish(int topic, msg::Message message) {
   const auto t = static_cast<std::size_t>(topic);
   ++counts_[t];
-  for (int s : subscribers_of_[t]) subscribers_[static_cast<std::size_t>(s)].callback(topics_[t], message);
-  if (topics_[t].latched) {
-    latched_[t] = std::move(message);
-    has_latched_[t] = true;
+  // moved (not copied) into a shared message only when someone keeps it
+  SharedMessage shared;
+  if (shared_subscribers_[t] > 0 || topics_[t].latched) shared = std::make_shared<const msg::Message>(std::move(message));
+  const msg::Message& m = shared ? *shared : message;
+  for (int s : subscribers_of_[t]) {
+    const Subscriber& sub = subscribers_[static_cast<std::size_t>(s)];
+    if (sub.shared) {
+      sub.shared(topics_[t], shared);
+    } else {
+      sub.callback(topics_[t], m);
+    }
   }
+  if (topics_[t].latched) latched_[t] = std::move(shared);
 }
 
 int Bus::subscribe(const std::string& name, Callback callback) {
-  const int handle = next_handle_++;
-  subscribers_.push_back({handle, name, std::move(callback)});
+  subscribers_.push_back({next_handle_++, name, std::move(callback), nullptr});
   rebuild_index();
+  deliver_latched(subscribers_.back());
+  return subscribers_.back().handle;
+}
+
+int Bus::subscribe_shared(const std::string& name, SharedCallback callback) {
+  subscribers_.push_back({next_handle_++, name, nullptr, std::move(callback)});
+  rebuild_index();
+  deliver_latched(subscribers_.back());
+  return subscribers_.back().handle;
+}
+
+void Bus::deliver_latched(Subscriber& s) {
   // latched topics replay their last message to the newcomer
   for (std::size_t t = 0; t < topics_.size(); ++t) {
-    if (has_latched_[t] && (name.empty() || name == topics_[t].name)) subscribers_.back().callback(topics_[t], latched_[t]);
+    if (!latched_[t] || !(s.name.empty() || s.name == topics_[t].name)) continue;
+    if (s.shared) {
+      s.shared(topics_[t], latched_[t]);
+    } else {
+      s.callback(topics_[t], *latched_[t]);
+    }
   }
-  return handle;
 }
 
 void Bus::unsubscribe(int handle) {
@@ -61,9 +83,13 @@ int Bus::find(const std::string& name) const {
 
 void Bus::rebuild_index() {
   subscribers_of_.assign(topics_.size(), {});
+  shared_subscribers_.assign(topics_.size(), 0);
   for (std::size_t s = 0; s < subscribers_.size(); ++s) {
     for (auto& t : topics_) {
-      if (subscribers_[s].name.empty() || subscribers_[s].name == t.name) subscribers_of_[static_cast<std::size_t>(t.id)].push_back(static_cast<int>(s));
+      if (subscribers_[s].name.empty() || subscribers_[s].name == t.name) {
+        subscribers_of_[static_cast<std::size_t>(t.id)].push_back(static_cast<int>(s));
+        if (subscribers_[s].shared) ++shared_subscribers_[static_cast<std::size_t>(t.id)];
+      }
     }
   }
 }

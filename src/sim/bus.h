@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct Topic {
 class Bus {
  public:
   using Callback = std::function<void(const Topic&, const msg::Message&)>;
+  /// A published message, shared and immutable: what bridges keep for their own threads
+  /// instead of copying (an image is hundreds of kB).
+  using SharedMessage = std::shared_ptr<const msg::Message>;
+  using SharedCallback = std::function<void(const Topic&, const SharedMessage&)>;
 
   /// Declares a topic (or returns the existing one of that name; the type must match).
   int advertise(const std::string& name, const std::string& type, double rate = 0, bool latched = false, int robot = -1);
@@ -36,6 +41,9 @@ class Bus {
   /// Subscribes to one topic by name, or to every topic with name "". A latched topic's last
   /// message is delivered at once. Returns a handle for unsubscribe.
   int subscribe(const std::string& name, Callback callback);
+  /// As subscribe, but the callback gets the message itself, shared, to keep without a copy.
+  /// Subscribers of both kinds are called in subscription order.
+  int subscribe_shared(const std::string& name, SharedCallback callback);
   void unsubscribe(int handle);
 
   const std::vector<Topic>& topics() const { return topics_; }
@@ -48,14 +56,16 @@ class Bus {
   struct Subscriber {
     int handle;
     std::string name;
-    Callback callback;
+    Callback callback;        ///< one of the two is set
+    SharedCallback shared;
   };
+  void deliver_latched(Subscriber& s);
   std::vector<Topic> topics_;
   std::vector<std::uint64_t> counts_;
   std::vector<std::vector<int>> subscribers_of_;  ///< per topic: indices into subscribers_
   std::vector<Subscriber> subscribers_;
-  std::vector<msg::Message> latched_;             ///< per topic (only used for latched ones)
-  std::vector<bool> has_latched_;
+  std::vector<int> shared_subscribers_;           ///< per topic: how many take SharedMessage
+  std::vector<SharedMessage> latched_;            ///< per topic: the last message of a latched one
   int next_handle_ = 1;
 
   void rebuild_index();

@@ -276,5 +276,37 @@ TEST(Bus, SubscribersRunInOrderAndLatchedTopicsReplay) {
   EXPECT_THROW(bus.advertise("/x", "sensor_msgs/Imu"), Error);
 }
 
+TEST(Bus, SharedSubscribersKeepTheOneMessageInOrderWithOthers) {
+  Bus bus;
+  const int t = bus.advertise("/image", "sensor_msgs/Image");
+  const int l = bus.advertise("/latched", "rosgraph_msgs/Clock", 0, true);
+  std::string order;
+  Bus::SharedMessage kept1, kept2;
+  std::size_t plain_size = 0;
+  bus.subscribe_shared("/image", [&](const Topic&, const Bus::SharedMessage& m) { order += "s"; kept1 = m; });
+  bus.subscribe("/image", [&](const Topic&, const msg::Message& m) { order += "p"; plain_size = std::get<msg::Image>(m).data.size(); });
+  bus.subscribe_shared("", [&](const Topic& topic, const Bus::SharedMessage& m) {
+    order += "S";
+    if (topic.id == t) kept2 = m;
+  });
+  msg::Image image;
+  image.width = 640;
+  image.height = 480;
+  image.data.assign(640 * 480 * 3, 7);
+  const std::uint8_t* pixels = image.data.data();
+  bus.publish(t, std::move(image));
+  EXPECT_EQ(order, "spS");
+  EXPECT_EQ(plain_size, 640u * 480 * 3);
+  // both kept the very message published: the pixels were moved, never copied
+  ASSERT_TRUE(kept1);
+  EXPECT_EQ(kept1.get(), kept2.get());
+  EXPECT_EQ(std::get<msg::Image>(*kept1).data.data(), pixels);
+  // a latched message replays to a late shared subscriber too
+  bus.publish(l, msg::Clock{SimTime{9}});
+  SimTime got{-1};
+  bus.subscribe_shared("/latched", [&](const Topic&, const Bus::SharedMessage& m) { got = std::get<msg::Clock>(*m).clock; });
+  EXPECT_EQ(got.ns, 9);
+}
+
 }  // namespace
 }  // namespace rescuesim

@@ -71,7 +71,7 @@ struct Outgoing {
   Kind kind = Kind::message;
   int topic = -1;
   SimTime at;                    ///< sim time when it was published
-  msg::Message message;          ///< Kind::message
+  Bus::SharedMessage message;    ///< Kind::message (shared with the Bus and other bridges, never copied)
   BudgetShare budget;            ///< Kind::message: its bytes, counted against FoxgloveOptions::bridge_queue_bytes
   SceneState scene;              ///< Kind::scene
 };
@@ -115,7 +115,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
 
  private:
   // simulation thread
-  void on_bus(const Topic& topic, const msg::Message& m);
+  void on_bus(const Topic& topic, const Bus::SharedMessage& m);
   /// Adds a Bus topic's channel (call with mutex_ held, or before the threads start).
   void add_topic(const Topic& t, std::vector<Channel>* added);
   SceneState scene_state() const;

@@ -105,7 +105,7 @@ void FoxgloveBridge::start(Simulation& sim) {
 
   started_ = true;
   worker_ = std::thread([this] { run(); });
-  bus_handle_ = sim.bus().subscribe("", [this](const Topic& t, const msg::Message& m) { on_bus(t, m); });
+  bus_handle_ = sim.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
 }
 
 void FoxgloveBridge::stop() {
@@ -143,7 +143,7 @@ SceneState FoxgloveBridge::scene_state() const {
   return s;
 }
 
-void FoxgloveBridge::on_bus(const Topic& topic, const msg::Message& m) {
+void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
   const SimTime now = sim_->time();
   if (topic.id == clock_topic_) latest_time_.store(now.ns, std::memory_order_relaxed);
   // moving parts of the scene, at a low rate
@@ -171,7 +171,7 @@ void FoxgloveBridge::on_bus(const Topic& topic, const msg::Message& m) {
   // only while the copies waiting for the serialiser stay within their byte budget
   const auto id = static_cast<std::size_t>(topic.id);
   if (!topic.latched && id < kMaxTopics && wanted_[id].load(std::memory_order_relaxed) <= 0) return;
-  const std::size_t bytes = approx_bytes(m);
+  const std::size_t bytes = approx_bytes(*m);
   if (!topic.latched && queued_bytes_.load() + bytes > options_.bridge_queue_bytes) {
     ++over_budget_;
     return;
@@ -252,7 +252,7 @@ void FoxgloveBridge::handle(Outgoing& item) {
     if (it == channels_.end() || (!it->second.latched && it->second.subscribers.empty())) return;
   }
   auto bytes = std::make_shared<std::vector<std::uint8_t>>();
-  msg::to_cdr(item.message, *bytes);
+  msg::to_cdr(*item.message, *bytes);
   const Payload payload = std::move(bytes);
   const auto stamp = static_cast<std::uint64_t>(std::max<std::int64_t>(item.at.ns, 0));
   std::vector<std::pair<ClientId, std::uint32_t>> subs;

@@ -22,7 +22,7 @@ struct Item {
   std::shared_ptr<const Topic> topic;  // shared: every item of a topic carries what a new channel needs
   std::uint32_t sequence = 0;
   std::uint64_t log_time = 0;
-  msg::Message message;
+  Bus::SharedMessage message;  // shared with the Bus and other bridges, never copied
 };
 
 }  // namespace
@@ -82,8 +82,8 @@ struct McapRecorder::Impl {
     return static_cast<std::uint16_t>(ch);
   }
 
-  /// Simulation thread: copies the message into the queue with its log time and sequence.
-  void on_message(const Topic& t, const msg::Message& m) {
+  /// Simulation thread: queues the (shared) message with its log time and sequence.
+  void on_message(const Topic& t, const Bus::SharedMessage& m) {
     const auto id = static_cast<std::size_t>(t.id);
     if (id >= topics.size()) {
       topics.resize(id + 1);
@@ -123,8 +123,8 @@ struct McapRecorder::Impl {
       try {
         if (const std::uint16_t ch = channel_for(*item->topic)) {
           cdr.clear();
-          msg::to_cdr(item->message, cdr);
-          const std::int64_t stamp = msg::stamp_of(item->message).ns;
+          msg::to_cdr(*item->message, cdr);
+          const std::int64_t stamp = msg::stamp_of(*item->message).ns;
           const std::uint64_t publish = stamp > 0 ? static_cast<std::uint64_t>(stamp) : item->log_time;
           writer->write_message(ch, item->sequence, item->log_time, publish, cdr);
         }
@@ -170,7 +170,7 @@ void McapRecorder::start(Simulation& sim) {
   for (const Topic& t : sim.bus().topics()) m.channel_for(t);
   m.sim = &sim;
   m.thread = std::thread([&m] { m.run(); });
-  m.handle = sim.bus().subscribe("", [&m](const Topic& t, const msg::Message& msg) { m.on_message(t, msg); });
+  m.handle = sim.bus().subscribe_shared("", [&m](const Topic& t, const Bus::SharedMessage& msg) { m.on_message(t, msg); });
 }
 
 void McapRecorder::stop() {

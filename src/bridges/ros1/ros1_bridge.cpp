@@ -99,7 +99,7 @@ class Ros1Bridge final : public Bridge {
   struct Outgoing {
     int topic;
     std::uint32_t seq;  ///< std_msgs/Header.seq
-    msg::Message message;
+    Bus::SharedMessage message;  ///< shared with the Bus and other bridges, never copied
   };
 
   void advertise_all();
@@ -202,7 +202,7 @@ void Ros1Bridge::start(Simulation& sim) {
   wanted_ = std::make_unique<std::atomic<bool>[]>(outputs_.size());
   for (std::size_t i = 0; i < outputs_.size(); ++i) wanted_[i] = outputs_[i].type && outputs_[i].latched;
   seq_.assign(outputs_.size(), 0);
-  bus_handle_ = sim.bus().subscribe("", [this](const Topic& t, const msg::Message& m) {
+  bus_handle_ = sim.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) {
     const auto id = static_cast<std::size_t>(t.id);
     if (id >= seq_.size()) return;  // Bus topics are fixed at set-up
     const std::uint32_t seq = seq_[id]++;
@@ -288,7 +288,7 @@ void Ros1Bridge::publish_loop() {
 }
 
 void Ros1Bridge::publish(const Outgoing& item, RawMessage& raw) {
-  const msg::Message& message = item.message;
+  const msg::Message& message = *item.message;
   Output& o = outputs_[static_cast<std::size_t>(item.topic)];
   if (!o.type) return;
   if (message.index() != o.type->variant_index) {

@@ -68,7 +68,7 @@ class Ros2Bridge final : public Bridge {
   std::vector<int> writer_of_topic_;  ///< by Bus topic id; -1 when not bridged
   std::vector<std::string> writer_topic_;  ///< by writer index: ROS topic name, for warnings
   std::vector<Input> inputs_;
-  std::vector<std::unique_ptr<BoundedQueue<msg::Message>>> queues_;  ///< by writer index
+  std::vector<std::unique_ptr<BoundedQueue<Bus::SharedMessage>>> queues_;  ///< shared with the Bus: never copied  ///< by writer index
   std::vector<std::atomic<bool>> listened_;  ///< by writer index: has matched readers (or is latched)
   std::vector<bool> latched_;                ///< by writer index
   BoundedQueue<char> doorbell_{1};  ///< rung after every push: wakes the sender
@@ -100,7 +100,7 @@ void Ros2Bridge::start(Simulation& sim) {
     const int w = dds_->create_writer(ros2::dds_topic_name(t.name), type->dds_name, ros2::writer_qos(t));
     writer_of_topic_[static_cast<std::size_t>(t.id)] = w;
     writer_topic_.push_back(t.name);
-    queues_.push_back(std::make_unique<BoundedQueue<msg::Message>>(ros2::queue_capacity(t, options_.queue_size)));
+    queues_.push_back(std::make_unique<BoundedQueue<Bus::SharedMessage>>(ros2::queue_capacity(t, options_.queue_size)));
     latched_.push_back(t.latched);
     node.writers.push_back(dds_->writer_guid(w));
   }
@@ -130,7 +130,7 @@ void Ros2Bridge::start(Simulation& sim) {
   // the simulation thread only copies into the queues, and only what someone listens to
   listened_ = std::vector<std::atomic<bool>>(queues_.size());
   refresh_listened();
-  subscription_ = sim.bus().subscribe("", [this](const Topic& topic, const msg::Message& m) {
+  subscription_ = sim.bus().subscribe_shared("", [this](const Topic& topic, const Bus::SharedMessage& m) {
     const std::size_t id = static_cast<std::size_t>(topic.id);
     if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;  // advertised after start: not bridged
     const auto w = static_cast<std::size_t>(writer_of_topic_[id]);
@@ -177,7 +177,7 @@ void Ros2Bridge::send_loop() {
       any = false;
       for (std::size_t w = 0; w < queues_.size(); ++w) {
         if (auto m = queues_[w]->pop(std::chrono::milliseconds(0))) {
-          send(static_cast<int>(w), *m, buffer);
+          send(static_cast<int>(w), **m, buffer);
           any = true;
         }
       }
