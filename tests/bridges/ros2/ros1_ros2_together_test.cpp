@@ -59,7 +59,9 @@ TEST(Ros1Ros2Together, RostopicAndADdsPeerReadScanWhileThePeerDrives) {
   EXPECT_EQ(r["scan"]["ranges"].get<int>(), 181);
   EXPECT_EQ(r["scan"]["frame"], "laser");
   EXPECT_GT(r["commands"].get<int>(), 10);
-  EXPECT_GT(r["odom"]["dx"].get<double>(), 0.45);
+  // 0.3 m/s for 2 s of wall time; a loaded machine's realtime run may cover less sim time
+  EXPECT_GT(r["odom"]["dx"].get<double>(), 0.25);
+  EXPECT_NEAR(r["odom"]["vx_driving"].get<double>(), 0.3, 0.05);
   EXPECT_LT(std::abs(r["odom"]["dy"].get<double>()), 0.05);
   // the run ended cleanly and both bridges report what they did
   EXPECT_EQ(code, std::optional<int>(0)) << sim->output();

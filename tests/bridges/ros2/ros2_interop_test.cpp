@@ -165,13 +165,15 @@ TEST(Ros2Interop, FastDdsPeerReadsSensorsDrivesTheRobotAndSeesTheNode) {
   // ahead of the wall clock for a moment (catching up after a slow step), so the distance is
   // checked against the speed the robot's pose shows while it cruises, and bounded by the time
   // odometry says passed: up to the 2.5 m/s^2 acceleration limit (0.3^2 / (2 * 2.5) = 0.018 m
-  // lost) it may not beat 0.3 m/s, and 2 s of commands must take it well over 0.3 m
+  // lost) it may not beat 0.3 m/s, and 2 s of commands must take it well beyond 0.25 m (a
+  // loaded machine's realtime run can fall behind the wall clock, so 2 s of commands may cover
+  // only some 1.5 s of sim time: the cruise speed above is the precise check)
   const double elapsed = r["odom"]["t1"].get<double>() - r["odom"]["t0"].get<double>();
   const double dx = r["odom"]["dx"].get<double>(), dy = r["odom"]["dy"].get<double>();
   const double cruise_time = r["odom"]["cruise_time"].get<double>(), cruise_dx = r["odom"]["cruise_dx"].get<double>();
   EXPECT_GT(cruise_time, 1.0);
   EXPECT_NEAR(cruise_dx / cruise_time, 0.3, 0.015) << cruise_dx << " m in " << cruise_time << " s";
-  EXPECT_GT(dx, 0.45);
+  EXPECT_GT(dx, 0.25);
   EXPECT_LT(dx, 0.3 * elapsed + 0.01) << "elapsed " << elapsed;
   EXPECT_LT(std::abs(dy), 0.05);
   EXPECT_NEAR(r["odom"]["vx_driving"].get<double>(), 0.3, 0.05);
