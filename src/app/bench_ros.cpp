@@ -11,10 +11,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
-#include <netinet/in.h>
-#include <arpa/inet.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,6 +33,7 @@
 #include "app/bench_latency.h"
 #include "app/bridge_flags.h"
 #include "core/error.h"
+#include "core/local_ports.h"
 #include "msgs/serialize.h"
 #include "session/session.h"
 #ifdef RESCUESIM_HAS_ROS1
@@ -92,31 +90,7 @@ bool wait_until(F done, std::chrono::duration<double> timeout) {
   return true;
 }
 
-/// A TCP port nobody listens on right now (the kernel's pick for port 0).
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t n = sizeof a;
-  int port = -1;
-  if (::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 && ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &n) == 0) {
-    port = ntohs(a.sin_port);
-  }
-  ::close(s);
-  return port;
-}
 
-bool port_open(int port) {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  const bool ok = ::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
-  ::close(s);
-  return ok;
-}
 
 bool on_path(const char* tool) { return std::system(("command -v " + std::string(tool) + " >/dev/null 2>&1").c_str()) == 0; }
 
@@ -408,7 +382,7 @@ json measure_cost(const Scenario& scenario, const ModelMap& models, const Bridge
 /// roscore on a free port with the section's ROS_HOME; nothing when it does not come up.
 std::unique_ptr<Spawned> start_roscore(int port, const fs::path& dir, std::string* why) {
   auto core = std::make_unique<Spawned>(std::vector<std::string>{"roscore", "-p", std::to_string(port)}, dir / "roscore.out", dir / "roscore.err");
-  if (!wait_until([&] { return port_open(port) || !core->running(); }, 30s) || !port_open(port)) {
+  if (!wait_until([&] { return local_port_open(port) || !core->running(); }, 30s) || !local_port_open(port)) {
     *why = "roscore did not come up on port " + std::to_string(port) + ": " + tail(core->out() + core->err());
     core->stop(SIGINT, 10s);
     return nullptr;
@@ -434,7 +408,7 @@ json bench_ros(const Scenario& def, const ModelMap& models, const BenchRosOption
   const fs::path dir = fs::temp_directory_path() / ("rescuesim-bench-ros-" + std::to_string(::getpid()));
   fs::create_directories(dir / "ros_home/log");
   EnvGuard env;
-  const int port = free_port();
+  const int port = free_local_port();
   env.set("ROS_MASTER_URI", "http://localhost:" + std::to_string(port));
   env.set("ROS_HOSTNAME", "localhost");
   env.set("ROS_HOME", (dir / "ros_home").string());

@@ -42,6 +42,21 @@ struct Tally {
     const int left = p.planned - p.done;
     p.eta = p.done > 0 ? p.elapsed / p.done * left : -1;
   }
+
+  /// Appends a finished trial to results.jsonl, counts it and reports progress.
+  void record(const TrialRecord& rec, ResultsFile& results, BatchRunStats& stats, const BatchRunOptions& run) {
+    results.append(rec);
+    ++stats.recorded;
+    ++p.done;
+    if (rec.status != "ok") {
+      ++stats.failed;
+      ++p.failed;
+    }
+    update_times();
+    p.last = &rec;
+    if (run.progress) run.progress(p);
+    p.last = nullptr;
+  }
 };
 
 /// A trial running in a child process.
@@ -118,17 +133,7 @@ BatchRunStats run_in_processes(const Scenario& scenario, const ModelMap& models,
       }
     }
     if (!parsed) rec = failed_trial(scenario, c.trial, trial_seed(base_seed, c.trial), fingerprint, describe_exit(status));
-    results.append(rec);
-    ++stats.recorded;
-    ++tally.p.done;
-    if (rec.status != "ok") {
-      ++stats.failed;
-      ++tally.p.failed;
-    }
-    tally.update_times();
-    tally.p.last = &rec;
-    if (run.progress) run.progress(tally.p);
-    tally.p.last = nullptr;
+    tally.record(rec, results, stats, run);
   };
 
   while ((!pending.empty() && !stopping()) || !running.empty()) {
@@ -206,18 +211,8 @@ BatchRunStats run_in_threads(const Scenario& scenario, const ModelMap& models, c
       }
       const TrialRecord rec = run_trial(scenario, models, trial, trial_seed(base_seed, trial), options, fingerprint);
       std::lock_guard lock(mutex);
-      results.append(rec);
-      ++stats.recorded;
-      ++tally.p.done;
       --tally.p.running;
-      if (rec.status != "ok") {
-        ++stats.failed;
-        ++tally.p.failed;
-      }
-      tally.update_times();
-      tally.p.last = &rec;
-      if (run.progress) run.progress(tally.p);
-      tally.p.last = nullptr;
+      tally.record(rec, results, stats, run);
     }
   };
   std::vector<std::thread> threads;

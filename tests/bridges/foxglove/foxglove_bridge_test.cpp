@@ -286,7 +286,7 @@ TEST_F(FoxgloveServer, TopicsAdvertisedDuringARunReachConnectedClients) {
   spec.robots.push_back(RobotPlacement{});
   Simulation sim(compile_world(spec, builtin_models()));
   FoxgloveOptions options;
-  options.port = testing::free_port();
+  options.port = free_local_port();
   ASSERT_GT(options.port, 0);
   auto bridge = make_foxglove_bridge(options);
   bridge->start(sim);

@@ -3,10 +3,7 @@
 // started in the background (its port read from its log), node scripts run beside it with the
 // pinned npm clients (scripts/install-test-js.sh), and the server's memory read from /proc.
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <signal.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -20,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/local_ports.h"
 #include "support/command.h"
 
 namespace rescuesim::testing {
@@ -77,18 +75,6 @@ inline CommandResult node_script(const std::string& script, const std::string& a
                      "' " + args);
 }
 
-/// A TCP port free on 127.0.0.1 right now (the kernel's pick).
-inline int free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = 0;
-  socklen_t n = sizeof a;
-  const bool ok = ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 && ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n) == 0;
-  ::close(fd);
-  return ok ? ntohs(a.sin_port) : 0;
-}
 
 /// `rescuesim` running in the background.
 class Background {

@@ -5,12 +5,9 @@
 // command runs under `timeout`, and every child is killed with its process group at the end, so
 // a failing test never hangs or leaves processes behind.
 
-#include <arpa/inet.h>
 #include <fcntl.h>
-#include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/local_ports.h"
 #include "support/command.h"
 
 extern char** environ;
@@ -85,33 +83,7 @@ inline std::string ros1_tools_missing() {
   return "";
 }
 
-/// A TCP port nobody listens on right now (the kernel's pick for port 0).
-inline int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = 0;
-  socklen_t n = sizeof a;
-  int port = -1;
-  if (::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 && ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &n) == 0) {
-    port = ntohs(a.sin_port);
-  }
-  ::close(s);
-  return port;
-}
 
-/// True when something accepts TCP connections on localhost:port.
-inline bool port_open(int port) {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  const bool ok = ::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
-  ::close(s);
-  return ok;
-}
 
 /// Polls `done` every 100 ms until it holds or `timeout` passes.
 template <class F>
@@ -202,7 +174,7 @@ class Child {
 /// A roscore of its own: a free port, ROS_HOME and ROS_LOG_DIR in a test folder.
 class RosMaster {
  public:
-  explicit RosMaster(const fs::path& dir) : dir_(dir), port_(free_port()) { fs::create_directories(dir_ / "ros_home"); }
+  explicit RosMaster(const fs::path& dir) : dir_(dir), port_(free_local_port()) { fs::create_directories(dir_ / "ros_home"); }
   RosMaster(const RosMaster&) = delete;
   RosMaster& operator=(const RosMaster&) = delete;
   ~RosMaster() { kill(); }
@@ -211,7 +183,7 @@ class RosMaster {
   bool start() {
     core_ = std::make_unique<Child>();
     core_->start({"roscore", "-p", std::to_string(port_)}, env(), dir_ / ("roscore-" + std::to_string(starts_++) + ".log"));
-    return wait_until([&] { return port_open(port_); }, kPatience);
+    return wait_until([&] { return local_port_open(port_); }, kPatience);
   }
   /// Stops roscore with its rosmaster and rosout. (roslaunch starts them in sessions of their
   /// own, so only roscore itself can stop them: Ctrl-C, and SIGKILL only if that fails.)
@@ -219,7 +191,7 @@ class RosMaster {
     if (!core_) return;
     core_->signal(SIGINT);
     if (!core_->wait(15s)) core_->kill_group(SIGKILL);
-    wait_until([&] { return !port_open(port_); }, 5s);
+    wait_until([&] { return !local_port_open(port_); }, 5s);
     core_.reset();
   }
   std::string uri() const { return "http://localhost:" + std::to_string(port_); }
