@@ -8,7 +8,7 @@ usage() {
   cat <<'EOF'
 demo-nav.sh: autonomous navigation in a maze over ROS 1 (the seed's Demonstration 2)
 
-Usage: scripts/demo-nav.sh [--seed N] [--trials N] [--out DIR] [--duration S] [--rate R]
+Usage: scripts/demo-nav.sh [--seed N] [--trials N] [--out DIR] [--duration S] [--rate R | --sync]
                            [--size N] [--victims N] [--loops F]
 
 What it does, per trial (maze seed N, N+1, ...):
@@ -31,6 +31,9 @@ Options:
   --trials N    number of seeded mazes (default 1)
   --out DIR     output folder (default runs/demo-nav)
   --duration S  time limit per trial, s of sim time (default 300)
+  --sync        lockstep, synchronous with the node: after each scan the simulator waits for the
+                node's cmd_vel (rescuesim run --sync), so a trial runs as fast as the node answers
+                (a 300 s trial in about 6 s) and repeats exactly; the default with --trials > 1
   --rate R      sim seconds per wall second (default 5; lower it if the node cannot keep up:
                 nav_metrics.json says what share of the scans the node used)
   --size N      maze of N x N cells of 1.5 m (default 6; the default scenario's is 8; 2 .. 30)
@@ -57,12 +60,13 @@ die_usage() {
   exit 2
 }
 
-seed=1 trials=1 out=runs/demo-nav duration=300 rate=5 size=6 victims=3 loops=0.15
+seed=1 trials=1 out=runs/demo-nav duration=300 rate=5 size=6 victims=3 loops=0.15 sync=0 rate_given=0
 is_uint() { [[ "$1" =~ ^[0-9]+$ ]]; }
 is_pos_number() { [[ "$1" =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v x="$1" 'BEGIN { exit !(x > 0) }'; }
 while [ $# -gt 0 ]; do
   case "$1" in
     -h|--help) usage; exit 0 ;;
+    --sync) sync=1; shift ;;
     --seed|--trials|--out|--duration|--rate|--size|--victims|--loops)
       [ $# -ge 2 ] || die_usage "$1 needs a value"
       opt="$1" val="$2"; shift 2
@@ -71,7 +75,7 @@ while [ $# -gt 0 ]; do
         --trials) { is_uint "$val" && [ "$val" -ge 1 ] && [ "$val" -le 1000 ]; } || die_usage "--trials wants 1 .. 1000, not '$val'"; trials=$val ;;
         --out) [ -n "$val" ] || die_usage "--out wants a folder"; out=$val ;;
         --duration) is_pos_number "$val" || die_usage "--duration wants seconds > 0, not '$val'"; duration=$val ;;
-        --rate) { is_pos_number "$val" && awk -v x="$val" 'BEGIN { exit !(x <= 100) }'; } || die_usage "--rate wants a number in (0, 100], not '$val'"; rate=$val ;;
+        --rate) { is_pos_number "$val" && awk -v x="$val" 'BEGIN { exit !(x <= 100) }'; } || die_usage "--rate wants a number in (0, 100], not '$val'"; rate=$val rate_given=1 ;;
         --size) { is_uint "$val" && [ "$val" -ge 2 ] && [ "$val" -le 30 ]; } || die_usage "--size wants 2 .. 30 cells, not '$val'"; size=$val ;;
         --loops) { [[ "$val" =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v x="$val" 'BEGIN { exit !(x <= 1) }'; } || die_usage "--loops wants a fraction 0 .. 1, not '$val'"; loops=$val ;;
         --victims) { is_uint "$val" && [ "$val" -ge 1 ] && [ "$val" -le 50 ]; } || die_usage "--victims wants 1 .. 50, not '$val'"; victims=$val ;;
@@ -79,6 +83,12 @@ while [ $# -gt 0 ]; do
     *) die_usage "unknown argument '$1'" ;;
   esac
 done
+# several trials run synchronously (lockstep with the node, repeatable) unless a pace is asked for
+if [ "$trials" -gt 1 ] && [ "$rate_given" = 0 ]; then sync=1; fi
+if [ "$sync" = 1 ] && [ "$rate_given" = 1 ]; then die_usage "--sync and --rate exclude each other"; fi
+# rate 0 in the records means synchronous
+pace_text="rate ${rate}x"
+if [ "$sync" = 1 ]; then rate=0 pace_text="synchronous (lockstep with the node)"; fi
 
 # the binaries: $BUILD/bin, else build/bin of this checkout
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -160,7 +170,7 @@ if [ $master_up != 1 ]; then
   echo "demo-nav: roscore did not start (see $out/roscore.log)" >&2
   exit 1
 fi
-echo "demo-nav: roscore at $ROS_MASTER_URI; $trials trial(s) of a ${size}x${size} maze (loops $loops) with $victims victim(s), limit ${duration} s, rate ${rate}x"
+echo "demo-nav: roscore at $ROS_MASTER_URI; $trials trial(s) of a ${size}x${size} maze (loops $loops) with $victims victim(s), limit ${duration} s, $pace_text"
 
 # one trial: maze seed $1 into folder $2
 run_trial() {
@@ -194,7 +204,10 @@ EOF
   # the node first, so that it is listening when the simulator starts
   start_group "$bin/rescuesim_nav" --out "$dir/nav_node.json" >"$dir/nav_node.log" 2>&1
   local node=$started
-  start_group "$bin/rescuesim" run "$dir/scenario.yaml" --seed "$s" --ros1 --use-sim-time --rate "$rate" \
+  # paced (--rate), or lockstep and synchronous with the node (--sync: each scan waits for its cmd_vel)
+  local pace=(--rate "$rate")
+  [ "$sync" = 1 ] && pace=(--sync)
+  start_group "$bin/rescuesim" run "$dir/scenario.yaml" --seed "$s" --ros1 --use-sim-time "${pace[@]}" \
     --duration "$duration" --no-cameras --out "$dir/sim" >"$dir/sim.log" 2>&1
   local sim=$started
   local t0=$SECONDS next=$((SECONDS + 5)) line last=""
@@ -311,8 +324,9 @@ for s, m in rows:
     lines.append("| %d | %s | %d/%d | %s | %.1f | %d |" % (s, "yes" if m["success"] else "no", m["victims_found"], m["victims_total"], t, m["distance_m"], m["collisions"]))
 med = summary["median_time_to_finish_s"]
 lines.append("")
-lines.append("Success: %d/%d (%.0f%%); median time to find every victim (successful trials): %s; %dx%d mazes, %d victims, limit %.0f s, rate %gx." % (
-    len(ok), trials, 100.0 * len(ok) / trials, "%.1f s" % med if med is not None else "-", size, size, victims, duration, rate))
+lines.append("Success: %d/%d (%.0f%%); median time to find every victim (successful trials): %s; %dx%d mazes, %d victims, limit %.0f s, %s." % (
+    len(ok), trials, 100.0 * len(ok) / trials, "%.1f s" % med if med is not None else "-", size, size, victims, duration,
+    "synchronous" if rate == 0 else "rate %gx" % rate))
 md = "\n".join(lines) + "\n"
 for name, text in (("nav_trials.json", json.dumps(summary, indent=1) + "\n"), ("nav_trials.md", md)):
     tmp = os.path.join(out, "." + name + ".tmp")

@@ -38,6 +38,7 @@ struct RunCommand {
   bool no_cameras = false;
   std::string quality;
   bool no_controllers = false;
+  std::optional<double> sync;  ///< --sync[=SECONDS]
   BridgeFlags bridges;
 };
 
@@ -69,7 +70,7 @@ int run(const RunCommand& c) {
     s.duration = std::numeric_limits<double>::infinity();  // like a ROS simulator: until Ctrl-C
   }
   if (c.realtime || (ros && !c.bridges.lockstep)) s.realtime = true;
-  if (c.bridges.lockstep) s.realtime = false;
+  if (c.bridges.lockstep || c.sync) s.realtime = false;
   if (c.rate) s.rate = *c.rate;
   if (!c.world_svg.empty()) {
     s.svg = c.world_svg;
@@ -80,6 +81,10 @@ int run(const RunCommand& c) {
   so.cameras = !c.no_cameras;
   // with a ROS bridge, ROS drives the robots: the built-in controllers stay off unless kept
   so.controllers = !c.no_controllers && (!ros || c.bridges.keep_controllers);
+  if (c.sync) {
+    if (!ros) throw Error({"", 0, "--sync"}, "--sync waits for a ROS controller's cmd_vel: use it with --ros1 or --ros2");
+    so.sync_timeout = *c.sync;
+  }
   Session session(s, models, so);
   auto bridges = make_bridges(c.bridges, {&session.scenario(), &session.world_spec(), so.cameras});
   print_diagnostics(session.diagnostics());
@@ -87,7 +92,7 @@ int run(const RunCommand& c) {
   const WorldSpec& w = session.world_spec();
   const bool forever = !std::isfinite(s.duration);
   std::printf("scenario %s (seed %llu, %s, %s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
-              s.realtime ? "realtime" : "lockstep", forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
+              s.realtime ? "realtime" : c.sync ? "lockstep, synchronous with cmd_vel" : "lockstep", forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
               w.name.c_str(), world_summary(w).c_str());
   if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
   if (!so.controllers) std::printf("  controllers   off (robots wait for cmd_vel)\n");
@@ -114,6 +119,9 @@ int run(const RunCommand& c) {
   });
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  if (session.sync_timeouts() > 0) {
+    std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), *c.sync);
+  }
   for (auto& b : bridges) {
     b->stop();
     const BridgeStats st = b->stats();
@@ -157,7 +165,8 @@ void add_run_command(CLI::App& app, Action& action) {
       "the built-in controllers off, so ROS nodes drive the robot through /cmd_vel:\n"
       "  roscore &  rescuesim run --ros1 --use-sim-time\n"
       "  rescuesim run --ros2 --ros-domain 7 --duration 600\n"
-      "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers\n\n"
+      "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers\n"
+      "  rescuesim run --ros1 --use-sim-time --sync     lockstep with your node: each scan waits for its cmd_vel\n\n"
       "Watch in Foxglove or Lichtblick (docs/foxglove.md), record for later (docs/recording.md):\n"
       "  rescuesim run --foxglove --keep-controllers     then open ws://127.0.0.1:8765\n"
       "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed");
@@ -165,6 +174,13 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
   cmd->add_option("--duration", c->duration, "sim time in seconds")->check(CLI::PositiveNumber);
+  cmd->add_option("--sync", c->sync,
+                  "with --ros1/--ros2: synchronous with your ROS controller, like Webots' synchronous mode: lockstep, but after "
+                  "each laser scan the simulation waits (up to SECONDS of wall time) for the cmd_vel answering it, so a run goes "
+                  "as fast as the controller and the command lands at the next step")
+      ->expected(0, 1)
+      ->default_str("1")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--realtime", c->realtime, "pace the run to the wall clock (default: lockstep, as fast as possible)");
   cmd->add_option("--rate", c->rate, "realtime pace: sim seconds per wall second")->check(CLI::PositiveNumber);
   cmd->add_option("--out,-o", c->out, "output folder (default runs/<scenario name>)");

@@ -209,11 +209,36 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
     }
     return !sim_->state().victims.empty();
   };
+  // synchronous with an outside controller: count the velocity commands each scan is owed
+  // (the Bus calls this on this thread, as the scan is published, before any bridge sends it)
+  const bool sync = options_.sync_timeout > 0;
+  std::uint64_t commands_owed = sim_->velocity_commands();
+  std::vector<int> scan_subscriptions;
+  if (sync) {
+    for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
+      for (const auto& s : sim_->world().robots[r].spec.sensors) {
+        if (!s.enabled || s.type != SensorSpec::Type::lidar) continue;
+        scan_subscriptions.push_back(sim_->bus().subscribe(sim_->topic_name(static_cast<int>(r), s.topic),
+                                                           [&commands_owed](const Topic&, const msg::Message&) { ++commands_owed; }));
+      }
+    }
+  }
+  const auto wait_for_controller = [&] {
+    if (sim_->velocity_commands() >= commands_owed) return;
+    if (!sim_->wait_for_velocity_commands(commands_owed, std::chrono::duration<double>(options_.sync_timeout))) {
+      if (sync_timeouts_++ == 0) {
+        log::warn("sync: no cmd_vel answered the scan at {:.2f} s within {} s of wall time; stepping on (a controller that is "
+                  "not there yet, or does not answer every scan)", sim_->time().seconds(), options_.sync_timeout);
+      }
+      commands_owed = sim_->velocity_commands();  // what was missed is not owed any more
+    }
+  };
   while (sim_->time() < end) {
     if (stop && stop->load(std::memory_order_relaxed)) {
       stop_reason_ = "interrupted";
       break;
     }
+    if (sync) wait_for_controller();
     sim_->step();
     record();
     if (sim_->in_trouble()) {
@@ -240,6 +265,8 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       }
     }
   }
+  for (int h : scan_subscriptions) sim_->bus().unsubscribe(h);
+  if (sync_timeouts_ > 1) log::warn("sync: {} scans in all got no cmd_vel in time", sync_timeouts_);
   // frames still being rendered belong to this run
   sim_->flush_cameras();
   wall_time_ = wall_before + std::chrono::duration<double>(clock::now() - t0).count();

@@ -55,6 +55,11 @@ struct SessionOptions {
   bool controllers = true;      ///< attach the scenario's built-in controllers
   bool cameras = true;          ///< render camera sensors (false: every camera sensor is switched off)
   double trajectory_rate = 10;  ///< Hz
+  /// > 0: synchronous with an outside controller (a ROS node), like Webots' synchronous mode:
+  /// after each step that published laser scans, run() waits up to this many wall seconds for
+  /// as many velocity commands before stepping on, so the command answering a scan is applied
+  /// at the very next step, however fast or slow the controller is.
+  double sync_timeout = 0;
   SimOptions sim;               ///< seed and physics are filled from the scenario
 };
 
@@ -81,6 +86,8 @@ class Session {
   /// Returns false as soon as numerical trouble stops the simulation.
   bool step_until(SimTime t);
 
+  /// Scans a synchronous run (SessionOptions::sync_timeout) waited for in vain.
+  std::uint64_t sync_timeouts() const { return sync_timeouts_; }
   /// The result so far (also valid during or after a run).
   RunResult result() const;
   /// Fraction of free floor passed within 1 m of so far (see docs/outputs.md).
@@ -108,6 +115,7 @@ class Session {
   SimTime next_record_;
   double wall_time_ = 0;
   std::string stop_reason_;
+  std::uint64_t sync_timeouts_ = 0;
   std::vector<msg::LaserScan> last_scans_;
   std::vector<std::uint8_t> free_cells_, visited_cells_;
   Box2 grid_box_;

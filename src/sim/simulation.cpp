@@ -131,9 +131,23 @@ bool Simulation::command_velocity(int robot, const msg::Twist& t) {
   for (int i = 0; i < 3; ++i) {
     if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return false;
   }
-  std::lock_guard lock(commands_mutex_);
-  commands_.push_back({robot, false, t, {}});
+  {
+    std::lock_guard lock(commands_mutex_);
+    commands_.push_back({robot, false, t, {}});
+    ++velocity_commands_;
+  }
+  command_arrived_.notify_all();
   return true;
+}
+
+std::uint64_t Simulation::velocity_commands() const {
+  std::lock_guard lock(commands_mutex_);
+  return velocity_commands_;
+}
+
+bool Simulation::wait_for_velocity_commands(std::uint64_t count, std::chrono::duration<double> timeout) {
+  std::unique_lock lock(commands_mutex_);
+  return command_arrived_.wait_for(lock, timeout, [&] { return velocity_commands_ >= count; });
 }
 
 bool Simulation::command_head(int robot, const std::vector<double>& positions) {

@@ -8,6 +8,8 @@
 /// are queued and applied at the next step boundary, so a run's messages do not depend on
 /// thread timing.
 
+#include <chrono>
+#include <condition_variable>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -97,6 +99,12 @@ class Simulation {
   /// Drops the commands queued for the next step; returns how many. For owners that publish
   /// without stepping (rescuesim replay), so what bridges take in does not pile up.
   std::size_t discard_commands();
+  /// Velocity commands accepted so far (every robot); with wait_for_velocity_commands, what a
+  /// synchronous run (SessionOptions::sync_timeout) waits on.
+  std::uint64_t velocity_commands() const;
+  /// Waits until at least `count` velocity commands have been accepted in all, or `timeout`
+  /// of wall time passes; returns whether they have.
+  bool wait_for_velocity_commands(std::uint64_t count, std::chrono::duration<double> timeout);
 
   /// Robot index by name, or -1.
   int robot_index(const std::string& name) const;
@@ -143,8 +151,10 @@ class Simulation {
     msg::Twist twist;
     std::vector<double> head;
   };
-  std::mutex commands_mutex_;
+  mutable std::mutex commands_mutex_;
   std::vector<Command> commands_;
+  std::uint64_t velocity_commands_ = 0;     ///< accepted so far (guarded by commands_mutex_)
+  std::condition_variable command_arrived_;  ///< signalled when a velocity command is accepted
 };
 
 }  // namespace rescuesim

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -189,6 +191,28 @@ TEST(Simulation, DiscardedCommandsAreNeverApplied) {
   // no command reached the drive: the robot still stands where it started
   EXPECT_LT(sim.state().robots[0].base.v_WB.norm(), 1e-3);
   EXPECT_LT(truth_from_start(sim).x, 1e-3);
+}
+
+TEST(Simulation, ASynchronousRunWaitsForTheControllersCommand) {
+  Simulation sim = make_sim(room_spec());
+  const std::uint64_t before = sim.velocity_commands();
+  // nobody answers: the wait ends at its timeout, unanswered
+  EXPECT_FALSE(sim.wait_for_velocity_commands(before + 1, std::chrono::milliseconds(20)));
+  // a controller on another thread answers: the wait ends with its command
+  std::thread controller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    msg::Twist t;
+    t.linear.x() = 0.2;
+    sim.command_velocity(0, t);
+  });
+  EXPECT_TRUE(sim.wait_for_velocity_commands(before + 1, std::chrono::seconds(10)));
+  controller.join();
+  EXPECT_EQ(sim.velocity_commands(), before + 1);
+  // a refused command (NaN) is not an answer
+  msg::Twist bad;
+  bad.angular.z() = std::nan("");
+  EXPECT_FALSE(sim.command_velocity(0, bad));
+  EXPECT_EQ(sim.velocity_commands(), before + 1);
 }
 
 TEST(Simulation, TroubleStopsTheRunWithAClearMessage) {

@@ -307,10 +307,34 @@ class NavNode {
 
   void on_odom(const msg::Odometry& odom) {
     ++odoms_;
+    last_odom_ = odom.header.stamp;
     if (explorer_) explorer_->on_odometry(odom);
+    // a scan that came in before the odometry of its own instant is answered now
+    if (held_scan_ && last_odom_ >= held_scan_->header.stamp) {
+      const msg::LaserScan scan = std::move(*held_scan_);
+      held_scan_.reset();
+      answer(scan);
+    }
   }
 
   void on_scan(const msg::LaserScan& scan) {
+    // Each topic has its own connection, so a scan may overtake the odometry the simulator
+    // published in the same step (both sit on the 5 ms step grid: /odom every 20 ms, /scan every
+    // 100 ms). Answering only once odometry has caught up makes the answer the same every time,
+    // which a synchronous run (rescuesim run --sync) turns into a repeatable run.
+    if (held_scan_) {
+      const msg::LaserScan older = std::move(*held_scan_);
+      held_scan_.reset();
+      answer(older);  // its odometry never came: answer with what there is
+    }
+    if (last_odom_ < scan.header.stamp) {
+      held_scan_ = scan;
+      return;
+    }
+    answer(scan);
+  }
+
+  void answer(const msg::LaserScan& scan) {
     if (!explorer_) {
       // the explorer places scans with the laser's mounting pose, which /tf_static gives
       const std::optional<Pose3> X_BS = in_base(scan.header.frame_id);
@@ -376,6 +400,8 @@ class NavNode {
   bool waiting_reported_ = false;
   Pose2 X_BS_;
   std::unique_ptr<autonomy::Explorer> explorer_;
+  SimTime last_odom_{-1};                   ///< stamp of the newest odometry
+  std::optional<msg::LaserScan> held_scan_;  ///< a scan waiting for the odometry of its instant
   RawMessage raw_;
   std::uint32_t seq_ = 0;
   SimTime next_map_;

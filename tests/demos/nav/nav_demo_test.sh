@@ -11,9 +11,14 @@ src=$1 build=$2 out=$3
 rm -rf "$out"
 seed=2        # mazes 2, 3, 4
 duration=150  # s of sim time per maze
-rate=5        # sim seconds per wall second
+# synchronous (the default with --trials): lockstep with the node, so a trial repeats exactly
 BUILD="$build" "$src/scripts/demo-nav.sh" --seed $seed --trials 3 --size 4 --victims 2 --loops 0 \
-  --duration $duration --rate $rate --out "$out"
+  --duration $duration --out "$out"
+# determinism over ROS: the first maze again, synchronous, drives exactly the same path
+BUILD="$build" "$src/scripts/demo-nav.sh" --seed $seed --sync --size 4 --victims 2 --loops 0 \
+  --duration $duration --out "$out/again"
+cmp "$out/seed-$seed/sim/trajectory.csv" "$out/again/sim/trajectory.csv" || {
+  echo "FAILED: a synchronous run of seed $seed did not repeat its trajectory exactly"; exit 1; }
 
 python3 - "$out" $duration <<'PY'
 import json, os, sys
@@ -47,9 +52,9 @@ for seed in (2, 3, 4):
     # the node answered the scans: one command per scan, and it saw nearly all of them
     n = m["node"]
     check(n["commands"] == n["scans"] and n["scans"] > 0, tag + "one command per scan: %s" % n)
-    # (the simulator never waits for the node: on a starved machine a paced run outruns it; the
-    # test runs alone (RUN_SERIAL), where it used 97-100 %; 80 % leaves room for a noisy machine)
-    check(m.get("scans_used_fraction", 0) >= 0.8, tag + "the node used >= 80%% of the scans, got %s" % m.get("scans_used_fraction"))
+    # (synchronous: the simulator waits for the node's answer to each scan; only scans before
+    # the node connected go unanswered)
+    check(m.get("scans_used_fraction", 0) >= 0.95, tag + "the node used >= 95%% of the scans, got %s" % m.get("scans_used_fraction"))
     with open(os.path.join(d, "path.png"), "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", tag + "path.png is a PNG")
 if problems:
