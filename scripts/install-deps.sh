@@ -13,13 +13,15 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev libpng-dev zlib1g-dev
   # physics and ray sensors
   libbullet-dev libbullet-extras-dev libembree-dev libtbb-dev
+  # robots of one's own: URDF (urdfdom) and their meshes (assimp)
+  liburdfdom-dev libassimp-dev
   # rendering: headless EGL on Mesa, a window, GUI panels
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libepoxy-dev
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth x11-apps netpbm
   # Foxglove WebSocket server and MCAP recording
   libboost-dev libzstd-dev liblz4-dev nodejs
   # ROS 1 (Debian's roscpp) and its command-line tools for tests
-  libroscpp-dev ros-core python3-rostopic python3-rosbag librosbag-dev
+  libroscpp-dev ros-core python3-rostopic python3-rosbag librosbag-dev ros-robot-state-publisher
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   libros-rosgraph-msgs-dev python3-sensor-msgs python3-nav-msgs
   python3-tf2-msgs python3-geometry-msgs

@@ -14,6 +14,7 @@
 #include <set>
 
 #include "physics/bullet_convert.h"
+#include "world/robot_lumping.h"
 
 namespace rescuesim {
 
@@ -39,13 +40,17 @@ bool finite(const Pose3& X) {
 
 }  // namespace
 
-/// One robot as a Featherstone multibody.
+/// One robot as a Featherstone multibody: one Bullet link per rigid body of the robot (links
+/// joined by fixed joints are lumped into one body, see world/robot_lumping.h).
 struct RobotBody {
   btMultiBody* mb = nullptr;
-  std::vector<int> bt_link;                 // per spec link: Bullet link index, -1 for the base
-  std::vector<btMultiBodyLinkCollider*> colliders;  // per spec link
-  std::vector<btMultiBodyJointMotor*> motors;       // per joint, nullptr when uncontrolled
-  std::vector<Vec3> com;                    // per spec link, centre of mass in the link frame
+  LumpedRobot lumped;                       // bodies and moving joints, and where each link sits
+  std::vector<int> bt_link;                 // per body: Bullet link index, -1 for the base
+  std::vector<btMultiBodyLinkCollider*> colliders;  // per body
+  std::vector<btMultiBodyJointMotor*> motors;       // per original joint, nullptr when uncontrolled
+  std::vector<Pose3> X_BF;                  // per body: Bullet's frame (centre of mass, principal axes) in the body frame
+  std::vector<int> bt_joint;                // per original joint: Bullet link index, -1 for fixed joints
+  std::vector<char> top;                    // per original link: it is its body's own frame
 };
 
 struct Physics::Impl {
@@ -148,36 +153,46 @@ struct Physics::Impl {
 
   void build_robot(int r) {
     const RobotInstance& inst = world.robots[static_cast<std::size_t>(r)];
-    const RobotSpec& spec = inst.spec;
     RobotBody body;
+    body.lumped = lump_fixed_joints(inst.spec);
+    const RobotSpec& spec = body.lumped.spec;  // one link per rigid body, moving joints only
     const int n_links = static_cast<int>(spec.joints.size());
     const LinkSpec& base = spec.links[0];
-    body.com.resize(spec.links.size());
+    body.X_BF.resize(spec.links.size());
     body.bt_link.assign(spec.links.size(), -1);
-    for (std::size_t l = 0; l < spec.links.size(); ++l) body.com[l] = spec.links[l].com;
+    for (std::size_t l = 0; l < spec.links.size(); ++l) body.X_BF[l] = Pose3{spec.links[l].com, spec.links[l].inertia_axes};
 
     auto mb = std::make_unique<btMultiBody>(n_links, btScalar(base.mass), to_bt(base.inertia), false, false);
-    // each joint makes its child a Bullet link, numbered like the joint
+    // each moving joint makes its child body a Bullet link, numbered like the joint
     for (int j = 0; j < n_links; ++j) {
       const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
       const int parent = spec.link_index(js.parent), child = spec.link_index(js.child);
       body.bt_link[static_cast<std::size_t>(child)] = j;
       const LinkSpec& pl = spec.links[static_cast<std::size_t>(parent)];
       const LinkSpec& cl = spec.links[static_cast<std::size_t>(child)];
+      const Pose3& X_PF = body.X_BF[static_cast<std::size_t>(parent)];
+      const Pose3& X_CF = body.X_BF[static_cast<std::size_t>(child)];
       const int bt_parent = body.bt_link[static_cast<std::size_t>(parent)];
-      // Bullet frames sit at each link's centre of mass; ours at the joint
-      const btQuaternion rot_parent_to_this = to_bt(js.X_PJ.q.conjugate());
-      const btVector3 parent_com_to_pivot = to_bt(js.X_PJ.p - pl.com);
-      const btVector3 pivot_to_com = to_bt(cl.com);
-      if (js.type == JointSpec::Type::fixed) {
-        mb->setupFixed(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
-      } else {
-        mb->setupRevolute(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, to_bt(js.axis.normalized()),
-                          parent_com_to_pivot, pivot_to_com, true);
+      // Bullet frames sit at each body's centre of mass along its principal axes; ours at the joint
+      const btQuaternion rot_parent_to_this = to_bt((X_PF.q.conjugate() * js.X_PJ.q * X_CF.q).conjugate());
+      const btVector3 parent_com_to_pivot = to_bt(X_PF.q.conjugate() * (js.X_PJ.p - pl.com));
+      const btVector3 pivot_to_com = to_bt(X_CF.q.conjugate() * cl.com);
+      const btVector3 axis = to_bt(X_CF.q.conjugate() * js.axis.normalized());
+      switch (js.type) {
+        case JointSpec::Type::fixed:
+          mb->setupFixed(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
+          break;
+        case JointSpec::Type::prismatic:
+          mb->setupPrismatic(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
+          break;
+        case JointSpec::Type::revolute:
+        case JointSpec::Type::continuous:
+          mb->setupRevolute(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
+          break;
       }
     }
     mb->finalizeMultiDof();
-    mb->setBaseWorldTransform(to_bt(inst.X_W_start * Pose3{base.com, Quat::Identity()}));
+    mb->setBaseWorldTransform(to_bt(inst.X_W_start * body.X_BF[0]));
     for (int j = 0; j < n_links; ++j) {
       if (spec.joints[static_cast<std::size_t>(j)].type != JointSpec::Type::fixed) mb->setJointPos(j, btScalar(spec.joints[static_cast<std::size_t>(j)].initial));
     }
@@ -188,15 +203,16 @@ struct Physics::Impl {
     mb->setUseGyroTerm(true);
     dynamics.addMultiBody(mb.get());
 
-    // colliders: each link's shapes, placed relative to the link's centre of mass
+    // colliders: each body's shapes, placed relative to its Bullet frame
     body.colliders.assign(spec.links.size(), nullptr);
     for (std::size_t l = 0; l < spec.links.size(); ++l) {
       const LinkSpec& ls = spec.links[l];
       btCompoundShape* compound = shapes.compound();
       double friction = 0.5, restitution = 0.0;
+      const Pose3 X_FB = body.X_BF[l].inverse();
       for (const auto& sh : ls.shapes) {
         if (!sh.collides) continue;
-        compound->addChildShape(to_bt(Pose3{-ls.com, Quat::Identity()} * sh.X_LG), shapes.make(sh.geometry));
+        compound->addChildShape(to_bt(X_FB * sh.X_LG), shapes.make(sh.geometry));
         const MaterialSpec& m = material(world.material_index(sh.material));
         friction = m.friction;
         restitution = m.restitution;
@@ -218,19 +234,29 @@ struct Physics::Impl {
       colliders.push_back(std::move(col));
     }
 
-    // actuators: velocity motors (the head's position loop runs on top of them) and limits
-    body.motors.assign(spec.joints.size(), nullptr);
-    for (int j = 0; j < n_links; ++j) {
-      const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
-      if (js.type == JointSpec::Type::fixed) continue;
-      if (js.control != JointSpec::Control::none) {
-        auto motor = std::make_unique<btMultiBodyJointMotor>(mb.get(), j, 0.0f, btScalar(js.max_effort * options.dt));
-        body.motors[static_cast<std::size_t>(j)] = motor.get();
+    // actuators, per joint of the description: velocity motors (position loops run on top of
+    // them), Coulomb friction on passive joints (a motor holding zero speed with a bounded
+    // force, as pybullet does), and limits
+    const RobotSpec& full = inst.spec;
+    body.bt_joint = body.lumped.lumped_joint;
+    for (std::size_t l = 0; l < full.links.size(); ++l) {
+      body.top.push_back(spec.links[static_cast<std::size_t>(body.lumped.body_of_link[l])].name == full.links[l].name);
+    }
+    body.motors.assign(full.joints.size(), nullptr);
+    for (std::size_t j = 0; j < full.joints.size(); ++j) {
+      const JointSpec& js = full.joints[j];
+      const int bt = body.bt_joint[j];
+      if (bt < 0) continue;
+      const bool passive = js.control == JointSpec::Control::none;
+      if (!passive || js.friction > 0) {
+        const double force = passive ? js.friction : js.max_effort;
+        auto motor = std::make_unique<btMultiBodyJointMotor>(mb.get(), bt, 0.0f, btScalar(force * options.dt));
+        if (!passive) body.motors[j] = motor.get();
         dynamics.addMultiBodyConstraint(motor.get());
         constraints.push_back(std::move(motor));
       }
-      if (js.type == JointSpec::Type::revolute) {
-        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(mb.get(), j, btScalar(js.lower), btScalar(js.upper));
+      if (js.type == JointSpec::Type::revolute || js.type == JointSpec::Type::prismatic) {
+        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(mb.get(), bt, btScalar(js.lower), btScalar(js.upper));
         dynamics.addMultiBodyConstraint(limit.get());
         constraints.push_back(std::move(limit));
       }
@@ -249,28 +275,30 @@ struct Physics::Impl {
     b.mb->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
   }
 
-  /// Pose of a spec link's frame in the world, from its collider (or the multibody for the base).
-  Pose3 link_pose(const RobotBody& b, std::size_t l) const {
+  /// Pose of a body's frame in the world, from its collider (or the multibody for the base).
+  Pose3 body_pose(const RobotBody& b, std::size_t body) const {
     btTransform T;
-    if (b.bt_link[l] < 0) {
+    if (b.bt_link[body] < 0) {
       T = b.mb->getBaseWorldTransform();
     } else {
-      T = b.mb->getLink(b.bt_link[l]).m_cachedWorldTransform;
+      T = b.mb->getLink(b.bt_link[body]).m_cachedWorldTransform;
     }
-    return from_bt(T) * Pose3{-b.com[l], Quat::Identity()};
+    return from_bt(T) * b.X_BF[body].inverse();
   }
 
   /// Drives each actuated joint toward its target: velocity joints directly, position joints
-  /// through a proportional loop on velocity.
+  /// through a proportional loop on velocity; viscous damping as a joint force against the motion.
   void apply_targets(const RobotSpec& spec, RobotBody& b, const RobotState& s) {
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+      const JointSpec& js = spec.joints[j];
+      const int bt = b.bt_joint[j];
+      if (bt >= 0 && js.damping > 0) b.mb->addJointTorque(bt, btScalar(-js.damping * b.mb->getJointVel(bt)));
       btMultiBodyJointMotor* m = b.motors[j];
       if (!m) continue;
-      const JointSpec& js = spec.joints[j];
       const double target = j < s.joint_target.size() ? s.joint_target[j] : 0.0;
       double vel = target;
       if (js.control == JointSpec::Control::position) {
-        const double q = b.mb->getJointPos(static_cast<int>(j));
+        const double q = b.mb->getJointPos(bt);
         vel = js.kp * (target - q);
       }
       vel = std::clamp(vel, -js.max_velocity, js.max_velocity);
@@ -284,20 +312,27 @@ struct Physics::Impl {
     s.qd.resize(n);
     s.effort.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
-      const bool moving = spec.joints[j].type != JointSpec::Type::fixed;
-      s.q[j] = moving ? b.mb->getJointPos(static_cast<int>(j)) : 0.0;
-      s.qd[j] = moving ? b.mb->getJointVel(static_cast<int>(j)) : 0.0;
+      const int bt = b.bt_joint[j];
+      s.q[j] = bt >= 0 ? b.mb->getJointPos(bt) : 0.0;
+      s.qd[j] = bt >= 0 ? b.mb->getJointVel(bt) : 0.0;
       // motors have no impulse to report before their first solve
       s.effort[j] = b.motors[j] && stepped ? b.motors[j]->getAppliedImpulse(0) / options.dt : 0.0;
     }
+    const LumpedRobot& lr = b.lumped;
+    std::vector<Pose3> X_WB(lr.spec.links.size());
+    for (std::size_t k = 0; k < X_WB.size(); ++k) X_WB[k] = body_pose(b, k);
     s.X_WL.resize(spec.links.size());
-    for (std::size_t l = 0; l < spec.links.size(); ++l) s.X_WL[l] = link_pose(b, l);
+    for (std::size_t l = 0; l < spec.links.size(); ++l) {
+      const auto body = static_cast<std::size_t>(lr.body_of_link[l]);
+      // a body's top link is the body frame itself: no product, so no round-off
+      s.X_WL[l] = b.top[l] ? X_WB[body] : X_WB[body] * lr.X_BL[l];
+    }
     s.base.X_WB = s.X_WL[0];
     // the base's velocity at the link-frame origin, from the centre-of-mass velocity
     const Vec3 w = from_bt(b.mb->getBaseOmega());
     const Vec3 v_com = from_bt(b.mb->getBaseVel());
     s.base.w_WB = w;
-    s.base.v_WB = v_com + w.cross(s.base.X_WB.q * (-b.com[0]));
+    s.base.v_WB = v_com + w.cross(s.base.X_WB.q * (-lr.spec.links[0].com));
   }
 
   /// Names of what touches each robot, and whether a new collision began.
@@ -430,13 +465,15 @@ void Physics::restore(const State& state) {
     RobotBody& rb = m.robots[r];
     const RobotState& rs = state.robots[r];
     const RobotSpec& spec = m.world.robots[r].spec;
-    rb.mb->setBaseWorldTransform(to_bt(rs.base.X_WB * Pose3{rb.com[0], Quat::Identity()}));
+    const Vec3& com = rb.lumped.spec.links[0].com;
+    rb.mb->setBaseWorldTransform(to_bt(rs.base.X_WB * rb.X_BF[0]));
     rb.mb->setBaseOmega(to_bt(rs.base.w_WB));
-    rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * rb.com[0])));
+    rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * com)));
     for (std::size_t j = 0; j < spec.joints.size() && j < rs.q.size(); ++j) {
-      if (spec.joints[j].type == JointSpec::Type::fixed) continue;
-      rb.mb->setJointPos(static_cast<int>(j), btScalar(rs.q[j]));
-      rb.mb->setJointVel(static_cast<int>(j), btScalar(rs.qd[j]));
+      const int bt = rb.bt_joint[j];
+      if (bt < 0) continue;
+      rb.mb->setJointPos(bt, btScalar(rs.q[j]));
+      rb.mb->setJointVel(bt, btScalar(rs.qd[j]));
     }
     Impl::sync_colliders(rb);
   }

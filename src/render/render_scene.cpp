@@ -107,6 +107,7 @@ RenderScene build_render_scene(const World& world) {
     const std::vector<Pose3> X_BL = link_poses(robot.spec, initial_positions(robot.spec));
     for (std::size_t l = 0; l < robot.spec.links.size(); ++l) {
       for (const LinkShape& shape : robot.spec.links[l].shapes) {
+        if (!shape.visible) continue;  // a URDF's collision shapes: its visuals are drawn instead
         RenderItem item;
         item.source = RenderItem::Source::robot_link;
         item.index = static_cast<int>(l);

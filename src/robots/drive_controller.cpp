@@ -32,8 +32,12 @@ void update_drive(const RobotSpec& spec, RobotState& s, SimTime now, double dt) 
   const double left = (s.drive_v - w * half_track) / d.wheel_radius;
   const double right = (s.drive_v + w * half_track) / d.wheel_radius;
   if (s.joint_target.size() != spec.joints.size()) s.joint_target.assign(spec.joints.size(), 0.0);
-  for (const auto& name : d.left_wheels) s.joint_target[static_cast<std::size_t>(spec.joint_index(name))] = left;
-  for (const auto& name : d.right_wheels) s.joint_target[static_cast<std::size_t>(spec.joint_index(name))] = right;
+  for (std::size_t i = 0; i < d.left_wheels.size(); ++i) {
+    s.joint_target[static_cast<std::size_t>(spec.joint_index(d.left_wheels[i]))] = wheel_sign(d.left_signs, i) * left;
+  }
+  for (std::size_t i = 0; i < d.right_wheels.size(); ++i) {
+    s.joint_target[static_cast<std::size_t>(spec.joint_index(d.right_wheels[i]))] = wheel_sign(d.right_signs, i) * right;
+  }
 }
 
 void update_head(const RobotSpec& spec, RobotState& s) {
@@ -43,6 +47,14 @@ void update_head(const RobotSpec& spec, RobotState& s) {
     if (j < 0) continue;
     const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
     s.joint_target[static_cast<std::size_t>(j)] = std::clamp(s.head_target[i], js.lower, js.upper);
+  }
+  // mimic joints follow their leader (URDF <mimic>): q = multiplier x q_leader + offset
+  for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+    const JointSpec& js = spec.joints[j];
+    if (js.mimic.empty() || js.control != JointSpec::Control::position) continue;
+    const int leader = spec.joint_index(js.mimic);
+    if (leader < 0 || static_cast<std::size_t>(leader) >= s.q.size()) continue;
+    s.joint_target[j] = js.mimic_multiplier * s.q[static_cast<std::size_t>(leader)] + js.mimic_offset;
   }
 }
 

@@ -15,12 +15,12 @@ struct BodyRate {
 
 BodyRate wheel_odometry_rate(const RobotSpec& spec, const std::vector<double>& qd) {
   const DriveSpec& d = spec.drive;
-  auto mean = [&](const std::vector<std::string>& names) {
+  auto mean = [&](const std::vector<std::string>& names, const std::vector<double>& signs) {
     double sum = 0;
-    for (const auto& n : names) sum += qd[static_cast<std::size_t>(spec.joint_index(n))];
+    for (std::size_t i = 0; i < names.size(); ++i) sum += wheel_sign(signs, i) * qd[static_cast<std::size_t>(spec.joint_index(names[i]))];
     return names.empty() ? 0.0 : sum / static_cast<double>(names.size());
   };
-  const double l = mean(d.left_wheels) * d.wheel_radius, r = mean(d.right_wheels) * d.wheel_radius;
+  const double l = mean(d.left_wheels, d.left_signs) * d.wheel_radius, r = mean(d.right_wheels, d.right_signs) * d.wheel_radius;
   return {0.5 * (l + r), (r - l) / (d.track_width * d.track_multiplier)};
 }
 

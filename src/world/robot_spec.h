@@ -1,8 +1,8 @@
 #pragma once
 /// RobotSpec: a robot described as data — links with mass and shapes, joints with limits and
 /// actuation, a drive, and sensors with their mount frames. The built-in rescue robot
-/// (src/robots) is one; URDF models will produce the same structure. Frames: each link's
-/// frame is its joint frame; X_PJ places a joint in its parent link's frame.
+/// (src/robots) is one; URDF models (world/urdf) produce the same structure. Frames: each
+/// link's frame is its joint frame; X_PJ places a joint in its parent link's frame.
 
 #include <string>
 #include <vector>
@@ -10,6 +10,7 @@
 #include "core/pose.h"
 #include "world/geometry.h"
 #include "world/sensor_spec.h"
+#include "world/world_spec.h"
 
 namespace rescuesim {
 
@@ -19,6 +20,7 @@ struct LinkShape {
   Pose3 X_LG;                 ///< shape frame in the link frame
   std::string material;       ///< a world material name, or one of the robot's own
   bool collides = true;
+  bool visible = true;        ///< drawn by the renderer (a URDF's collision shapes are not)
 };
 
 /// A rigid link.
@@ -31,21 +33,28 @@ struct LinkSpec {
   /// Friction scale along the link's own x, y, z axes (anisotropic friction): skid-steer
   /// wheels slide sideways more easily than they roll, which lets the robot turn in place.
   Vec3 friction_scale = Vec3::Ones();
+  /// Principal axes of inertia in the link frame: `inertia` holds the moments about these axes
+  /// (a URDF inertial's rotation and off-diagonal terms end up here).
+  Quat inertia_axes = Quat::Identity();
 };
 
 /// A joint between a parent link and a child link.
 struct JointSpec {
-  enum class Type { revolute, continuous, fixed };
+  enum class Type { revolute, continuous, prismatic, fixed };
   enum class Control { none, velocity, position };
   std::string name;
   Type type = Type::revolute;
   std::string parent, child;  ///< link names
   Pose3 X_PJ;                 ///< joint (= child link) frame in the parent link frame at q = 0
-  Vec3 axis = Vec3::UnitZ();  ///< rotation axis in the joint frame
-  double lower = -M_PI, upper = M_PI;  ///< position limits (rad), revolute only
-  double max_effort = 10.0;   ///< N m
-  double max_velocity = 2.0;  ///< rad/s
-  double damping = 0.0;       ///< viscous joint damping (N m s/rad)
+  Vec3 axis = Vec3::UnitZ();  ///< rotation (or, prismatic, translation) axis in the joint frame
+  double lower = -M_PI, upper = M_PI;  ///< position limits (rad; prismatic: m), revolute and prismatic only
+  double max_effort = 10.0;   ///< N m (prismatic: N)
+  double max_velocity = 2.0;  ///< rad/s (prismatic: m/s)
+  double damping = 0.0;       ///< viscous joint damping (N m s/rad; prismatic: N s/m)
+  double friction = 0.0;      ///< Coulomb joint friction (N m; prismatic: N), on joints without a controller
+  /// Mimic: when `mimic` names another joint, this one is driven to multiplier × q(mimic) + offset.
+  std::string mimic;
+  double mimic_multiplier = 1.0, mimic_offset = 0.0;
   Control control = Control::none;
   double kp = 8.0;            ///< position gain (1/s): joint speed = kp × position error, within max_velocity
   double initial = 0.0;       ///< starting position (rad)
@@ -53,7 +62,10 @@ struct JointSpec {
 
 /// How cmd_vel becomes wheel velocities.
 struct DriveSpec {
-  std::vector<std::string> left_wheels, right_wheels;  ///< joint names, positive = forward
+  std::vector<std::string> left_wheels, right_wheels;  ///< joint names
+  /// Per wheel (same order), +1 when a positive joint velocity drives the robot forward, -1 when
+  /// the joint axis points the other way; empty means every wheel is +1.
+  std::vector<double> left_signs, right_signs;
   double wheel_radius = 0.1;        ///< m
   double track_width = 0.5;         ///< m, between left and right wheel centres
   /// Skid-steer slip factor: the effective track is track_width × this (like
@@ -78,6 +90,13 @@ struct RobotSpec {
   DriveSpec drive;
   std::vector<std::string> head_joints;  ///< joints driven by /head/command, in message order
   std::vector<SensorSpec> sensors;
+  /// The robot's own materials (a URDF's <material>s and mesh colours), added to the world's
+  /// when it is compiled; names are prefixed with the model name to keep them apart.
+  std::vector<MaterialSpec> materials;
+  /// The description as loaded (a URDF's text, placeholders filled), for /robot_description;
+  /// empty for built-in models.
+  std::string description;
+  std::string source_file;           ///< where the description came from ("" for built-in models)
 
   /// Index of a link or joint by name, or -1.
   int link_index(const std::string& name) const;
@@ -89,9 +108,21 @@ struct RobotSpec {
   double total_mass() const;
 };
 
+/// The motion of a joint at position q: a rotation about its axis (revolute, continuous), a
+/// translation along it (prismatic), or nothing (fixed).
+Pose3 joint_motion(const JointSpec& j, double q);
+
 /// Poses of every link in the base link's frame for joint positions `q` (one per joint, in
 /// joint order; fixed joints ignore theirs): X_BL = X_BP * X_PJ * rotation(axis, q).
 std::vector<Pose3> link_poses(const RobotSpec& robot, const std::vector<double>& q);
+
+/// The inertia tensor of a link about its centre of mass, in the link frame (kg m^2).
+Eigen::Matrix3d inertia_tensor(const LinkSpec& link);
+/// Sets a link's principal moments and axes from an inertia tensor in the link frame.
+void set_inertia_tensor(LinkSpec& link, const Eigen::Matrix3d& I_L);
+
+/// The sign of wheel `i` of a drive side (see DriveSpec::left_signs).
+double wheel_sign(const std::vector<double>& signs, std::size_t i);
 
 /// Joint positions at the start (each joint's `initial`).
 std::vector<double> initial_positions(const RobotSpec& robot);

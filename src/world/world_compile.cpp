@@ -80,6 +80,16 @@ std::vector<BodyPart> victim_body(const VictimSpec& v) {
   return parts;
 }
 
+void add_robot_materials(World& world) {
+  for (const auto& r : world.robots) {
+    for (const auto& m : r.spec.materials) {
+      bool have = false;
+      for (const auto& x : world.materials) have = have || x.name == m.name;
+      if (!have) world.materials.push_back(m);
+    }
+  }
+}
+
 World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options) {
   World w;
   w.name = spec.name;
@@ -190,6 +200,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     r.X_W_start = Pose3::from_pose2(placement.start, -lowest + 0.002);
     w.robots.push_back(std::move(r));
   }
+  add_robot_materials(w);
   return w;
 }
 
