@@ -119,6 +119,10 @@ std::uint64_t digest(const Message& m) {
           d(x.binning_x), d(x.binning_y), d(x.roi_x_offset), d(x.roi_y_offset), d(x.roi_height), d(x.roi_width), d(x.roi_do_rectify);
         } else if constexpr (std::is_same_v<T, PointCloud2>) {
           d(x.header), d(x.height), d(x.width), d(x.fields), d(x.is_bigendian), d(x.point_step), d(x.row_step), d(x.data), d(x.is_dense);
+        } else if constexpr (std::is_same_v<T, String>) {
+          d(x.data);
+        } else {
+          static_assert(sizeof(T) == 0, "digest: a message type without its fields here");
         }
       },
       m);

@@ -26,6 +26,7 @@ RS_MSG_NAME(Contacts, "rescuesim_msgs/Contacts")
 RS_MSG_NAME(Image, "sensor_msgs/Image")
 RS_MSG_NAME(CameraInfo, "sensor_msgs/CameraInfo")
 RS_MSG_NAME(PointCloud2, "sensor_msgs/PointCloud2")
+RS_MSG_NAME(String, "std_msgs/String")
 #undef RS_MSG_NAME
 }  // namespace
 
@@ -72,6 +73,7 @@ RS_INSTANTIATE(Contacts)
 RS_INSTANTIATE(Image)
 RS_INSTANTIATE(CameraInfo)
 RS_INSTANTIATE(PointCloud2)
+RS_INSTANTIATE(String)
 #undef RS_INSTANTIATE
 
 }  // namespace rescuesim::msg

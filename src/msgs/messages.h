@@ -119,6 +119,11 @@ struct Float64MultiArray {
   std::vector<double> data;
 };
 
+/// std_msgs/String: one text, e.g. /robot_description (a robot's URDF).
+struct String {
+  std::string data;
+};
+
 /// Bodies touching a robot's chassis (like a bumper), by object name.
 struct Contacts {
   Header header;
@@ -169,9 +174,9 @@ struct PointCloud2 {
   bool is_dense = false;
 };
 
-/// Any message on the Bus.
+/// Any message on the Bus. New types go at the end: an alternative's index is part of digests.
 using Message = std::variant<Clock, LaserScan, Range, Imu, Twist, Odometry, JointState, TFMessage, PoseStamped, Path,
-                             OccupancyGrid, Float64MultiArray, Contacts, Image, CameraInfo, PointCloud2>;
+                             OccupancyGrid, Float64MultiArray, Contacts, Image, CameraInfo, PointCloud2, String>;
 
 /// The ROS type name of each alternative ("sensor_msgs/LaserScan"); ROS 2 inserts "/msg/".
 const char* type_name(const Message& m);

@@ -3,9 +3,10 @@
 /// src/bridges/<name>). A bridge subscribes on the simulation thread (Bus::subscribe_shared),
 /// queues each message it wants, shared and uncopied, in a bounded queue (cheap; never blocks),
 /// and serialises and sends from its own thread.
-/// Commands it receives go through Simulation::command_velocity / command_head, which queue
-/// them for the next step boundary. A slow network or subscriber therefore never slows the
-/// simulation: when a queue is full the oldest message is dropped and counted.
+/// Commands it receives go through Simulation::command_velocity / command_head /
+/// command_joints, which queue them for the next step boundary. A slow network or subscriber
+/// therefore never slows the simulation: when a queue is full the oldest message is dropped and
+/// counted.
 
 #include <chrono>
 #include <condition_variable>

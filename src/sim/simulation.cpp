@@ -49,7 +49,38 @@ const char* topic_type(const SensorSpec& s) {
 /// The optical frame beside a camera's body frame, named as ROS drivers do.
 std::string optical_frame(const std::string& body_frame) { return body_frame + "_optical_frame"; }
 
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+bool is_wheel(const RobotSpec& spec, const std::string& joint) {
+  return contains(spec.drive.left_wheels, joint) || contains(spec.drive.right_wheels, joint);
+}
+
+/// What a joint that /joint_command may not drive is, for the refusal.
+const char* kind_of_uncommandable(const RobotSpec& spec, const JointSpec& js) {
+  if (js.type == JointSpec::Type::fixed) return "a fixed joint";
+  if (is_wheel(spec, js.name)) return "a drive wheel (use cmd_vel)";
+  if (contains(spec.head_joints, js.name)) return "a head joint (use head/command)";
+  if (!js.mimic.empty()) return "a mimic joint (it follows its leader)";
+  return "a passive joint (no controller)";
+}
+
 }  // namespace
+
+bool is_commandable(const RobotSpec& spec, std::size_t j) {
+  if (j >= spec.joints.size()) return false;
+  const JointSpec& js = spec.joints[j];
+  return js.type != JointSpec::Type::fixed && js.control != JointSpec::Control::none && js.mimic.empty() && !is_wheel(spec, js.name) &&
+         !contains(spec.head_joints, js.name);
+}
+
+bool has_commandable_joints(const RobotSpec& spec) {
+  for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+    if (is_commandable(spec, j)) return true;
+  }
+  return false;
+}
 
 Simulation::Simulation(World world, const SimOptions& options) : world_(std::move(world)), options_(options) {
   physics_ = std::make_unique<Physics>(world_, options_.physics);
@@ -92,6 +123,13 @@ void Simulation::setup_topics() {
   clock_topic_ = bus_.advertise("/clock", "rosgraph_msgs/Clock", options_.clock_rate > 0 ? options_.clock_rate : 1.0 / dt());
   tf_topic_ = bus_.advertise("/tf", "tf2_msgs/TFMessage", options_.tf_rate);
   tf_static_topic_ = bus_.advertise("/tf_static", "tf2_msgs/TFMessage", 0, true);
+  // a robot loaded from a description (URDF) offers it, latched, as robot_state_publisher does
+  description_topics_.assign(world_.robots.size(), -1);
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    if (world_.robots[r].spec.description.empty()) continue;
+    const int ri = static_cast<int>(r);
+    description_topics_[r] = bus_.advertise(topic_name(ri, "robot_description"), "std_msgs/String", 0, true, ri);
+  }
   // one random stream and one schedule per sensor, in robot and spec order
   for (std::size_t r = 0; r < world_.robots.size(); ++r) {
     const RobotInstance& robot = world_.robots[r];
@@ -133,7 +171,11 @@ bool Simulation::command_velocity(int robot, const msg::Twist& t) {
   }
   {
     std::lock_guard lock(commands_mutex_);
-    commands_.push_back({robot, false, t, {}});
+    Command c;
+    c.robot = robot;
+    c.kind = Command::Kind::velocity;
+    c.twist = t;
+    commands_.push_back(std::move(c));
     ++velocity_commands_;
   }
   command_arrived_.notify_all();
@@ -156,8 +198,56 @@ bool Simulation::command_head(int robot, const std::vector<double>& positions) {
   for (double p : positions) {
     if (!std::isfinite(p)) return false;
   }
+  Command c;
+  c.robot = robot;
+  c.kind = Command::Kind::head;
+  c.values = positions;
   std::lock_guard lock(commands_mutex_);
-  commands_.push_back({robot, true, {}, positions});
+  commands_.push_back(std::move(c));
+  return true;
+}
+
+bool Simulation::command_joints(int robot, const msg::JointState& command, std::string* why) {
+  const auto refuse = [&](std::string text) {
+    if (why) *why = std::move(text);
+    return false;
+  };
+  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return refuse("no robot " + std::to_string(robot));
+  const RobotSpec& spec = world_.robots[static_cast<std::size_t>(robot)].spec;
+  const std::size_t n = command.name.size();
+  if (n == 0) return refuse("no joint names");
+  for (const auto& [field, values] : {std::pair<const char*, const std::vector<double>*>{"position", &command.position},
+                                      {"velocity", &command.velocity}}) {
+    if (!values->empty() && values->size() != n) {
+      return refuse(std::string(field) + " has " + std::to_string(values->size()) + " values for " + std::to_string(n) +
+                    " names (give one per name, or none)");
+    }
+  }
+  // every name must be a commandable joint, named once, with a finite value of the kind its controller takes
+  Command c;
+  c.robot = robot;
+  c.kind = Command::Kind::joints;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string& name = command.name[i];
+    const int j = spec.joint_index(name);
+    if (j < 0) return refuse("'" + name + "' is not a joint of " + spec.model);
+    const auto ju = static_cast<std::size_t>(j);
+    const JointSpec& js = spec.joints[ju];
+    if (!is_commandable(spec, ju)) return refuse("'" + name + "' is " + kind_of_uncommandable(spec, js) + ": not commandable");
+    if (std::find(c.joints.begin(), c.joints.end(), ju) != c.joints.end()) return refuse("'" + name + "' is named twice");
+    const bool position = js.control == JointSpec::Control::position;
+    const std::vector<double>& values = position ? command.position : command.velocity;
+    const std::string field = position ? "position" : "velocity";
+    if (values.empty()) return refuse("'" + name + "' is " + field + "-controlled but the command has no " + field);
+    double v = values[i];
+    if (!std::isfinite(v)) return refuse(field + "[" + std::to_string(i) + "] ('" + name + "') is not finite");
+    // position targets stay within the joint's limits (a continuous joint has none)
+    if (position && js.type != JointSpec::Type::continuous) v = std::clamp(v, js.lower, js.upper);
+    c.joints.push_back(ju);
+    c.values.push_back(v);
+  }
+  std::lock_guard lock(commands_mutex_);
+  commands_.push_back(std::move(c));
   return true;
 }
 
@@ -177,12 +267,18 @@ void Simulation::pre_step() {
   }
   for (const auto& c : pending) {
     RobotState& rs = state_.robots[static_cast<std::size_t>(c.robot)];
-    if (c.is_head) {
-      rs.head_target = c.head;
-    } else {
-      rs.cmd_linear = c.twist.linear;
-      rs.cmd_angular = c.twist.angular;
-      rs.cmd_time = state_.time;
+    switch (c.kind) {
+      case Command::Kind::velocity:
+        rs.cmd_linear = c.twist.linear;
+        rs.cmd_angular = c.twist.angular;
+        rs.cmd_time = state_.time;
+        break;
+      case Command::Kind::head: rs.head_target = c.values; break;
+      case Command::Kind::joints:
+        // joints the command does not name keep their targets
+        rs.joint_target.resize(world_.robots[static_cast<std::size_t>(c.robot)].spec.joints.size(), 0.0);
+        for (std::size_t i = 0; i < c.joints.size(); ++i) rs.joint_target[c.joints[i]] = c.values[i];
+        break;
     }
   }
   for (std::size_t r = 0; r < world_.robots.size(); ++r) {
@@ -196,6 +292,7 @@ void Simulation::step() {
   if (!started_) {
     started_ = true;
     publish_tf_static();
+    publish_descriptions();
     post_step();
   }
   pre_step();
@@ -275,7 +372,8 @@ void Simulation::sample(const SensorInstance& s) {
     case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_sonar(world_, state_, rays(), s.robot, framed, now, slot.rng)); break;
     case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, framed, now, slot)); break;
     case SensorSpec::Type::odometry: {
-      const msg::Odometry odom = odometry_message(world_, state_, s.robot, framed, now, frame_name(s.robot, "base_link"));
+      // the child frame is the robot's root link: base_link for the rescue robot, maybe base_footprint for a URDF robot
+      const msg::Odometry odom = odometry_message(world_, state_, s.robot, framed, now, frame_name(s.robot, robot.spec.links[0].name));
       if (!options_.tf_from_ground_truth) {
         msg::TFMessage tf;
         tf.transforms.push_back(transform(now, odom.header.frame_id, odom.child_frame_id, odom.pose));
@@ -291,10 +389,10 @@ void Simulation::sample(const SensorInstance& s) {
       bus_.publish(s.topic, std::move(p));
       msg::TFMessage tf;
       if (options_.tf_from_ground_truth) {
-        tf.transforms.push_back(transform(now, frame_name(s.robot, "odom"), frame_name(s.robot, "base_link"), rs.base.X_WB));
+        tf.transforms.push_back(transform(now, frame_name(s.robot, "odom"), frame_name(s.robot, robot.spec.links[0].name), rs.base.X_WB));
       }
       if (options_.publish_map_to_odom) {
-        // map -> odom such that map -> odom -> base_link is the true pose
+        // map -> odom such that map -> odom -> root link is the true pose
         const Pose3 X_OB = options_.tf_from_ground_truth ? rs.base.X_WB : Pose3::from_pose2(rs.odom);
         tf.transforms.push_back(transform(now, "map", frame_name(s.robot, "odom"), rs.base.X_WB * X_OB.inverse()));
       }
@@ -354,6 +452,12 @@ void Simulation::publish_tf_static() {
   bus_.publish(tf_static_topic_, std::move(tf));
 }
 
+void Simulation::publish_descriptions() {
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    if (description_topics_[r] >= 0) bus_.publish(description_topics_[r], msg::String{world_.robots[r].spec.description});
+  }
+}
+
 void Simulation::publish_tf() {
   // moving joints: each child link relative to its parent at the current joint position
   msg::TFMessage tf;
@@ -363,7 +467,8 @@ void Simulation::publish_tf() {
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       const JointSpec& js = spec.joints[j];
       if (js.type == JointSpec::Type::fixed) continue;
-      const Pose3 X = js.X_PJ * Pose3{Vec3::Zero(), Quat(Eigen::AngleAxisd(rs.q[j], js.axis.normalized()))};
+      // a rotation about the axis, or for a prismatic joint a translation along it
+      const Pose3 X = js.X_PJ * joint_motion(js, rs.q[j]);
       tf.transforms.push_back(transform(state_.time, frame_name(static_cast<int>(r), js.parent), frame_name(static_cast<int>(r), js.child), X));
     }
   }

@@ -51,6 +51,12 @@ struct SensorInstance {
   SimTime period;
 };
 
+/// True when /joint_command may drive joint `j` of `spec`: a moving joint with a controller that
+/// is neither a drive wheel (cmd_vel drives those), a head joint (/head/command) nor a mimic.
+bool is_commandable(const RobotSpec& spec, std::size_t j);
+/// Whether any joint of `spec` is commandable (the bridges subscribe joint_command only then).
+bool has_commandable_joints(const RobotSpec& spec);
+
 /// Renders camera sensors. The simulation hands it each camera sample as it falls due and,
 /// after every step, asks it to deliver finished frames; an implementation may render on
 /// another thread meanwhile (src/sensors/camera_service.h does), as long as what it delivers at
@@ -84,7 +90,8 @@ class Simulation {
   const std::vector<SensorInstance>& sensors() const { return sensors_; }
   const RayScene& ray_scene() const { return *rays_; }
 
-  /// One step of dt (the first call also publishes the state at t = 0: /tf_static, first samples).
+  /// One step of dt (the first call also publishes the state at t = 0: /tf_static, each robot's
+  /// robot_description, first samples).
   void step();
   /// Steps until sim time reaches `t` (or trouble stops the run); returns false on trouble.
   bool step_until(SimTime t);
@@ -96,6 +103,15 @@ class Simulation {
   bool command_velocity(int robot, const msg::Twist& twist);
   /// Head joint position targets (rad), one per head joint in RobotSpec::head_joints order.
   bool command_head(int robot, const std::vector<double>& positions);
+  /// Targets for a robot's commandable joints by name (`/<robot>/joint_command`, a
+  /// sensor_msgs/JointState): a position for position-controlled joints, a velocity for
+  /// velocity-controlled ones; `position` and `velocity` may each be empty or hold one value per
+  /// name. Applied at the next step boundary. Rejected (false, nothing applied) when a name is
+  /// unknown, a drive wheel, fixed, passive or a mimic joint, or a value is missing or non-finite.
+  /// Position targets beyond a joint's limits are clamped to them (like the head's); velocity
+  /// targets are limited to max_velocity by the joint motor. When rejected and `why` is given,
+  /// it says why ("position has 1 values for 2 names"), for the bridges' warnings.
+  bool command_joints(int robot, const msg::JointState& command, std::string* why = nullptr);
   /// Drops the commands queued for the next step; returns how many. For owners that publish
   /// without stepping (rescuesim replay), so what bridges take in does not pile up.
   std::size_t discard_commands();
@@ -128,6 +144,7 @@ class Simulation {
   void post_step();
   void sample(const SensorInstance& s);
   void publish_tf_static();
+  void publish_descriptions();
   void publish_tf();
   void check_victims();
   bool namespaced() const;
@@ -143,13 +160,17 @@ class Simulation {
   CameraService* cameras_ = nullptr;
   bool started_ = false;
   int clock_topic_ = -1, tf_topic_ = -1, tf_static_topic_ = -1;
+  std::vector<int> description_topics_;  ///< per robot: its latched robot_description topic, -1 without a description
   SimTime next_clock_, next_tf_, next_victim_check_;
 
+  /// A command waiting for the next step boundary.
   struct Command {
-    int robot;
-    bool is_head;
-    msg::Twist twist;
-    std::vector<double> head;
+    enum class Kind { velocity, head, joints };
+    int robot = 0;
+    Kind kind = Kind::velocity;
+    msg::Twist twist;                 ///< velocity
+    std::vector<double> values;       ///< head: positions in head_joints order; joints: one target per `joints` entry
+    std::vector<std::size_t> joints;  ///< joints: indices into the robot's spec.joints
   };
   mutable std::mutex commands_mutex_;
   std::vector<Command> commands_;

@@ -192,6 +192,13 @@ TEST(CdrSerialize, Contacts) {
   EXPECT_EQ(cdr(test::contacts()), expected);
 }
 
+TEST(CdrSerialize, String) {
+  // std_msgs/String "ab": uint32 length 3 with the NUL, the bytes, the NUL; no padding after
+  const auto expected = encapsulated().at(0).hex("03 00 00 00").at(4).hex("61 62 00").at(7).bytes();
+  EXPECT_EQ(cdr(test::string_msg()), expected);
+  EXPECT_EQ(cdr(String{}), encapsulated().hex("01 00 00 00  00").bytes());  // the empty string is its NUL
+}
+
 TEST(CdrSerialize, Image2x1Rgb8) {
   const auto expected = encapsulated()
                             .at(0).hex("01 00 00 00  00 00 00 00")   // stamp 1 s

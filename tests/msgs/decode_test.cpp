@@ -82,6 +82,9 @@ std::vector<Message> richer_messages() {
   out.push_back(im);
   out.push_back(Float64MultiArray{});
   out.push_back(Contacts{test::header(0, ""), {"a", "bb", "ccc", ""}});
+  // a robot description: long, multi-line, quotes, UTF-8
+  out.push_back(String{});
+  out.push_back(String{"<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <!-- \u00e9t\u00e9 -->\n" + std::string(70000, ' ') + "</robot>\n"});
   return out;
 }
 
@@ -249,6 +252,16 @@ TEST(Decode, CdrStringsMustCountAndEndWithTheirNul) {
   b = cdr(test::contacts());
   b[4 + 40] = 'x';  // the NUL of touching[0] "victim_1" (28: length, 32..40: bytes)
   EXPECT_EQ(error_of(from_cdr, t, b), "rescuesim_msgs/msg/Contacts: touching[0]: string of 9 bytes does not end in NUL");
+}
+
+TEST(Decode, StringLengthsAreChecked) {
+  const TypeSupport& t = *find_type("std_msgs/String");
+  auto b = ros1(test::string_msg());
+  put_u32(b, 0, 3);  // one byte more than there is
+  EXPECT_EQ(error_of(from_ros1, t, b), "std_msgs/String: data: truncated: string of 3 bytes needs 3 bytes, 2 left");
+  b = cdr(test::string_msg());
+  b[4 + 6] = 'c';  // the NUL
+  EXPECT_EQ(error_of(from_cdr, t, b), "std_msgs/msg/String: data: string of 3 bytes does not end in NUL");
 }
 
 TEST(Decode, BadVariantIndexIsAnError) {

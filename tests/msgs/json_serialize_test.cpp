@@ -39,6 +39,7 @@ TEST(JsonSerialize, NestedMessagesAndFlattenedFields) {
   EXPECT_EQ(to_json(test::twist()), R"({"linear":{"x":0.5,"y":0,"z":0},"angular":{"x":0,"y":0,"z":-0.25}})");
   EXPECT_EQ(to_json(test::float64_multi_array()), R"({"layout":{"dim":[],"data_offset":0},"data":[1.5,-2]})");
   EXPECT_EQ(to_json(test::clock_msg()), R"({"clock":{"sec":1,"nsec":500000000}})");
+  EXPECT_EQ(to_json(test::string_msg()), R"({"data":"ab"})");
   EXPECT_EQ(to_json(test::tf_message()),
             R"({"transforms":[{"header":{"stamp":{"sec":2,"nsec":0},"frame_id":"odom"},"child_frame_id":"base_link",)"
             R"("transform":{"translation":{"x":1,"y":-1,"z":0},"rotation":{"x":0,"y":0,"z":0,"w":1}}}]})");

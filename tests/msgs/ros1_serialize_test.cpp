@@ -167,6 +167,12 @@ TEST(Ros1Serialize, Contacts) {
   EXPECT_EQ(ros1(test::contacts()), b.bytes());
 }
 
+TEST(Ros1Serialize, String) {
+  // std_msgs/String "ab": uint32 length 2, the bytes, no NUL
+  EXPECT_EQ(ros1(test::string_msg()), Bytes().hex("02 00 00 00  61 62").bytes());
+  EXPECT_EQ(ros1(String{}), Bytes().hex("00 00 00 00").bytes());
+}
+
 TEST(Ros1Serialize, Image2x1Rgb8) {
   const std::vector<std::uint8_t> expected = Bytes()
                                                  .hex("00 00 00 00")           // 0  seq

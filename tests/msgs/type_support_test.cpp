@@ -26,6 +26,7 @@ const std::pair<const char*, const char*> kRosMd5[] = {
     {"nav_msgs/Path", "6227e2b7e9cce15051f669a5e197bbf7"},
     {"nav_msgs/OccupancyGrid", "3381f2d731d4076ec5c71b0759edbe4e"},
     {"std_msgs/Float64MultiArray", "4b7d974086d4060e7db4613a7e6c3ba4"},
+    {"std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1"},
     {"sensor_msgs/Image", "060021388200f6f0f447d0fcd9c64743"},
     {"sensor_msgs/CameraInfo", "c9a58c1b0b154e0e6da7578cb991d214"},
     {"sensor_msgs/PointCloud2", "1158d486dd51d683ce2f1be655c3c181"},
@@ -112,6 +113,7 @@ TEST(TypeSupport, NamesInEveryConvention) {
   EXPECT_EQ(scan->dds_name, "sensor_msgs::msg::dds_::LaserScan_");
   EXPECT_EQ(find_type("rosgraph_msgs/msg/Clock")->dds_name, "rosgraph_msgs::msg::dds_::Clock_");
   EXPECT_EQ(find_type("rescuesim_msgs/msg/Contacts")->dds_name, "rescuesim_msgs::msg::dds_::Contacts_");
+  EXPECT_EQ(find_type("std_msgs/msg/String")->dds_name, "std_msgs::msg::dds_::String_");
   EXPECT_EQ(find_type("sensor_msgs/Foo"), nullptr);
   EXPECT_EQ(find_type("sensor_msgs::msg::dds_::LaserScan_"), nullptr);
   EXPECT_EQ(find_type(""), nullptr);
@@ -133,6 +135,7 @@ TEST(TypeSupport, Ros1DefinitionInGendepsLayout) {
                 "\nMSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n" + kRule +
                 "\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n");
   EXPECT_EQ(find_type("rosgraph_msgs/Clock")->ros1_definition, "time clock\n");
+  EXPECT_EQ(find_type("std_msgs/String")->ros1_definition, "string data\n");
 }
 
 TEST(TypeSupport, Ros2DefinitionsAreHumble) {
@@ -144,6 +147,7 @@ TEST(TypeSupport, Ros2DefinitionsAreHumble) {
   const std::string& cam = find_type("sensor_msgs/CameraInfo")->ros2_definition;
   EXPECT_NE(cam.find("\nfloat64[] d\nfloat64[9] k\nfloat64[9] r\nfloat64[12] p\n"), std::string::npos) << cam;
   EXPECT_NE(cam.find("\nRegionOfInterest roi\n"), std::string::npos) << cam;
+  EXPECT_EQ(find_type("std_msgs/String")->ros2_definition, "string data\n");
   const std::string& clock = find_type("rosgraph_msgs/Clock")->ros2_definition;
   EXPECT_EQ(clock, "builtin_interfaces/Time clock\n" + kRule + "\nMSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec\n");
   // ROS 1 keeps the upper-case names

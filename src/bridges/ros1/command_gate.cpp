@@ -103,4 +103,27 @@ bool CommandGate::head(int robot, const std::string& topic, const std::vector<do
   return true;
 }
 
+bool CommandGate::joints(int robot, const std::string& topic, const msg::JointState& command) {
+  std::string why;
+  if (!sim_.command_joints(robot, command, &why)) {
+    reject(topic, "joints", why);
+    return false;
+  }
+  // accepted: say which position targets were clamped to their joint's limits
+  const RobotSpec& spec = sim_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+  for (std::size_t i = 0; i < command.name.size() && i < command.position.size(); ++i) {
+    const int j = spec.joint_index(command.name[i]);
+    if (j < 0) continue;
+    const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
+    if (js.control != JointSpec::Control::position || js.type == JointSpec::Type::continuous) continue;
+    const double p = command.position[i];
+    if (p < js.lower || p > js.upper) {
+      warn(topic + "#limit:" + js.name, fmt::format("{} position of {} = {:g} is beyond the joint's limits [{:g}, {:g}]: clamped to {:g}",
+                                                  topic, js.name, p, js.lower, js.upper, p < js.lower ? js.lower : js.upper));
+    }
+  }
+  ++received_;
+  return true;
+}
+
 }  // namespace rescuesim

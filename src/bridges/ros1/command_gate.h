@@ -1,7 +1,7 @@
 #pragma once
-/// The gate between commands from the network and the simulation: a decoded cmd_vel or head
-/// command is checked (finite, right length), counted, and handed to Simulation, which applies
-/// it at the next step boundary. Refused commands and values the robot will clamp are reported
+/// The gate between commands from the network and the simulation: a decoded cmd_vel, head
+/// command or joint command is checked (finite, right length, known joints), counted, and handed
+/// to Simulation, which applies it at the next step boundary. Refused commands and values the robot will clamp are reported
 /// as warnings naming the topic and the value, at most one per topic and kind every 2 s (with a
 /// count of what was held back). Thread-safe: transports call it from their own threads.
 
@@ -32,6 +32,11 @@ class CommandGate {
   /// when refused (wrong count, non-finite); targets beyond a joint's limits are clamped by the
   /// head controller, with a warning.
   bool head(int robot, const std::string& topic, const std::vector<double>& positions);
+  /// Targets for commandable joints by name (sensor_msgs/JointState on joint_command). Returns
+  /// false when refused (Simulation::command_joints says why: an unknown or uncommandable joint, a
+  /// missing or non-finite value, arrays of the wrong length); position targets beyond a joint's
+  /// limits are clamped, with a warning.
+  bool joints(int robot, const std::string& topic, const msg::JointState& command);
   /// Bytes on `topic` that did not decode (`why` says where); counted as rejected.
   void malformed(const std::string& topic, const std::string& why);
 

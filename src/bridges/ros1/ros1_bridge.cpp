@@ -89,9 +89,10 @@ class Ros1Bridge final : public Bridge {
   };
   /// A command topic of a robot.
   struct Input {
+    enum class Kind { velocity, head, joints };  ///< cmd_vel, head/command, joint_command
     std::string topic;
     int robot = 0;
-    bool head = false;                        ///< head/command, else cmd_vel
+    Kind kind = Kind::velocity;
     const msg::TypeSupport* type = nullptr;
     ros::Subscriber sub;                      ///< spinner thread only (after start)
     int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
@@ -103,6 +104,7 @@ class Ros1Bridge final : public Bridge {
   };
 
   void advertise_all();
+  void set_parameters();
   void subscribe(std::size_t input);
   bool register_again();
   void publish_loop();
@@ -178,16 +180,21 @@ void Ros1Bridge::start(Simulation& sim) {
       if (!o.type) log::warn("ROS 1: {} has type {}, which has no ROS 1 serialiser: not published", t.name, t.type);
       outputs_.push_back(std::move(o));
     }
-    // commands: each robot's cmd_vel and head/command
+    // commands: each robot's cmd_vel and head/command, and joint_command when it has joints to command
     for (int r = 0; r < static_cast<int>(sim.world().robots.size()); ++r) {
-      Input v{sim.topic_name(r, "cmd_vel"), r, false, msg::find_type("geometry_msgs/Twist"), {}};
-      Input h{sim.topic_name(r, "head/command"), r, true, msg::find_type("std_msgs/Float64MultiArray"), {}};
+      Input v{sim.topic_name(r, "cmd_vel"), r, Input::Kind::velocity, msg::find_type("geometry_msgs/Twist"), {}};
+      Input h{sim.topic_name(r, "head/command"), r, Input::Kind::head, msg::find_type("std_msgs/Float64MultiArray"), {}};
       RS_DEMAND(v.type && h.type, "the serialiser lacks geometry_msgs/Twist or std_msgs/Float64MultiArray");
       inputs_.push_back(std::move(v));
       inputs_.push_back(std::move(h));
+      if (has_commandable_joints(sim.world().robots[static_cast<std::size_t>(r)].spec)) {
+        Input j{sim.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
+        RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
+        inputs_.push_back(std::move(j));
+      }
     }
     advertise_all();
-    if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
+    set_parameters();
   } catch (const ros::Exception& e) {
     g_node_in_use = false;
     throw Error(fmt::format("ROS 1: {} (master {})", e.what(), endpoint_.master_uri));
@@ -236,6 +243,17 @@ void Ros1Bridge::subscribe(std::size_t i) {
   so.callback_queue = &callbacks_;
   in.sub = nh_->subscribe(so);
   in.unconnected_checks = 0;
+}
+
+void Ros1Bridge::set_parameters() {
+  if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
+  // robot_state_publisher and RViz's RobotModel read a robot's URDF from the parameter server
+  // (the same text is on the latched robot_description topic)
+  const Simulation& sim = *sim_;
+  for (int r = 0; r < static_cast<int>(sim.world().robots.size()); ++r) {
+    const std::string& description = sim.world().robots[static_cast<std::size_t>(r)].spec.description;
+    if (!description.empty()) ros::param::set(sim.topic_name(r, "robot_description"), description);
+  }
 }
 
 bool Ros1Bridge::register_again() {
@@ -365,7 +383,7 @@ void Ros1Bridge::watch_master() {
   // a master is back, or a new one answers at the same URI: it knows nothing of this node
   const bool restarted = connected_;
   const bool registered = register_again();
-  if (registered && options_.use_sim_time) ros::param::set("/use_sim_time", true);
+  if (registered) set_parameters();
   // gone again while registering: try again at the next check
   if (!registered || master_pid() != pid) {
     connected_ = false;
@@ -418,10 +436,10 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
   const Input& in = inputs_[input];
   try {
     const msg::Message m = msg::from_ros1(*in.type, raw.bytes);
-    if (in.head) {
-      gate_->head(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data);
-    } else {
-      gate_->velocity(in.robot, in.topic, std::get<msg::Twist>(m));
+    switch (in.kind) {
+      case Input::Kind::velocity: gate_->velocity(in.robot, in.topic, std::get<msg::Twist>(m)); break;
+      case Input::Kind::head: gate_->head(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data); break;
+      case Input::Kind::joints: gate_->joints(in.robot, in.topic, std::get<msg::JointState>(m)); break;
     }
   } catch (const std::exception& e) {
     gate_->malformed(in.topic, e.what());

@@ -1,8 +1,11 @@
 #pragma once
 /// The ROS 1 bridge: the simulator becomes a ROS 1 node (Debian's roscpp) in its own process.
 /// It registers with the master at ROS_MASTER_URI, publishes every Bus topic with the same
-/// name and type (TF, /clock, sensors), and subscribes to each robot's cmd_vel
-/// (geometry_msgs/Twist) and head/command (std_msgs/Float64MultiArray). See docs/ros.md.
+/// name and type (TF, /clock, sensors, a URDF robot's latched robot_description), and subscribes
+/// to each robot's cmd_vel (geometry_msgs/Twist), head/command (std_msgs/Float64MultiArray) and,
+/// for robots with commandable joints, joint_command (sensor_msgs/JointState). A robot's
+/// description also goes to the parameter of the same name (/robot_description, or
+/// /<robot>/robot_description when namespaced), where ROS 1 tools look for it. See docs/ros.md.
 ///
 /// Messages travel as bytes made by rescuesim's own serialiser (msgs/serialize.h), advertised
 /// with its MD5 and definition, so rostopic and rosbag check them like any other node's. The

@@ -57,4 +57,13 @@ Checked<std::vector<double>> check_head_command(std::span<const std::uint8_t> cd
   return {std::move(data), {}, false};
 }
 
+Checked<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr) {
+  static const msg::TypeSupport& type = *msg::find_type("sensor_msgs/JointState");
+  try {
+    return {std::get<msg::JointState>(msg::from_cdr(type, cdr)), {}, false};
+  } catch (const Error& e) {
+    return refuse<msg::JointState>("malformed CDR: " + e.message(), true);
+  }
+}
+
 }  // namespace rescuesim::ros2

@@ -27,4 +27,8 @@ Checked<msg::Twist> check_twist(std::span<const std::uint8_t> cdr);
 /// std_msgs/Float64MultiArray bytes: exactly `joints` finite positions (rad).
 Checked<std::vector<double>> check_head_command(std::span<const std::uint8_t> cdr, std::size_t joints);
 
+/// sensor_msgs/JointState bytes (joint_command): decoded only; which names and values a robot
+/// takes is Simulation::command_joints's to check.
+Checked<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr);
+
 }  // namespace rescuesim::ros2

@@ -1,7 +1,9 @@
 // The ROS 2 bridge: every Bus topic becomes a DDS writer on rt/<topic> with ROS 2's type name,
-// carrying msgs/serialize.h's XCDR1 bytes; /cmd_vel and /head/command of each robot become
-// readers whose samples are decoded, checked and queued into the simulation; the participant
-// announces a node (rescuesim, namespace /) on ros_discovery_info so `ros2 node list` sees it.
+// carrying msgs/serialize.h's XCDR1 bytes (latched ones, /tf_static and robot_description,
+// transient local); /cmd_vel, /head/command and (for robots with commandable joints)
+// /joint_command of each robot become readers whose samples are decoded, checked and queued into
+// the simulation; the participant announces a node (rescuesim, namespace /) on
+// ros_discovery_info so `ros2 node list` sees it.
 //
 // Threads: the Bus callback (simulation thread) only copies messages into bounded queues, one
 // per topic (so a burst of /clock at 200 Hz never pushes out an image or /tf_static); a sender
@@ -48,9 +50,10 @@ class Ros2Bridge final : public Bridge {
  private:
   /// A command reader: whose commands, of which kind.
   struct Input {
+    enum class Kind { velocity, head, joints };  ///< cmd_vel, head/command, joint_command
     int reader;
     int robot;
-    bool head;
+    Kind kind;
     std::string topic;  ///< ROS name, for warnings
     std::unique_ptr<Throttle> malformed_warning = std::make_unique<Throttle>();
     std::unique_ptr<Throttle> invalid_warning = std::make_unique<Throttle>();
@@ -111,13 +114,19 @@ void Ros2Bridge::start(Simulation& sim) {
     const std::string cmd_vel = sim.topic_name(robot, "cmd_vel");
     const std::string head = sim.topic_name(robot, "head/command");
     const int rv = dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos());
-    inputs_.push_back({rv, robot, false, cmd_vel});
+    inputs_.push_back({rv, robot, Input::Kind::velocity, cmd_vel});
     node.readers.push_back(dds_->reader_guid(rv));
     if (!sim.world().robots[r].spec.head_joints.empty()) {
       const int rh = dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_",
                                          ros2::command_reader_qos());
-      inputs_.push_back({rh, robot, true, head});
+      inputs_.push_back({rh, robot, Input::Kind::head, head});
       node.readers.push_back(dds_->reader_guid(rh));
+    }
+    if (has_commandable_joints(sim.world().robots[r].spec)) {
+      const std::string joints = sim.topic_name(robot, "joint_command");
+      const int rj = dds_->create_reader(ros2::dds_topic_name(joints), "sensor_msgs::msg::dds_::JointState_", ros2::command_reader_qos());
+      inputs_.push_back({rj, robot, Input::Kind::joints, joints});
+      node.readers.push_back(dds_->reader_guid(rj));
     }
   }
 
@@ -228,7 +237,7 @@ void Ros2Bridge::receive_loop() {
 void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
   std::string problem;
   bool malformed = false;
-  if (in.head) {
+  if (in.kind == Input::Kind::head) {
     const auto joints = sim_->world().robots[static_cast<std::size_t>(in.robot)].spec.head_joints.size();
     auto c = ros2::check_head_command(bytes, joints);
     if (c.value && sim_->command_head(in.robot, *c.value)) {
@@ -236,6 +245,15 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
       return;
     }
     problem = c.value ? "refused by the simulation" : c.problem;
+    malformed = c.malformed;
+  } else if (in.kind == Input::Kind::joints) {
+    auto c = ros2::decode_joint_command(bytes);
+    std::string why;
+    if (c.value && sim_->command_joints(in.robot, *c.value, &why)) {
+      ++received_;
+      return;
+    }
+    problem = c.value ? why : c.problem;
     malformed = c.malformed;
   } else {
     auto c = ros2::check_twist(bytes);

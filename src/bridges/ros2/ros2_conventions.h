@@ -35,12 +35,13 @@ std::size_t queue_capacity(const Topic& topic, std::size_t max);
 std::string dds_topic_name(const std::string& ros_topic);
 
 /// The writer QoS for a Bus topic: RELIABLE + VOLATILE + KEEP_LAST 10 (a reliable writer also
-/// matches best-effort readers, such as ROS 2's SensorDataQoS); latched topics (/tf_static)
-/// RELIABLE + TRANSIENT_LOCAL depth 1, like tf2's StaticBroadcasterQoS; /clock depth 1.
+/// matches best-effort readers, such as ROS 2's SensorDataQoS); latched topics (/tf_static,
+/// robot_description) RELIABLE + TRANSIENT_LOCAL depth 1, like tf2's StaticBroadcasterQoS and
+/// robot_state_publisher's robot_description; /clock depth 1.
 EndpointQos writer_qos(const Topic& topic);
 
-/// The reader QoS for commands (/cmd_vel, /head/command): BEST_EFFORT + VOLATILE depth 10, which
-/// matches both reliable and best-effort ROS 2 publishers.
+/// The reader QoS for commands (/cmd_vel, /head/command, /joint_command): BEST_EFFORT +
+/// VOLATILE depth 10, which matches both reliable and best-effort ROS 2 publishers.
 EndpointQos command_reader_qos();
 
 /// The discovery topic's QoS: RELIABLE + TRANSIENT_LOCAL + KEEP_LAST 1 (as rmw_dds_common).

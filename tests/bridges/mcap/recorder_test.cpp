@@ -13,6 +13,8 @@
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
+#include "sim/simulation.h"
+#include "sim/slider_robot.h"
 
 namespace rescuesim {
 namespace {
@@ -197,6 +199,33 @@ TEST_F(Recorder, BoundedModeCountsWhatItDrops) {
   const mcap::Metadata* end = r.find_metadata("rescuesim.recording");
   ASSERT_NE(end, nullptr);
   EXPECT_EQ(end->entries[1].second, std::to_string(st.dropped));
+}
+
+TEST(RecorderDescription, ARobotsDescriptionIsALatchedStringChannel) {
+  Simulation sim(testing::slider_world());
+  const auto dir = testing::temp_dir("mcap-description");
+  McapOptions o;
+  o.path = dir / "run.mcap";
+  McapRecorder recorder(o);
+  recorder.start(sim);
+  sim.step_until(SimTime::from_seconds(0.5));
+  recorder.stop();
+  mcap::McapReader r(o.path);
+  const auto c = std::find_if(r.channels().begin(), r.channels().end(), [](const auto& c) { return c.second.topic == "/robot_description"; });
+  ASSERT_NE(c, r.channels().end());
+  const mcap::Schema& schema = r.schemas().at(c->second.schema_id);
+  EXPECT_EQ(schema.name, "std_msgs/msg/String");
+  EXPECT_EQ(schema.encoding, "ros2msg");
+  EXPECT_EQ(std::string(schema.data.begin(), schema.data.end()), "string data\n");
+  ASSERT_EQ(c->second.metadata.size(), 1u);
+  EXPECT_NE(c->second.metadata[0].second.find("durability: 1"), std::string::npos);  // transient local, like /tf_static
+  std::vector<std::string> texts;
+  r.read_messages([&](const mcap::Channel& ch, const mcap::MessageView& m) {
+    if (ch.topic == "/robot_description") texts.push_back(std::get<msg::String>(msg::from_cdr(*msg::find_type("std_msgs/String"), m.data)).data);
+    return true;
+  });
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_EQ(texts[0], testing::kSliderDescription);
 }
 
 TEST(RecorderFile, UnwritablePathIsAnErrorNamingIt) {

@@ -12,6 +12,7 @@
 
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "sim/slider_robot.h"
 #include "support/rig.h"
 
 namespace rescuesim {
@@ -113,6 +114,30 @@ TEST_F(CommandGateTest, MalformedBytesAreCountedAsRejected) {
   gate_.malformed("/cmd_vel", "geometry_msgs/Twist: angular.z: needs 8 bytes, 3 left");
   EXPECT_EQ(gate_.rejected(), 1u);
   EXPECT_NE(log.text().find("rejected a command on /cmd_vel: malformed message: geometry_msgs/Twist"), std::string::npos) << log.text();
+}
+
+TEST(CommandGateJoints, RefusalsSayWhichJointAndWhyAndClampsAreReported) {
+  Simulation sim(testing::slider_world());
+  CommandGate gate(sim, "ROS 1");
+  LogCapture log;
+  msg::JointState wheel;
+  wheel.name = {"wheel"};
+  wheel.velocity = {1.0};
+  EXPECT_FALSE(gate.joints(0, "/joint_command", wheel));
+  EXPECT_NE(log.text().find("ROS 1: rejected a command on /joint_command: 'wheel' is a drive wheel (use cmd_vel): not commandable"),
+            std::string::npos)
+      << log.text();
+  msg::JointState lift;
+  lift.name = {"lift"};
+  lift.position = {0.5};
+  EXPECT_TRUE(gate.joints(0, "/joint_command", lift));
+  EXPECT_NE(log.text().find("/joint_command position of lift = 0.5 is beyond the joint's limits [-0.1, 0.2]: clamped to 0.2"),
+            std::string::npos)
+      << log.text();
+  EXPECT_EQ(gate.received(), 1u);
+  EXPECT_EQ(gate.rejected(), 1u);
+  sim.step();
+  EXPECT_EQ(sim.state().robots[0].joint_target[0], 0.2);
 }
 
 }  // namespace

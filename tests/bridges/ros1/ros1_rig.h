@@ -247,7 +247,10 @@ class Simulator {
  public:
   /// Starts rescuesim on `master` with extra `args` and waits until the bridge has started.
   bool start(const RosMaster& master, const fs::path& dir, const std::vector<std::string>& args) {
-    const fs::path yaml = write_room(dir);
+    return start(master, dir, write_room(dir), args);
+  }
+  /// The same with a scenario file of the caller's.
+  bool start(const RosMaster& master, const fs::path& dir, const fs::path& yaml, const std::vector<std::string>& args) {
     std::vector<std::string> argv = {RESCUESIM_EXE, "run", yaml.string(), "--ros1", "--quiet", "--out", (dir / "out").string()};
     argv.insert(argv.end(), args.begin(), args.end());
     child_.start(argv, master.env(), dir / "rescuesim.log");

@@ -1,6 +1,7 @@
 // The bridge in-process, seen from a second DDS participant in this process: two robots get
 // namespaced topics, /tf_static reaches a late joiner (transient local), a robot's cmd_vel
-// moves that robot only, and a participant that cannot start is a clear error.
+// moves that robot only, a robot's description reaches a late joiner and its joint_command moves
+// its joints, and a participant that cannot start is a clear error.
 
 #include "bridges/ros2/ros2_bridge.h"
 
@@ -16,6 +17,7 @@
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "sim/slider_robot.h"
 #include "support/rig.h"
 
 namespace rescuesim {
@@ -111,6 +113,53 @@ TEST_F(Ros2BridgeTest, NamespacedRobotsLatchedTfStaticAndCommandsForOneRobot) {
   EXPECT_LT(st.sent, 200u);
   EXPECT_GT(st.received, 10u);
   EXPECT_EQ(st.rejected, 0u);
+}
+
+TEST_F(Ros2BridgeTest, RobotDescriptionReachesALateJoinerAndJointCommandsMoveJoints) {
+  Simulation sim(testing::slider_world());
+  Ros2Options o;
+  o.domain_id = domain();
+  auto bridge = make_ros2_bridge(o);
+  bridge->start(sim);
+  sim.step();  // publishes robot_description once, before anyone listens
+
+  // robot_state_publisher's QoS for robot_description: reliable, transient local, depth 1
+  DdsParticipant ros(domain(), ros2::participant_user_data());
+  ros2::EndpointQos latched{ros2::Reliability::reliable, ros2::Durability::transient_local, 1};
+  const int description = ros.create_reader("rt/robot_description", "std_msgs::msg::dds_::String_", latched);
+  const int command = ros.create_writer("rt/joint_command", "sensor_msgs::msg::dds_::JointState_", {});
+  msg::JointState lift;
+  lift.name = {"lift"};
+  lift.position = {0.15};
+  msg::JointState wheel;
+  wheel.name = {"wheel"};
+  wheel.velocity = {1.0};
+  std::vector<std::uint8_t> lift_bytes, wheel_bytes;
+  msg::to_cdr(lift, lift_bytes);
+  msg::to_cdr(wheel, wheel_bytes);
+
+  std::vector<msg::String> texts;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < give_up) {
+    std::string error;
+    if (ros.matched_readers(command) > 0) {
+      ASSERT_TRUE(ros.write(command, wheel_bytes, &error)) << error;
+      ASSERT_TRUE(ros.write(command, lift_bytes, &error)) << error;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    sim.step_until(sim.time() + SimTime::from_ms(50));
+    for (auto& m : take_all<msg::String>(ros, description, "std_msgs/String")) texts.push_back(m);
+    if (!texts.empty() && std::abs(sim.state().robots[0].q[0] - 0.15) < 1e-3) break;
+  }
+  bridge->stop();
+
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_EQ(texts[0].data, testing::kSliderDescription);
+  EXPECT_EQ(sim.state().robots[0].joint_target[0], 0.15);
+  EXPECT_NEAR(sim.state().robots[0].q[0], 0.15, 1e-3);
+  const BridgeStats st = bridge->stats();
+  EXPECT_GT(st.received, 0u);
+  EXPECT_GT(st.rejected, 0u);  // the wheel commands: cmd_vel drives wheels
 }
 
 TEST_F(Ros2BridgeTest, StartFailsWithAReasonWhenNoParticipantCanBeMade) {
