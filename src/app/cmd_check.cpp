@@ -7,7 +7,9 @@
 #include "app/commands.h"
 #include "robots/rescue_robot.h"
 #include "world/scenario/scenario.h"
+#include "world/robot_lumping.h"
 #include "world/svg/svg_world.h"
+#include "world/urdf/urdf_import.h"
 
 namespace rescuesim::app {
 
@@ -16,12 +18,85 @@ namespace {
 struct CheckOptions {
   std::vector<std::string> files;
   double scale = 100.0;
+  std::vector<std::string> resource_paths;
 };
+
+const char* joint_type_name(JointSpec::Type t) {
+  switch (t) {
+    case JointSpec::Type::revolute: return "revolute";
+    case JointSpec::Type::continuous: return "continuous";
+    case JointSpec::Type::prismatic: return "prismatic";
+    case JointSpec::Type::fixed: return "fixed";
+  }
+  return "?";
+}
+
+std::string names(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& n : v) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+/// Checks a URDF robot and prints what was understood.
+bool check_urdf(const std::string& file, const CheckOptions& o) {
+  UrdfOptions uo;
+  uo.resolver = ResourceResolver(std::vector<std::filesystem::path>(o.resource_paths.begin(), o.resource_paths.end()));
+  UrdfRobot u;
+  try {
+    u = load_urdf(file, uo);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error\n  %s\n", file.c_str(), e.what());
+    return false;
+  }
+  const RobotSpec& r = u.spec;
+  const LumpedRobot lumped = lump_fixed_joints(r);
+  std::printf("%s: ok (URDF robot '%s', root link %s)\n", file.c_str(), r.model.c_str(), u.root_link.c_str());
+  std::printf("  %zu links, %zu joints (%d moving, %d fixed); total mass %.4g kg; %zu rigid bodies for physics (fixed joints merged)\n",
+              r.links.size(), r.joints.size(), u.moving_joints, u.fixed_joints, r.total_mass(), lumped.spec.links.size());
+  for (const auto& l : r.links) {
+    int collision = 0, visual = 0;
+    for (const auto& sh : l.shapes) (sh.collides ? collision : visual)++;
+    std::printf("  link  %-24s %8.4g kg  inertia (%.3g, %.3g, %.3g) kg m^2  %d collision, %d visual shape(s)\n", l.name.c_str(), l.mass,
+                l.inertia.x(), l.inertia.y(), l.inertia.z(), collision, visual);
+  }
+  for (const auto& j : r.joints) {
+    std::printf("  joint %-24s %-10s %s -> %s", j.name.c_str(), joint_type_name(j.type), j.parent.c_str(), j.child.c_str());
+    if (j.type != JointSpec::Type::fixed) std::printf("  axis (%.3g, %.3g, %.3g)", j.axis.x(), j.axis.y(), j.axis.z());
+    if (j.type == JointSpec::Type::revolute || j.type == JointSpec::Type::prismatic) std::printf("  limits [%.4g, %.4g]", j.lower, j.upper);
+    if (!j.mimic.empty()) std::printf("  mimics %s", j.mimic.c_str());
+    std::printf("\n");
+  }
+  for (const auto& m : u.meshes) {
+    if (m.collision) {
+      std::printf("  mesh  %s (%s): collision, %d triangles -> %d convex piece(s), %d hull vertices; volume %.4g m^3, hull %.4g m^3\n",
+                  m.uri.c_str(), m.link.c_str(), m.triangles, m.pieces, m.hull_vertices, m.mesh_volume, m.hull_volume);
+    } else {
+      std::printf("  mesh  %s (%s): visual, %d triangles\n", m.uri.c_str(), m.link.c_str(), m.triangles);
+    }
+  }
+  for (const auto& s : r.sensors) {
+    std::printf("  sensor %-20s %-13s on %-16s %6.4g Hz  topic %s\n", s.name.c_str(), sensor_type_name(s.type), s.link.c_str(), s.rate, s.topic.c_str());
+  }
+  if (r.drive.left_wheels.empty()) {
+    std::printf("  drive: none (give one in the scenario: drive: {type: diff_drive, left: [...], right: [...]})\n");
+  } else {
+    std::printf("  drive: diff_drive from %s; left [%s], right [%s]; wheel radius %.4g m, separation %.4g m\n", u.drive_source.c_str(),
+                names(r.drive.left_wheels).c_str(), names(r.drive.right_wheels).c_str(), r.drive.wheel_radius, r.drive.track_width);
+  }
+  std::printf("  read in %.3f s, convex hulls in %.3f s\n", u.load_seconds, u.hull_seconds);
+  if (!u.diagnostics.items().empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "  %d warning(s):\n", u.diagnostics.warning_count());
+    print_diagnostics(u.diagnostics);
+  }
+  return true;
+}
 
 /// Checks one file; returns true when it is usable.
 bool check_one(const std::string& file, const CheckOptions& o) {
   const std::filesystem::path p(file);
   const std::string ext = p.extension().string();
+  if (ext == ".urdf" || ext == ".xacro") return check_urdf(file, o);
   WorldSpec world;
   Diagnostics diag;
   std::string scale_note;
@@ -58,15 +133,21 @@ bool check_one(const std::string& file, const CheckOptions& o) {
 
 void add_check_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* cmd = app.add_subcommand("check", "Read SVG worlds or scenario YAML files and print what they contain, or their errors");
+  CLI::App* cmd = app.add_subcommand("check", "Read SVG worlds, scenario YAML or URDF robots and print what they contain, or their errors");
   cmd->footer(
-      "Prints the world's size in metres and counts of walls, obstacles, raised areas, victims,\n"
-      "rubble and robot starts, then any warnings and errors with file, line and element.\n"
+      "For worlds: the size in metres and counts of walls, obstacles, raised areas, victims,\n"
+      "rubble and robot starts. For URDF robots: links with masses, joints, meshes with their\n"
+      "triangle and convex-hull vertex counts, sensors and the drive. Then any warnings and\n"
+      "errors with file, line and element.\n"
       "Exit code 0 when every file is usable, 2 when any has errors.\n\n"
       "Examples:\n"
       "  rescuesim check worlds/arena.svg\n"
-      "  rescuesim check worlds/default.yaml mazes/*.svg");
-  cmd->add_option("files", o->files, "SVG drawings (.svg) or scenarios (.yaml)")->required();
+      "  rescuesim check worlds/default.yaml mazes/*.svg\n"
+      "  rescuesim check --resource-path worlds/robots worlds/robots/turtlebot3_description/urdf/turtlebot3_burger.urdf");
+  cmd->add_option("files", o->files, "SVG drawings (.svg), scenarios (.yaml) or robots (.urdf)")->required();
+  cmd->add_option("--resource-path", o->resource_paths,
+                  "URDF: a folder where package:// URIs are looked for first (repeatable; then ROS_PACKAGE_PATH, AMENT_PREFIX_PATH)")
+      ->allow_extra_args(false);
   cmd->add_option("--scale", o->scale, "SVG user units per metre when a drawing has no physical units")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

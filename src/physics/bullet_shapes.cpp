@@ -1,5 +1,10 @@
 #include "physics/bullet_convert.h"
 
+#include <LinearMath/btConvexHullComputer.h>
+
+#include <algorithm>
+#include <vector>
+
 namespace rescuesim::bullet {
 
 btCollisionShape* ShapeStore::make(const Geometry& g) {
@@ -11,11 +16,25 @@ btCollisionShape* ShapeStore::make(const Geometry& g) {
       break;
     case Geometry::Type::sphere: s = std::make_unique<btSphereShape>(btScalar(0.5 * g.size.x())); break;
     case Geometry::Type::convex: {
+      // Bullet puts its collision margin outside a hull; the points are moved in by the margin
+      // first (the hull's face planes shifted inward, as btConvexHullComputer's shrink does), so
+      // hull plus margin is the drawn surface rather than 2 mm more. Bullet's default 4 cm margin
+      // would round off ramps and thin platforms; 2 mm keeps GJK robust.
+      constexpr double kMargin = 0.002;
+      std::vector<double> coords;
+      for (const auto& v : g.mesh.vertices) coords.insert(coords.end(), {v.x(), v.y(), v.z()});
+      btConvexHullComputer computer;
+      const int n = static_cast<int>(g.mesh.vertices.size());
+      const double shrunk = computer.compute(coords.data(), 3 * sizeof(double), n, btScalar(kMargin), btScalar(0.25));
       auto hull = std::make_unique<btConvexHullShape>();
-      for (const auto& v : g.mesh.vertices) hull->addPoint(to_bt(v), false);
+      if (shrunk > 1e-5 && computer.vertices.size() >= 4) {
+        for (int i = 0; i < computer.vertices.size(); ++i) hull->addPoint(computer.vertices[i], false);
+        hull->setMargin(btScalar(std::min(kMargin, shrunk)));
+      } else {
+        for (const auto& v : g.mesh.vertices) hull->addPoint(to_bt(v), false);
+        hull->setMargin(btScalar(kMargin));
+      }
       hull->recalcLocalAabb();
-      // Bullet's default 4 cm margin would round off ramps and thin platforms
-      hull->setMargin(0.002f);
       s = std::move(hull);
       break;
     }

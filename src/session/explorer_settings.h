@@ -6,6 +6,7 @@
 #include <string>
 
 #include "autonomy/explorer.h"
+#include "world/robot_spec.h"
 
 namespace rescuesim {
 
@@ -14,4 +15,13 @@ namespace rescuesim {
 /// Throws Error for any other name.
 autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller);
 
+/// The same, fitted to a robot other than the built-in one (a URDF robot): its radius is the
+/// footprint of its collision shapes around the root link, distances to walls scale with it,
+/// and speeds stay within its drive's limits. The built-in rescue robot gets exactly
+/// builtin_explorer_config(controller).
+autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller, const RobotSpec& robot);
+
+/// The radius of a robot's footprint: the farthest collision point from the root link's
+/// vertical axis, at the starting joint positions (m).
+double footprint_radius(const RobotSpec& robot);
 }  // namespace rescuesim

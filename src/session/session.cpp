@@ -23,6 +23,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   Diagnostics problems = validate(spec_);
   diagnostics_.append(problems);
   if (diagnostics_.has_errors()) diagnostics_.throw_if_errors();
+  for (const auto& c : scenario_.robots) diagnostics_.append(c.diagnostics);
   World world = compile_scenario(scenario_, spec_, models);
   bool any_camera = false;
   for (auto& robot : world.robots) {
@@ -73,12 +74,25 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     }
     const bool wants = options_.controllers && r < configs.size() && configs[r].controller != "none";
     if (!wants) continue;
-    if (!laser || !odom || robot.spec.link_index(laser->link) != 0) {
-      throw Error({scenario_.source_file, 0, "robots[" + std::to_string(r) + "].controller"},
-                  "the " + configs[r].controller + " needs an enabled planar laser on base_link and odometry");
+    const SourceRef where{scenario_.source_file, 0, "robots[" + std::to_string(r) + "].controller"};
+    if (!laser || !odom) throw Error(where, "the " + configs[r].controller + " needs an enabled planar laser and odometry (a drive)");
+    // the laser must sit on the root link, or on links fixed to it
+    for (int l = robot.spec.link_index(laser->link); l > 0;) {
+      const JointSpec* up = nullptr;
+      for (const auto& j : robot.spec.joints) {
+        if (j.child == robot.spec.links[static_cast<std::size_t>(l)].name) up = &j;
+      }
+      if (!up || up->type != JointSpec::Type::fixed) {
+        throw Error(where, "the " + configs[r].controller + " needs its laser fixed to the robot's body; link '" + laser->link + "' moves on joint '" +
+                               (up ? up->name : std::string("?")) + "'");
+      }
+      l = robot.spec.link_index(up->parent);
     }
-    const autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller);
-    controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(laser->X_LS.to_pose2(), ec);
+    const int laser_link = robot.spec.link_index(laser->link);
+    const Pose3 X_BS = laser_link == 0 ? laser->X_LS
+                                       : link_poses(robot.spec, initial_positions(robot.spec))[static_cast<std::size_t>(laser_link)] * laser->X_LS;
+    const autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller, robot.spec);
+    controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(X_BS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
       ex->on_odometry(std::get<msg::Odometry>(m));

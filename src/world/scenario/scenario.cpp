@@ -88,9 +88,16 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
     s.maze = read_maze(w.map("maze"), s.seed);
   }
   w.finish();
+  const bool on_disk = !file.empty() && file != "<built-in>";
+  for (const auto& p : root.strings("resource_paths", {})) {
+    std::filesystem::path dir = p;
+    if (dir.is_relative() && on_disk) dir = std::filesystem::path(file).parent_path() / dir;
+    s.resource_paths.push_back(dir);
+  }
+  RobotReadContext context{on_disk ? file : "", s.resource_paths};
   const auto robots = root.sequence("robots");
   for (std::size_t i = 0; i < robots.size(); ++i) {
-    s.robots.push_back(read_robot(robots[i], static_cast<int>(i), models));
+    s.robots.push_back(read_robot(robots[i], static_cast<int>(i), models, context));
     for (std::size_t k = 0; k < i; ++k) {
       if (s.robots[k].name == s.robots[i].name) throw Error(robots[i].where("name"), "two robots are named '" + s.robots[i].name + "'");
     }
@@ -160,9 +167,13 @@ std::vector<RobotConfig> robot_configs(const Scenario& scenario, const WorldSpec
 }
 
 World compile_scenario(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models) {
-  World world = compile_world(spec, models);
-  const auto configs = robot_configs(scenario, spec, models);
+  // robots described by their own files (URDF) are models of this scenario only
+  ModelMap all = models;
+  for (const auto& c : scenario.robots) all.emplace(c.model, c.spec);
+  World world = compile_world(spec, all);
+  const auto configs = robot_configs(scenario, spec, all);
   for (std::size_t i = 0; i < world.robots.size() && i < configs.size(); ++i) world.robots[i].spec = configs[i].spec;
+  add_robot_materials(world);
   return world;
 }
 

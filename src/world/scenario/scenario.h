@@ -26,6 +26,8 @@ struct RobotConfig {
   std::optional<Pose2> start;       ///< overrides the world's start of the same index
   std::string controller = "explorer";  ///< explorer, wall_follower, none (driven from outside, e.g. ROS)
   RobotSpec spec;                   ///< the model with this scenario's sensor and head settings applied
+  std::string urdf;                 ///< the URDF file it came from (resolved), "" for built-in models
+  Diagnostics diagnostics;          ///< warnings from importing its description
 };
 
 /// A scenario as authored.
@@ -46,6 +48,10 @@ struct Scenario {
   std::optional<std::filesystem::path> svg;  ///< resolved against the scenario file's folder
   std::optional<MazeOptions> maze;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
+
+  /// Folders where package:// URIs are looked for first (relative entries are taken from the
+  /// scenario file's folder), before ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.
+  std::vector<std::filesystem::path> resource_paths;
 
   /// Robots; empty means one robot per start in the world, with default settings.
   std::vector<RobotConfig> robots;

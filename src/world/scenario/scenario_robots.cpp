@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "world/urdf/urdf_import.h"
+
 namespace rescuesim {
 
 namespace {
@@ -91,22 +93,115 @@ void read_sensor(const YamlNode& n, SensorSpec& s) {
   n.finish();
 }
 
+/// The sensor kinds a `sensors:` list may add, with their default topics.
+SensorSpec::Type sensor_type_of(const YamlNode& item) {
+  const std::string t = item.choice("type", "", {"lidar", "sonar", "imu", "color_camera", "depth_camera", "thermal_camera"});
+  if (t == "lidar") return SensorSpec::Type::lidar;
+  if (t == "sonar") return SensorSpec::Type::sonar;
+  if (t == "imu") return SensorSpec::Type::imu;
+  if (t == "color_camera") return SensorSpec::Type::color_camera;
+  if (t == "depth_camera") return SensorSpec::Type::depth_camera;
+  return SensorSpec::Type::thermal_camera;
+}
+
+/// `sensors:` as a list: each entry changes the sensor of that name, or adds one of `type` on
+/// `link` (URDF robots name their links; frames are the link's unless a pose is given).
+void read_sensor_list(const YamlNode& node, RobotSpec& spec) {
+  const auto items = node.sequence("sensors");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const YamlNode& item = items[i];
+    const std::string name = item.string("name", "");
+    SensorSpec* existing = name.empty() ? nullptr : spec.find_sensor(name);
+    if (existing) {
+      item.string("type", "");
+      item.string("link", "");
+      read_sensor(item, *existing);
+      continue;
+    }
+    SensorSpec s;
+    s.type = sensor_type_of(item);
+    const std::string kind = sensor_type_name(s.type);
+    int same = 0;
+    for (const auto& x : spec.sensors) same += x.type == s.type;
+    s.name = name.empty() ? (same == 0 ? kind : kind + "_" + std::to_string(same + 1)) : name;
+    s.link = item.string("link", spec.links.front().name);
+    if (spec.link_index(s.link) < 0) {
+      std::string known;
+      for (const auto& l : spec.links) known += (known.empty() ? "" : ", ") + l.name;
+      throw Error(item.where("link"), "sensor '" + s.name + "': '" + s.link + "' is not a link of the robot (links: " + known + ")");
+    }
+    s.frame_id = item.has("pose") ? s.name : s.link;
+    switch (s.type) {
+      case SensorSpec::Type::lidar: s.topic = same == 0 ? "scan" : s.name + "/scan"; break;
+      case SensorSpec::Type::sonar: s.topic = "sonar/" + s.name; break;
+      case SensorSpec::Type::imu: s.topic = same == 0 ? "imu/data" : s.name + "/data"; break;
+      case SensorSpec::Type::color_camera: s.topic = s.name + "/image_raw"; break;
+      case SensorSpec::Type::depth_camera: s.topic = s.name + "/depth/image_raw"; break;
+      default: s.topic = s.name + "/image_raw"; break;
+    }
+    s.X_LS = Pose3{};
+    read_sensor(item, s);
+    spec.sensors.push_back(s);
+  }
+}
+
+/// `drive:`: a differential (skid-steer with several wheels a side) drive on named joints.
+void read_drive(const YamlNode& d, RobotSpec& spec) {
+  d.choice("type", "diff_drive", {"diff_drive", "skid_steer"});
+  const auto left = d.strings("left", spec.drive.left_wheels), right = d.strings("right", spec.drive.right_wheels);
+  const double radius = d.number("wheel_radius", 0, 0, 10), separation = d.number("wheel_separation", 0, 0, 100);
+  if (d.has("left") || d.has("right") || radius > 0 || separation > 0) configure_diff_drive(spec, left, right, radius, separation, d.where());
+  DriveSpec& dr = spec.drive;
+  dr.max_linear = d.number("max_linear", dr.max_linear, 1e-3, 100);
+  dr.max_angular = d.number("max_angular", dr.max_angular, 1e-3, 100);
+  dr.max_linear_accel = d.number("max_linear_accel", dr.max_linear_accel, 1e-3, 1000);
+  dr.max_angular_accel = d.number("max_angular_accel", dr.max_angular_accel, 1e-3, 1000);
+  dr.track_multiplier = d.number("track_multiplier", dr.track_multiplier, 0.1, 10);
+  d.finish();
+}
+
+/// `urdf:`: the robot's own description, with its collision settings.
+RobotSpec read_urdf_robot(const YamlNode& node, const RobotReadContext& context, RobotConfig& c) {
+  UrdfOptions o;
+  o.resolver = ResourceResolver(context.resource_paths);
+  const std::string mode = node.choice("collision", "auto", {"auto", "hull", "decompose"});
+  o.collision = mode == "hull" ? CollisionMode::hull : mode == "decompose" ? CollisionMode::decompose : CollisionMode::automatic;
+  o.hull_vertices = static_cast<int>(node.integer("hull_vertices", o.hull_vertices, 4, 4096));
+  const std::string uri = node.string("urdf", "");
+  const std::filesystem::path file = o.resolver.resolve(uri, {context.file, node.where("urdf").line, node.path() + ".urdf"});
+  UrdfRobot u = load_urdf(file, o);
+  c.urdf = file.string();
+  c.diagnostics = u.diagnostics;
+  return u.spec;
+}
+
 }  // namespace
 
-RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models) {
+RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, const RobotReadContext& context) {
   RobotConfig c;
   c.name = node.string("name", index == 0 ? "robot" : "robot_" + std::to_string(index + 1));
   if (c.name.empty() || c.name.find_first_of("/ ") != std::string::npos) {
     throw Error(node.where("name"), "robot name '" + c.name + "' must be non-empty without '/' or spaces (it names topics)");
   }
-  c.model = node.string("model", c.model);
-  const auto it = models.find(c.model);
-  if (it == models.end()) {
-    std::string known;
-    for (const auto& [k, v] : models) known += (known.empty() ? "" : ", ") + k;
-    throw Error(node.where("model"), "unknown robot model '" + c.model + "' (known: " + known + ")");
+  if (node.has("urdf")) {
+    if (node.has("model")) throw Error(node.where("model"), "give either model (a built-in robot) or urdf (your own), not both");
+    c.spec = read_urdf_robot(node, context, c);
+    c.model = "urdf:" + c.spec.model + ":" + c.name;
+    c.spec.model = c.model;
+  } else {
+    c.model = node.string("model", c.model);
+    const auto it = models.find(c.model);
+    if (it == models.end()) {
+      std::string known;
+      for (const auto& [k, v] : models) known += (known.empty() ? "" : ", ") + k;
+      throw Error(node.where("model"), "unknown robot model '" + c.model + "' (known: " + known + "; or give urdf: a file of your own)");
+    }
+    c.spec = it->second;
   }
-  c.spec = it->second;
+  if (node.has("drive")) {
+    read_drive(node.map("drive"), c.spec);
+    add_standard_sensors(c.spec);
+  }
   c.controller = node.choice("controller", c.controller, {"explorer", "wall_follower", "none"});
   if (node.has("start")) {
     const YamlNode s = node.map("start");
@@ -125,13 +220,17 @@ RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models) 
       j.initial = q;
     }
   }
-  const YamlNode sensors = node.map("sensors");
-  if (sensors.is_map()) {
-    for (SensorSpec& s : c.spec.sensors) {
-      if (sensors.has(s.name)) read_sensor(sensors.map(s.name), s);
+  if (node.has_sequence("sensors")) {
+    read_sensor_list(node, c.spec);
+  } else {
+    const YamlNode sensors = node.map("sensors");
+    if (sensors.is_map()) {
+      for (SensorSpec& s : c.spec.sensors) {
+        if (sensors.has(s.name)) read_sensor(sensors.map(s.name), s);
+      }
     }
+    sensors.finish();
   }
-  sensors.finish();
   node.finish();
   return c;
 }

@@ -6,7 +6,13 @@
 
 namespace rescuesim {
 
+/// What reading a robot entry needs to know about its scenario.
+struct RobotReadContext {
+  std::string file;                                   ///< the scenario file ("" or "<built-in>": none)
+  std::vector<std::filesystem::path> resource_paths;  ///< where package:// looks first (absolute)
+};
+
 /// Reads one entry of `robots:`; `index` names it when it has no name.
-RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models);
+RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, const RobotReadContext& context = {});
 
 }  // namespace rescuesim

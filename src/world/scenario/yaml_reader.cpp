@@ -49,6 +49,21 @@ bool YamlNode::has(const std::string& key) const {
   return n.IsDefined() && !n.IsNull();
 }
 
+bool YamlNode::has_sequence(const std::string& key) const { return has(key) && node_[key].IsSequence(); }
+
+std::vector<std::string> YamlNode::strings(const std::string& key, const std::vector<std::string>& fallback) const {
+  YAML::Node n = get(key);
+  if (!n.IsDefined() || n.IsNull()) return fallback;
+  if (n.IsScalar()) return {n.as<std::string>()};
+  if (!n.IsSequence()) fail(key, "expected a list of names, e.g. [a, b]");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (!n[i].IsScalar()) fail(key, "expected a list of names, e.g. [a, b]");
+    out.push_back(n[i].as<std::string>());
+  }
+  return out;
+}
+
 YAML::Node YamlNode::get(const std::string& key) const {
   read_->insert(key);
   if (!node_.IsMap()) return YAML::Node();

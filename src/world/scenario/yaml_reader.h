@@ -24,6 +24,8 @@ class YamlNode {
   static YamlNode parse(const std::string& text, const std::string& file);
 
   bool has(const std::string& key) const;
+  /// True when the value at `key` is a list (without marking it read).
+  bool has_sequence(const std::string& key) const;
   bool is_map() const { return node_.IsMap(); }
   bool is_sequence() const { return node_.IsSequence(); }
   bool is_null() const { return !node_ || node_.IsNull(); }
@@ -52,6 +54,8 @@ class YamlNode {
   std::string string(const std::string& key, const std::string& fallback) const;
   /// Reads a string that must be one of `choices`.
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices) const;
+  /// Reads a list of strings (`fallback` when absent).
+  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback) const;
   /// Reads a fixed-length list of numbers.
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback, std::size_t count) const;
 

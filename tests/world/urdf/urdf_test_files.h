@@ -1,0 +1,198 @@
+#pragma once
+// Fixtures for the URDF tests, written by the tests themselves: a temporary folder per test,
+// a binary STL writer, closed box and prism meshes, environment variables set for one scope,
+// the Error a call throws, and look-ups into an imported robot.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "core/error.h"
+#include "world/geometry.h"
+#include "world/urdf/urdf_import.h"
+
+namespace rescuesim::urdf_test {
+
+/// The TurtleBot3 description shipped in worlds/robots (ROBOTIS, Apache-2.0).
+inline std::filesystem::path robots_dir() { return std::filesystem::path(RESCUESIM_SOURCE_DIR) / "worlds" / "robots"; }
+inline std::filesystem::path turtlebot3_urdf(const std::string& model) {
+  return robots_dir() / "turtlebot3_description" / "urdf" / ("turtlebot3_" + model + ".urdf");
+}
+
+/// A fresh folder under the system temp folder, removed with its contents afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "none";
+    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    path_ = std::filesystem::temp_directory_path() / ("rescuesim_urdf_" + test + "_" + std::to_string(::getpid()) + "_" +
+                                                     std::to_string(counter++) + "_" + std::to_string(stamp));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+
+  /// Writes `bytes` to `name` (folders created as needed) in this folder; returns its path.
+  std::filesystem::path write(const std::filesystem::path& name, const std::string& bytes) const {
+    const auto file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return file;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Appends the little-endian bytes of a trivially copyable value (x86 and ARM are little-endian).
+template <typename T>
+void put(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
+}
+
+/// A binary STL: 80-byte header, uint32 triangle count, then per triangle the normal and three
+/// corners as 12 float32 and a uint16 attribute of 0.
+inline std::string binary_stl(const TriangleMesh& m) {
+  const std::string title = "rescuesim urdf test";
+  std::string out = title + std::string(80 - title.size(), ' ');
+  put(out, static_cast<std::uint32_t>(m.triangles.size()));
+  for (const auto& t : m.triangles) {
+    const Vec3& a = m.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = m.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = m.vertices[static_cast<std::size_t>(t[2])];
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    for (const Vec3& v : {n, a, b, c}) {
+      for (int k = 0; k < 3; ++k) put(out, static_cast<float>(v[k]));
+    }
+    put(out, std::uint16_t{0});
+  }
+  return out;
+}
+
+/// A closed prism: the counter-clockwise polygon `xz` in the x-z plane (seen from -y, so x
+/// right and z up), extruded from y = -half_width to +half_width; outward-facing triangles.
+inline TriangleMesh xz_prism(const std::vector<Vec2>& xz, double half_width) {
+  TriangleMesh m;
+  const int n = static_cast<int>(xz.size());
+  for (double y : {-half_width, half_width}) {
+    for (const Vec2& p : xz) m.vertices.emplace_back(p.x(), y, p.y());
+  }
+  // x cross z = -y: the polygon's own order faces the -y cap outward, the reverse the +y cap
+  for (int i = 1; i + 1 < n; ++i) {
+    m.triangles.push_back({0, i, i + 1});
+    m.triangles.push_back({n, n + i + 1, n + i});
+  }
+  // each edge i -> j swept along +y
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.push_back({i, n + i, n + j});
+    m.triangles.push_back({i, n + j, j});
+  }
+  return m;
+}
+
+/// A closed axis-aligned box from `lo` to `hi`.
+inline TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi) {
+  TriangleMesh m = xz_prism({{lo.x(), lo.z()}, {hi.x(), lo.z()}, {hi.x(), hi.z()}, {lo.x(), hi.z()}}, 0.5 * (hi.y() - lo.y()));
+  for (Vec3& v : m.vertices) v.y() += 0.5 * (lo.y() + hi.y());
+  return m;
+}
+
+/// Sets (or, with nullopt, unsets) an environment variable until the end of the scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::optional<std::string>& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value) {
+      ::setenv(name, value->c_str(), 1);
+    } else {
+      ::unsetenv(name);
+    }
+  }
+  ~ScopedEnv() {
+    if (old_) {
+      ::setenv(name_.c_str(), old_->c_str(), 1);
+    } else {
+      ::unsetenv(name_.c_str());
+    }
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  std::string name_;
+  std::optional<std::string> old_;
+};
+
+/// The Error `f` throws; fails the test (and returns an empty Error) when it throws nothing.
+template <typename F>
+Error error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected a rescuesim::Error, nothing was thrown";
+  return Error("(nothing thrown)");
+}
+
+/// Import options that look for meshes nowhere but relative to the URDF (no ROS or Gazebo
+/// environment).
+inline UrdfOptions no_environment() {
+  UrdfOptions o;
+  o.resolver = ResourceResolver({}, false);
+  return o;
+}
+
+/// The link of this name; fails the test (and returns the first link) when there is none.
+inline const LinkSpec& link_named(const RobotSpec& r, const std::string& name) {
+  const int i = r.link_index(name);
+  EXPECT_GE(i, 0) << "no link " << name;
+  return r.links.at(static_cast<std::size_t>(std::max(i, 0)));
+}
+
+/// The joint of this name; fails the test (and returns the first joint) when there is none.
+inline const JointSpec& joint_named(const RobotSpec& r, const std::string& name) {
+  const int i = r.joint_index(name);
+  EXPECT_GE(i, 0) << "no joint " << name;
+  return r.joints.at(static_cast<std::size_t>(std::max(i, 0)));
+}
+
+/// Every warning of an import, one per line, for failure messages and searches.
+inline std::string warnings(const UrdfRobot& u) {
+  std::string out;
+  for (const auto& d : u.diagnostics.items()) out += d.str() + "\n";
+  return out;
+}
+
+/// The line (1-based) of the first occurrence of `needle` in `text`.
+inline int line_of(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  EXPECT_NE(at, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(std::min(at, text.size())), '\n'));
+}
+
+}  // namespace rescuesim::urdf_test
