@@ -14,6 +14,7 @@
 #include "app/bench_batch.h"
 #include "app/bench_child.h"
 #include "app/bench_ros.h"
+#include "app/bench_urdf.h"
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "physics/physics.h"
@@ -45,6 +46,8 @@ struct BenchOptions {
   int batch_trials = 4;         ///< per batch measurement (0: skip)
   bool ros = true;              ///< the ROS figures (latency, bridge cost)
   bool ros_only = false;        ///< only the ROS figures
+  std::string urdf_scenario = "worlds/turtlebot3_maze.yaml";  ///< the URDF figures' scenario
+  bool urdf_only = false;       ///< only the URDF figures
   BenchRosOptions ros_options;
 };
 
@@ -259,6 +262,14 @@ int run_bench(const BenchOptions& o) {
     if (!o.out.empty()) write_file_atomic(o.out, text);
     return kExitOk;
   }
+  if (o.urdf_only) {
+    report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
+                                [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   std::fprintf(stderr, "bench: physics ...\n");
   report["physics"] = bench_physics(world, o.physics_steps);
   std::fprintf(stderr, "bench: lidar rays ...\n");
@@ -302,6 +313,8 @@ int run_bench(const BenchOptions& o) {
   json d2 = run_child(shipped, models, true);
   d2["note"] = "the shipped camera settings: colour 640x480, depth 320x240, thermal 160x120, all 10 Hz";
   report["default_scenario_cameras_shipped"] = d2;
+  report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
+                              [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
   report["mcap_recording"] = bench_recording(def, models);
   if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
   report["python_step"] = bench_python_step();
@@ -334,7 +347,10 @@ void add_bench_command(CLI::App& app, Action& action) {
       "and ROS 2 (a Cyclone DDS reader), in realtime runs; and the real-time factor with --ros1 --ros2\n"
       "attached and subscribed beside the same lockstep run without bridges (target >= 0.9x; also\n"
       "with /scan subscribers alone). A transport this build or machine lacks is reported as skipped,\n"
-      "with the reason (docs/ros.md).");
+      "with the reason (docs/ros.md).\n"
+      "URDF (urdf; docs/robots.md): reading the --urdf-scenario's robot with its meshes beside loading\n"
+      "the mesh files alone; convex hull of its largest mesh (64 vertices) beside the exact hull, and\n"
+      "its convex decomposition; the robot's real-time factor beside the built-in robot in the same maze.");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
@@ -343,6 +359,9 @@ void add_bench_command(CLI::App& app, Action& action) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost)");
   cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
+  cmd->add_flag("--urdf-only", o->urdf_only, "measure only the URDF figures");
+  cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
+      ->capture_default_str();
   cmd->add_option("--ros-latency-time", o->ros_options.latency_seconds, "wall seconds of each realtime ROS latency run")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--ros-cost-time", o->ros_options.rtf_seconds, "sim seconds of each lockstep run with and without bridges")
