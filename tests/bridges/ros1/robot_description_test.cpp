@@ -52,32 +52,18 @@ std::pair<std::string, std::string> read_description(const RosMaster& master, co
   return {slurp(topic), slurp(param)};
 }
 
-/// A TurtleBot3 burger from worlds/robots/ with its wheels as a differential drive (which gives
-/// it wheel odometry, and leaves it no joint for joint_command).
-const char* kTurtlebotYaml = R"(name: ros1_turtlebot3
-seed: 3
-world: {maze: {cols: 3, rows: 3, cell_size: 1.0, victims: 0}}
-resource_paths: [robots]
-robots:
-  - name: tb3
-    urdf: package://turtlebot3_description/urdf/turtlebot3_burger.urdf
-    drive: {type: diff_drive, left: [wheel_left_joint], right: [wheel_right_joint], max_linear: 0.22, max_angular: 2.84}
-    controller: none
-)";
-
 TEST(Ros1Urdf, TheDescriptionIsALatchedTopicAndAParameter) {
   SKIP_WITHOUT_ROS1();
   const fs::path dir = temp_dir("ros1-urdf");
   // the scenario's resource path "robots" is the project's worlds/robots
-  fs::create_directory_symlink(fs::path(RESCUESIM_SOURCE_DIR) / "worlds" / "robots", dir / "robots");
-  write_text(dir / "tb3.yaml", kTurtlebotYaml);
-  const CommandResult check = run_command("'" RESCUESIM_EXE "' check '" + (dir / "tb3.yaml").string() + "'");
+  const fs::path yaml = write_turtlebot3(dir, "ros1_turtlebot3");
+  const CommandResult check = run_command("'" RESCUESIM_EXE "' check '" + yaml.string() + "'");
   ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
 
   RosMaster master(dir);
   ASSERT_TRUE(master.start()) << "roscore did not come up on port " << master.port();
   Simulator sim;
-  ASSERT_TRUE(sim.start(master, dir, dir / "tb3.yaml", {"--duration", "120", "--no-cameras"})) << sim.output();
+  ASSERT_TRUE(sim.start(master, dir, yaml, {"--duration", "120", "--no-cameras"})) << sim.output();
 
   // the rospy node gets the same text from the topic (latched: it subscribes after it went out)
   // and from the parameter

@@ -16,17 +16,6 @@ using namespace testing;
 
 constexpr const char* kRobotStatePublisher = "/usr/lib/robot_state_publisher/robot_state_publisher";
 
-const char* kTurtlebotYaml = R"(name: ros1_rsp
-seed: 3
-world: {maze: {cols: 3, rows: 3, cell_size: 1.0, victims: 0}}
-resource_paths: [robots]
-robots:
-  - name: tb3
-    urdf: package://turtlebot3_description/urdf/turtlebot3_burger.urdf
-    drive: {type: diff_drive, left: [wheel_left_joint], right: [wheel_right_joint], max_linear: 0.22, max_angular: 2.84}
-    controller: none
-)";
-
 /// Collects the last transform of every child frame on /tf + /tf_static (ours) and on
 /// /rsp/tf + /rsp/tf_static (robot_state_publisher's), until robot_state_publisher has given
 /// `argv[2]` frames and ours has them too, then writes their differences as JSON to argv[1].
@@ -68,14 +57,13 @@ TEST(Ros1RobotStatePublisher, TfMatchesRobotStatePublisherOnTheSameUrdfAndJointS
   if (!missing.empty()) GTEST_SKIP() << missing;
   if (!fs::exists(kRobotStatePublisher)) GTEST_SKIP() << kRobotStatePublisher << " is not installed (Debian package ros-robot-state-publisher)";
   const fs::path dir = temp_dir("ros1-rsp");
-  fs::create_directory_symlink(fs::path(RESCUESIM_SOURCE_DIR) / "worlds" / "robots", dir / "robots");
-  write_text(dir / "tb3.yaml", kTurtlebotYaml);
+  const fs::path yaml = write_turtlebot3(dir, "ros1_rsp");
   write_text(dir / "compare_tf.py", kCompareTfPy);
 
   RosMaster master(dir);
   ASSERT_TRUE(master.start()) << "roscore did not come up on port " << master.port();
   Simulator sim;
-  ASSERT_TRUE(sim.start(master, dir, dir / "tb3.yaml", {"--duration", "300", "--no-cameras"})) << sim.output();
+  ASSERT_TRUE(sim.start(master, dir, yaml, {"--duration", "300", "--no-cameras"})) << sim.output();
 
   // turn the wheels away from their zero position, then let the robot stand (cmd_vel times out)
   auto drive = master.spawn({"rostopic", "pub", "-r", "10", "/cmd_vel", "geometry_msgs/Twist", "{linear: {x: 0.1}}"});

@@ -73,6 +73,25 @@ inline fs::path write_room(const fs::path& dir) {
   return dir / "room.yaml";
 }
 
+/// A TurtleBot3 burger from worlds/robots/ (its URDF, meshes and licence) in a small maze, with
+/// its wheels as a differential drive and no built-in controller: writes `name`.yaml into `dir`
+/// with a link to the project's worlds/robots beside it; returns the YAML's path.
+inline fs::path write_turtlebot3(const fs::path& dir, const std::string& name) {
+  if (!fs::exists(dir / "robots")) fs::create_directory_symlink(fs::path(RESCUESIM_SOURCE_DIR) / "worlds" / "robots", dir / "robots");
+  const fs::path yaml = dir / (name + ".yaml");
+  write_text(yaml, "name: " + name + R"(
+seed: 3
+world: {maze: {cols: 3, rows: 3, cell_size: 1.0, victims: 0}}
+resource_paths: [robots]
+robots:
+  - name: tb3
+    urdf: package://turtlebot3_description/urdf/turtlebot3_burger.urdf
+    drive: {type: diff_drive, left: [wheel_left_joint], right: [wheel_right_joint], max_linear: 0.22, max_angular: 2.84}
+    controller: none
+)");
+  return yaml;
+}
+
 /// Why the ROS 1 tools cannot be used here, or "" when they can.
 inline std::string ros1_tools_missing() {
   for (const char* tool : {"roscore", "rostopic", "rosbag", "rosparam", "timeout"}) {

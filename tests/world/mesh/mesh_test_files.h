@@ -1,10 +1,14 @@
 #pragma once
-// Fixture files for the mesh tests, written by the tests themselves: a temporary directory per
-// test, and small writers for binary STL and base64 (glTF's embedded buffers).
+// Fixture files for the mesh tests (and the URDF tests, tests/world/urdf), written by the tests
+// themselves: a temporary folder per test, and small writers for binary STL and base64 (glTF's
+// embedded buffers).
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -17,14 +21,16 @@
 
 namespace rescuesim::mesh_test {
 
-/// A fresh directory under the system temp directory, removed with its contents afterwards.
+/// A fresh folder under the system temp folder, removed with its contents afterwards.
 class TempDir {
  public:
   TempDir() {
+    static std::atomic<int> counter{0};
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "none";
     const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
     path_ = std::filesystem::temp_directory_path() /
-            ("rescuesim_mesh_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(stamp));
+            ("rescuesim_" + test + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + std::to_string(stamp));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {
@@ -36,9 +42,10 @@ class TempDir {
 
   const std::filesystem::path& path() const { return path_; }
 
-  /// Writes `bytes` to `name` in this directory and returns its path.
-  std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+  /// Writes `bytes` to `name` (folders created as needed) in this folder; returns its path.
+  std::filesystem::path write(const std::filesystem::path& name, const std::string& bytes) const {
     const auto file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
     std::ofstream(file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     return file;
   }

@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "world/geometry.h"
+#include "world/mesh/mesh_test_files.h"
 #include "world/urdf/urdf_import.h"
 
 namespace rescuesim::urdf_test {
@@ -32,65 +33,9 @@ inline std::filesystem::path turtlebot3_urdf(const std::string& model) {
   return robots_dir() / "turtlebot3_description" / "urdf" / ("turtlebot3_" + model + ".urdf");
 }
 
-/// A fresh folder under the system temp folder, removed with its contents afterwards.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::string test = info ? std::string(info->test_suite_name()) + "_" + info->name() : "none";
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    path_ = std::filesystem::temp_directory_path() / ("rescuesim_urdf_" + test + "_" + std::to_string(::getpid()) + "_" +
-                                                     std::to_string(counter++) + "_" + std::to_string(stamp));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const std::filesystem::path& path() const { return path_; }
-
-  /// Writes `bytes` to `name` (folders created as needed) in this folder; returns its path.
-  std::filesystem::path write(const std::filesystem::path& name, const std::string& bytes) const {
-    const auto file = path_ / name;
-    std::filesystem::create_directories(file.parent_path());
-    std::ofstream(file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return file;
-  }
-
- private:
-  std::filesystem::path path_;
-};
-
-/// Appends the little-endian bytes of a trivially copyable value (x86 and ARM are little-endian).
-template <typename T>
-void put(std::string& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
-}
-
-/// A binary STL: 80-byte header, uint32 triangle count, then per triangle the normal and three
-/// corners as 12 float32 and a uint16 attribute of 0.
-inline std::string binary_stl(const TriangleMesh& m) {
-  const std::string title = "rescuesim urdf test";
-  std::string out = title + std::string(80 - title.size(), ' ');
-  put(out, static_cast<std::uint32_t>(m.triangles.size()));
-  for (const auto& t : m.triangles) {
-    const Vec3& a = m.vertices[static_cast<std::size_t>(t[0])];
-    const Vec3& b = m.vertices[static_cast<std::size_t>(t[1])];
-    const Vec3& c = m.vertices[static_cast<std::size_t>(t[2])];
-    const Vec3 n = (b - a).cross(c - a).normalized();
-    for (const Vec3& v : {n, a, b, c}) {
-      for (int k = 0; k < 3; ++k) put(out, static_cast<float>(v[k]));
-    }
-    put(out, std::uint16_t{0});
-  }
-  return out;
-}
+using mesh_test::binary_stl;
+using mesh_test::put;
+using mesh_test::TempDir;
 
 /// A closed prism: the counter-clockwise polygon `xz` in the x-z plane (seen from -y, so x
 /// right and z up), extruded from y = -half_width to +half_width; outward-facing triangles.
