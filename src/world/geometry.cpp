@@ -63,7 +63,7 @@ TriangleMesh mesh_of(const Geometry& g, int segments) {
       const Vec3 h = 0.5 * g.size;
       for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
       // two triangles per face, counter-clockwise seen from outside
-      const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+      const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
       for (const auto& f : faces) {
         m.triangles.push_back({f[0], f[1], f[2]});
         m.triangles.push_back({f[0], f[2], f[3]});

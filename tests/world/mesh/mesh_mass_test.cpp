@@ -80,3 +80,21 @@ TEST(MeshMass, EmptyMeshHasNothing) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+TEST(MeshMass, PrimitiveMeshesFaceOutward) {
+  // geometry.h promises counter-clockwise triangles seen from outside: a positive signed volume
+  for (const Geometry& g : {Geometry::box({1, 2, 3}), Geometry::cylinder(0.5, 2), Geometry::sphere(1)}) {
+    const TriangleMesh m = mesh_of(g, 24);
+    double signed_volume = 0;
+    for (const auto& t : m.triangles) signed_volume += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    EXPECT_GT(signed_volume, 0) << static_cast<int>(g.type);
+    EXPECT_NEAR(signed_volume, mass_properties(m).volume, 1e-12);
+  }
+  EXPECT_NEAR(mass_properties(mesh_of(Geometry::box({1, 2, 3}))).volume, 6.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace rescuesim
