@@ -64,6 +64,11 @@ void drive(Simulation& sim, double v, double w, double seconds) {
 }
 
 TEST(UrdfDrive, BurgerDrivesAtTheCommandedSpeed) {
+  // the drive wheels grip like rubber (the robot_wheel material), the body does not
+  const RobotSpec spec = burger();
+  for (const LinkShape& sh : spec.links[static_cast<std::size_t>(spec.link_index("wheel_left_link"))].shapes) {
+    if (sh.collides) EXPECT_EQ(sh.material, "robot_wheel");
+  }
   Simulation sim(flat_world());
   drive(sim, 0.2, 0, 2.0);  // accelerate
   const Vec3 p0 = sim.state().robots[0].base.X_WB.p;

@@ -59,6 +59,10 @@ void configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left
       (side == 0 ? d.left_signs : d.right_signs).push_back(axis_B.y() > 0 ? 1.0 : -1.0);
       js.control = JointSpec::Control::velocity;
       js.initial = 0;
+      // wheels grip like the built-in robot's rubber (friction 1.0 rather than the body's 0.5)
+      for (LinkShape& sh : robot.links[static_cast<std::size_t>(robot.link_index(js.child))].shapes) {
+        if (sh.collides) sh.material = "robot_wheel";
+      }
       radius_sum += wheel_radius_of(robot, js);
       const double y = (X_BP * js.X_PJ).p.y();
       (side == 0 ? left_y : right_y) += y / static_cast<double>(names.size());
