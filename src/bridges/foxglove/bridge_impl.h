@@ -88,7 +88,7 @@ struct ChannelState {
 
 /// What a client channel publishes to.
 struct CommandTarget {
-  enum class Kind { twist, head };
+  enum class Kind { twist, head, joints };  ///< cmd_vel, head/command, joint_command
   Kind kind = Kind::twist;
   int robot = 0;
   ClientChannel channel;
@@ -138,6 +138,8 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   void apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload);
   void reply(ClientId client, StatusLevel level, const std::string& message);
   void reject(ClientId client, const std::string& message);
+  /// The command topics robot `robot` takes, with their types, for status errors.
+  std::string accepted_topics(std::size_t robot) const;
 
   FoxgloveOptions options_;
   Simulation* sim_ = nullptr;
@@ -167,8 +169,9 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::map<std::uint32_t, ChannelState> channels_;
   std::map<ClientId, ClientState> clients_;
 
-  std::vector<std::string> twist_topics_, head_topics_;  ///< per robot
+  std::vector<std::string> twist_topics_, head_topics_, joint_topics_;  ///< per robot
   std::vector<std::size_t> head_sizes_;
+  std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
   std::atomic<std::uint64_t> received_{0}, rejected_{0};
   Throttle client_log_{std::chrono::seconds(5)};
   Throttle error_log_{std::chrono::seconds(5)};

@@ -1,7 +1,7 @@
 // What Foxglove clients ask for, on the server's I/O thread: subscriptions (with the latched
-// message of a channel sent at once), client channels for /cmd_vel and /head/command, and
-// their commands, checked and passed to the simulation. Anything malformed is answered with
-// a status error to that client only.
+// message of a channel sent at once), client channels for /cmd_vel, /head/command and
+// /joint_command, and their commands, checked and passed to the simulation. Anything malformed
+// or refused is answered with a status error to that client only.
 
 #include <cmath>
 #include <variant>
@@ -12,6 +12,27 @@
 #include "sim/simulation.h"
 
 namespace rescuesim::foxglove {
+
+namespace {
+
+/// The ROS 2 and ROS 1 names of the message type a command topic takes.
+std::pair<std::string, std::string> schema_names(CommandTarget::Kind kind) {
+  switch (kind) {
+    case CommandTarget::Kind::twist: return {"geometry_msgs/msg/Twist", "geometry_msgs/Twist"};
+    case CommandTarget::Kind::head: return {"std_msgs/msg/Float64MultiArray", "std_msgs/Float64MultiArray"};
+    case CommandTarget::Kind::joints: return {"sensor_msgs/msg/JointState", "sensor_msgs/JointState"};
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string FoxgloveBridge::accepted_topics(std::size_t robot) const {
+  std::string t = twist_topics_[robot] + " (geometry_msgs/msg/Twist)";
+  if (head_sizes_[robot] > 0) t += ", " + head_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
+  if (joints_commandable_[robot]) t += ", " + joint_topics_[robot] + " (sensor_msgs/msg/JointState)";
+  return t;
+}
 
 void FoxgloveBridge::on_open(ClientId client, const std::string&) {
   std::lock_guard lock(mutex_);
@@ -148,30 +169,30 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
       }
       CommandTarget target;
       target.channel = ch;
-      bool found = false;
-      for (std::size_t r = 0; r < twist_topics_.size() && !found; ++r) {
-        if (ch.topic == twist_topics_[r]) {
-          target.kind = CommandTarget::Kind::twist;
-          target.robot = static_cast<int>(r);
-          found = true;
-        } else if (ch.topic == head_topics_[r] && head_sizes_[r] > 0) {
-          target.kind = CommandTarget::Kind::head;
-          target.robot = static_cast<int>(r);
-          found = true;
-        }
+      target.robot = -1;
+      for (std::size_t r = 0; r < twist_topics_.size() && target.robot < 0; ++r) {
+        const bool twist = ch.topic == twist_topics_[r];
+        const bool head = ch.topic == head_topics_[r] && head_sizes_[r] > 0;
+        const bool joints = ch.topic == joint_topics_[r];
+        if (!twist && !head && !joints) continue;
+        target.kind = twist ? CommandTarget::Kind::twist : head ? CommandTarget::Kind::head : CommandTarget::Kind::joints;
+        target.robot = static_cast<int>(r);
       }
-      if (!found) {
+      if (target.robot < 0) {
         std::string accepted;
-        for (std::size_t r = 0; r < twist_topics_.size(); ++r) {
-          accepted += (accepted.empty() ? "" : ", ") + twist_topics_[r] + " (geometry_msgs/msg/Twist)";
-          if (head_sizes_[r] > 0) accepted += ", " + head_topics_[r] + " (std_msgs/msg/Float64MultiArray)";
-        }
+        for (std::size_t r = 0; r < twist_topics_.size(); ++r) accepted += (accepted.empty() ? "" : ", ") + accepted_topics(r);
         errors.push_back(where + "rescuesim does not take this topic; it takes " + accepted);
         continue;
       }
-      const bool twist = target.kind == CommandTarget::Kind::twist;
-      const std::string ros2 = twist ? "geometry_msgs/msg/Twist" : "std_msgs/msg/Float64MultiArray";
-      const std::string ros1 = twist ? "geometry_msgs/Twist" : "std_msgs/Float64MultiArray";
+      // a robot whose moving joints are all driven otherwise (wheels, head) or not at all
+      const auto robot = static_cast<std::size_t>(target.robot);
+      if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[robot]) {
+        errors.push_back(where + "robot '" + sim_->world().robots[robot].name +
+                         "' has no joints that joint_command can drive (drive wheels take cmd_vel, head joints head/command; fixed, "
+                         "passive and mimic joints take nothing); it takes " + accepted_topics(robot));
+        continue;
+      }
+      const auto [ros2, ros1] = schema_names(target.kind);
       if (!ch.schema_name.empty() && ch.schema_name != ros2 && ch.schema_name != ros1) {
         errors.push_back(where + "schema '" + ch.schema_name + "' does not match " + ros2);
         continue;
@@ -233,7 +254,7 @@ void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::sp
         if (!std::isfinite(values[i])) return reject(client, topic + ": rejected: " + names[i] + " is not finite");
       }
       if (!sim_->command_velocity(target.robot, t)) return reject(client, topic + ": rejected by the simulation");
-    } else {
+    } else if (target.kind == CommandTarget::Kind::head) {
       const msg::Float64MultiArray a = decode_multi_array(target.channel.encoding, payload);
       const std::size_t want = head_sizes_[static_cast<std::size_t>(target.robot)];
       if (a.data.size() != want) {
@@ -243,6 +264,11 @@ void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::sp
         if (!std::isfinite(a.data[i])) return reject(client, topic + ": rejected: data[" + std::to_string(i) + "] is not finite");
       }
       if (!sim_->command_head(target.robot, a.data)) return reject(client, topic + ": rejected by the simulation");
+    } else {
+      // command_joints checks names, sizes and finiteness, and says why it refuses
+      const msg::JointState command = decode_joint_state(target.channel.encoding, payload);
+      std::string why;
+      if (!sim_->command_joints(target.robot, command, &why)) return reject(client, topic + ": rejected: " + why);
     }
   } catch (const Error& e) {
     return reject(client, topic + ": " + e.message());

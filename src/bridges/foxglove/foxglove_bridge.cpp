@@ -81,11 +81,13 @@ void FoxgloveBridge::start(Simulation& sim) {
     log::warn("foxglove: no scene topic: {} is already a simulation topic", options_.scene_topic);
   }
 
-  // what clients may publish: each robot's cmd_vel and head command
+  // what clients may publish: each robot's cmd_vel, head command and joint command
   for (std::size_t r = 0; r < world.robots.size(); ++r) {
     twist_topics_.push_back(sim.topic_name(static_cast<int>(r), "cmd_vel"));
     head_topics_.push_back(sim.topic_name(static_cast<int>(r), "head/command"));
     head_sizes_.push_back(world.robots[r].spec.head_joints.size());
+    joint_topics_.push_back(sim.topic_name(static_cast<int>(r), "joint_command"));
+    joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
   }
 
   std::string robots;

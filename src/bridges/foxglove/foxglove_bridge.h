@@ -4,7 +4,8 @@
 /// simulation at ws://localhost:8765. Every Bus topic is advertised as a `cdr` channel with its
 /// ROS 2 `ros2msg` schema, plus a `foxglove.SceneUpdate` topic (`/scene`, json) drawing the
 /// world; clients subscribe per channel, get sim-time `time` messages, and may publish
-/// `/cmd_vel` and `/head/command` (cdr or json) to drive the robots. See docs/foxglove.md.
+/// `/cmd_vel`, `/head/command` and `/joint_command` (cdr or json) to drive the robots. See
+/// docs/foxglove.md.
 ///
 /// Slow clients never slow the simulation or grow memory without bound: each client has a
 /// byte- and count-bounded send queue that drops its oldest data first (counted, and reported

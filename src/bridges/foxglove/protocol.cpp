@@ -83,6 +83,19 @@ Vec3 vector3_field(const json& object, const char* key, const std::string& where
   return {number_field(*it, "x", w), number_field(*it, "y", w), number_field(*it, "z", w)};
 }
 
+/// An array of numbers of a JSON object (empty when absent), finite or not.
+std::vector<double> number_array(const json& object, const char* key, const std::string& where) {
+  std::vector<double> values;
+  if (!object.contains(key)) return values;
+  const json& a = array_field(object, key, where);
+  values.reserve(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_number()) throw Error(where + "." + key + "[" + std::to_string(i) + "]: expected a number, got " + a[i].dump());
+    values.push_back(a[i].get<double>());
+  }
+  return values;
+}
+
 json parse_json(std::span<const std::uint8_t> payload, const char* type) {
   json j = json::parse(payload.begin(), payload.end(), nullptr, false);
   if (j.is_discarded()) throw Error(std::string(type) + ": payload is not valid JSON");
@@ -233,6 +246,29 @@ msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<c
       a.data.push_back(data[i].get<double>());
     }
     return a;
+  }
+  throw Error("unsupported encoding '" + std::string(encoding) + "'");
+}
+
+msg::JointState decode_joint_state(std::string_view encoding, std::span<const std::uint8_t> payload) {
+  if (encoding == "cdr") {
+    msg::Message m = msg::from_cdr(type_support("sensor_msgs/msg/JointState"), payload);
+    return std::get<msg::JointState>(m);
+  }
+  if (encoding == "json") {
+    static const std::string where = "sensor_msgs/JointState";
+    const json j = parse_json(payload, "sensor_msgs/JointState");
+    if (const auto h = j.find("header"); h != j.end() && !h->is_object()) throw Error(where + ".header: expected an object");
+    msg::JointState s;
+    const json& names = array_field(j, "name", where);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (!names[i].is_string()) throw Error(where + ".name[" + std::to_string(i) + "]: expected a string, got " + names[i].dump());
+      s.name.push_back(names[i].get<std::string>());
+    }
+    s.position = number_array(j, "position", where);
+    s.velocity = number_array(j, "velocity", where);
+    s.effort = number_array(j, "effort", where);
+    return s;
   }
   throw Error("unsupported encoding '" + std::string(encoding) + "'");
 }

@@ -89,5 +89,9 @@ ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes);
 msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload);
 /// Decodes a std_msgs/Float64MultiArray in `encoding`; throws Error when malformed.
 msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<const std::uint8_t> payload);
+/// Decodes a sensor_msgs/JointState in `encoding` ("cdr" or "json"); throws Error when
+/// malformed. JSON: `{"name":["lift"],"position":[0.15]}`; `name` is required, `position`,
+/// `velocity` and `effort` may be left out (empty), `header` is ignored.
+msg::JointState decode_joint_state(std::string_view encoding, std::span<const std::uint8_t> payload);
 
 }  // namespace rescuesim::foxglove

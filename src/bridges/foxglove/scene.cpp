@@ -134,13 +134,20 @@ SceneBuilder::SceneBuilder(const World& world, SceneFrames frames) : frames_(std
     const Victim& victim = world.victims.at(static_cast<std::size_t>(v));
     all.push_back(entity("victim/" + victim.name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", "victim"}, {"name", victim.name}}));
   }
-  // each robot link's shapes in its own frame: /tf carries them along
+  // each robot link's shapes in its own frame: /tf carries them along. A robot with a
+  // description (URDF) is drawn by the 3D panel from /robot_description with its real meshes;
+  // the scene shows its collision shapes (primitives and convex hulls), which are small, rather
+  // than its visual meshes (often hundreds of thousands of triangles)
   for (std::size_t r = 0; r < world.robots.size(); ++r) {
     const RobotInstance& robot = world.robots[r];
+    const bool described = !robot.spec.description.empty();
     for (std::size_t l = 0; l < robot.spec.links.size(); ++l) {
       const LinkSpec& link = robot.spec.links[l];
       Primitives p;
-      for (const LinkShape& s : link.shapes) add_shape(p, s.geometry, s.X_LG, material_color(world, s.material));
+      for (const LinkShape& s : link.shapes) {
+        if (described && !s.collides) continue;
+        add_shape(p, s.geometry, s.X_LG, material_color(world, s.material));
+      }
       if (p.empty()) continue;
       const std::string frame = r < frames_.link_frames.size() && l < frames_.link_frames[r].size() ? frames_.link_frames[r][l] : link.name;
       all.push_back(entity("robot/" + robot.name + "/" + link.name, frame, SimTime{}, true, std::move(p),

@@ -1,8 +1,9 @@
 // `rescuesim run --foxglove` as Foxglove meets it: the reference client (@foxglove/ws-protocol
 // over `ws`, CDR decoded by @foxglove/rosmsg2-serialization) sees the server info, every Bus
 // topic advertised with its ROS 2 schema, decodable laser and camera messages stamped with sim
-// time, the scene, and drives the robot through /cmd_vel. Misbehaving clients get status errors
-// while the others are still served, and a client that stops reading costs bounded memory.
+// time, the scene, and drives the robot through /cmd_vel, and a URDF-like robot's joints through
+// joint_command. Misbehaving clients get status errors while the others are still served, and a
+// client that stops reading costs bounded memory.
 // Expected values come from the scenario (tests/bridges/foxglove/server_rig.h), by hand.
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "sim/slider_robot.h"
 #include "world/scenario/scenario.h"
 
 namespace rescuesim {
@@ -323,6 +325,97 @@ TEST_F(FoxgloveServer, TopicsAdvertisedDuringARunReachConnectedClients) {
   EXPECT_EQ(d["channel"]["encoding"], "cdr");
   EXPECT_EQ(d["message"]["value"]["header"]["frame_id"], "map");
   EXPECT_EQ(d["message"]["value"]["pose"]["position"]["z"], 3.0);
+}
+
+TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
+  // the slider robot (tests/sim/slider_robot.h: "lift" prismatic, position-controlled,
+  // [-0.1, 0.2] m) beside a rescue robot, whose moving joints are all wheels and head; the
+  // bridge in this process, on a simulation this thread steps (a few steps first, so the
+  // latched robot_description is out before the client connects)
+  WorldSpec spec = testing::slider_room("slider");
+  RobotPlacement rescue;
+  rescue.name = "rescue";
+  rescue.start = {1.5, 1.5, 0};
+  spec.robots.push_back(rescue);
+  std::map<std::string, RobotSpec> models = builtin_models();
+  models["slider"] = testing::slider_robot();
+  Simulation sim(compile_world(spec, models));
+  const int slider = sim.robot_index("slider");
+  ASSERT_GE(slider, 0);
+  const RobotSpec& slider_spec = sim.world().robots[static_cast<std::size_t>(slider)].spec;
+  const auto lift = static_cast<std::size_t>(slider_spec.joint_index("lift"));
+  FoxgloveOptions options;
+  options.port = free_local_port();
+  ASSERT_GT(options.port, 0);
+  auto bridge = make_foxglove_bridge(options);
+  bridge->start(sim);
+  for (int i = 0; i < 10; ++i) sim.step();
+  testing::CommandResult r;
+  std::atomic<bool> done = false;
+  std::thread client([&] {
+    r = testing::node_script("joint_command_client.js", "ws://127.0.0.1:" + std::to_string(options.port) + " /slider /rescue");
+    done = true;
+  });
+  // step while the client commands; watch the lift joint in the simulation's own state
+  bool held_json_target = false;  // at 0.15 m within 1 mm, with 0.15 as its target
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(45);
+  while (!done && std::chrono::steady_clock::now() < deadline) {
+    sim.step();
+    const RobotState& rs = sim.state().robots[static_cast<std::size_t>(slider)];
+    if (lift < rs.joint_target.size() && rs.joint_target[lift] == 0.15 && std::abs(rs.q[lift] - 0.15) < 1e-3) held_json_target = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  client.join();
+  bridge->stop();
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json d = last_json(r.out);
+  EXPECT_TRUE(d["errors"].empty()) << d["errors"];
+
+  // json {"name":["lift"],"position":[0.15]}: the joint went there (seen in the state and on
+  // joint_states); then cdr -0.05 m: it went there too
+  EXPECT_TRUE(held_json_target);
+  EXPECT_TRUE(d["phases"]["json"]["reached"].get<bool>()) << d["phases"];
+  EXPECT_TRUE(d["phases"]["cdr"]["reached"].get<bool>()) << d["phases"];
+  const RobotState& rs = sim.state().robots[static_cast<std::size_t>(slider)];
+  ASSERT_GT(rs.joint_target.size(), lift);
+  EXPECT_EQ(rs.joint_target[lift], -0.05);
+  EXPECT_NEAR(rs.q[lift], -0.05, 1e-3);
+
+  // the description the layout's URDF layer reads: latched, so a client connecting after it was
+  // published gets it
+  EXPECT_EQ(d["description"]["schemaName"], "std_msgs/msg/String") << d["description"];
+  EXPECT_EQ(d["description"]["encoding"], "cdr");
+  EXPECT_EQ(d["description"]["data"], testing::kSliderDescription);
+
+  // one status error per refusal, each in its phase, saying why
+  std::map<std::string, std::vector<std::string>> statuses;
+  for (const auto& s : d["statuses"]) {
+    EXPECT_EQ(s["level"], 2) << s;
+    statuses[s["phase"]].push_back(s["message"]);
+  }
+  ASSERT_EQ(statuses["advertise"].size(), 1u) << d["statuses"];
+  const std::string& advertised = statuses["advertise"][0];
+  EXPECT_NE(advertised.find("/rescue/joint_command"), std::string::npos) << advertised;
+  EXPECT_NE(advertised.find("robot 'rescue' has no joints that joint_command can drive"), std::string::npos) << advertised;
+  EXPECT_NE(advertised.find("it takes /rescue/cmd_vel (geometry_msgs/msg/Twist), /rescue/head/command (std_msgs/msg/Float64MultiArray)"),
+            std::string::npos)
+      << advertised;
+  ASSERT_EQ(statuses["foreign"].size(), 1u) << d["statuses"];
+  EXPECT_NE(statuses["foreign"][0].find("does not take this topic; it takes /slider/cmd_vel (geometry_msgs/msg/Twist), /slider/head/command "
+                                        "(std_msgs/msg/Float64MultiArray), /slider/joint_command (sensor_msgs/msg/JointState), "
+                                        "/rescue/cmd_vel (geometry_msgs/msg/Twist), /rescue/head/command (std_msgs/msg/Float64MultiArray)"),
+            std::string::npos)
+      << statuses["foreign"][0];
+  ASSERT_EQ(statuses["wheel"].size(), 1u) << d["statuses"];
+  EXPECT_NE(statuses["wheel"][0].find("/slider/joint_command: rejected: 'wheel' is a drive wheel"), std::string::npos) << statuses["wheel"][0];
+  ASSERT_EQ(statuses["malformed"].size(), 1u) << d["statuses"];
+  EXPECT_NE(statuses["malformed"][0].find("position[0]: expected a number"), std::string::npos) << statuses["malformed"][0];
+  EXPECT_EQ(d["statuses"].size(), 4u) << d["statuses"];  // nothing about the json and cdr channels or commands
+
+  // two commands applied, two refused (the failed advertisement is no command)
+  const BridgeStats st = bridge->stats();
+  EXPECT_EQ(st.received, 2u);
+  EXPECT_EQ(st.rejected, 2u);
 }
 
 TEST(FoxgloveCli, PortFlagTakesAnOptionalValue) {

@@ -153,5 +153,59 @@ TEST(FoxgloveProtocol, DecodesHeadCommandFromCdrAndJson) {
   EXPECT_EQ(decode_multi_array("json", bytes_of(R"({"layout":{"dim":[],"data_offset":0},"data":[0.1,-0.2,0.3,0]})")).data, a.data);
 }
 
+TEST(FoxgloveProtocol, DecodesJointStateFromCdrAndJson) {
+  msg::JointState js;
+  js.header = {SimTime::from_seconds(1.5), "base_footprint"};
+  js.name = {"lift", "spin"};
+  js.position = {0.15, 0.0};
+  js.velocity = {0.0, -1.25};
+  std::vector<std::uint8_t> cdr;
+  msg::to_cdr(msg::Message{js}, cdr);
+  const msg::JointState from_cdr = decode_joint_state("cdr", cdr);
+  EXPECT_EQ(from_cdr.name, js.name);
+  EXPECT_EQ(from_cdr.position, js.position);
+  EXPECT_EQ(from_cdr.velocity, js.velocity);
+  EXPECT_TRUE(from_cdr.effort.empty());
+
+  // JSON as Foxglove writes it (header and all), or just the fields that matter
+  const msg::JointState full = decode_joint_state(
+      "json", bytes_of(R"({"header":{"stamp":{"sec":1,"nsec":500000000},"frame_id":""},"name":["lift","spin"],)"
+                       R"("position":[0.15,0],"velocity":[0,-1.25],"effort":[]})"));
+  EXPECT_EQ(full.name, js.name);
+  EXPECT_EQ(full.position, js.position);
+  EXPECT_EQ(full.velocity, js.velocity);
+  const msg::JointState brief = decode_joint_state("json", bytes_of(R"({"name":["lift"],"position":[0.15]})"));
+  EXPECT_EQ(brief.name, std::vector<std::string>{"lift"});
+  EXPECT_EQ(brief.position, std::vector<double>{0.15});
+  EXPECT_TRUE(brief.velocity.empty());
+  EXPECT_TRUE(brief.effort.empty());
+}
+
+TEST(FoxgloveProtocol, MalformedJointStatesAreErrorsThatSayWhere) {
+  msg::JointState js;
+  js.name = {"lift"};
+  js.position = {0.15};
+  std::vector<std::uint8_t> cdr;
+  msg::to_cdr(msg::Message{js}, cdr);
+  // every truncation of the CDR bytes is an error, never a read past the end
+  for (std::size_t n = 0; n < cdr.size(); ++n) {
+    const std::vector<std::uint8_t> cut(cdr.begin(), cdr.begin() + static_cast<std::ptrdiff_t>(n));
+    EXPECT_NE(error_of([&] { decode_joint_state("cdr", cut); }), "") << n << " bytes";
+  }
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of("[1]")); }).find("JSON object"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"position":[0.1]})")); }).find("missing 'name'"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":"lift"})")); }).find("name: expected an array"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":[3]})")); }).find("name[0]: expected a string"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"position":["high"]})")); })
+                .find("sensor_msgs/JointState.position[0]: expected a number"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"velocity":[null]})")); }).find("velocity[0]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"effort":{}})")); }).find("effort: expected an array"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"header":7,"name":[]})")); }).find("header"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("protobuf", bytes_of("")); }).find("encoding"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rescuesim::foxglove
