@@ -24,6 +24,20 @@ struct XmlIndex {
   SourceRef at(const tinyxml2::XMLElement* e) const;
 };
 
+/// Calls `f(element)` on `root` and every element below it, in document order (iteratively:
+/// deep nesting cannot exhaust the stack). When `f` returns false, that element's children are
+/// skipped.
+template <class F>
+void visit_elements(const tinyxml2::XMLElement* root, F&& f) {
+  std::vector<const tinyxml2::XMLElement*> stack{root};
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    if (!f(e)) continue;
+    for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
+  }
+}
+
 /// `<tag name="...">` for messages.
 std::string describe(const tinyxml2::XMLElement* e);
 

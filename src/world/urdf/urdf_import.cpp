@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <console_bridge/console.h>
 #include <map>
 #include <mutex>
@@ -114,8 +115,21 @@ class Builder {
     return name;
   }
 
+  /// The line of the <mesh filename=...> element of a link (the link's line if not found).
+  int mesh_line(const std::string& link, const std::string& filename) const {
+    int line = index_.link(link).line;
+    const auto it = index_.links.find(link);
+    if (it == index_.links.end()) return line;
+    visit_elements(it->second, [&](const tinyxml2::XMLElement* e) {
+      const char* f = e->Attribute("filename");
+      if (std::strcmp(e->Name(), "mesh") == 0 && f && filename == f && line == index_.link(link).line) line = e->GetLineNum();
+      return true;
+    });
+    return line;
+  }
+
   const LoadedMesh& mesh(const urdf::Mesh& m, const std::string& link) {
-    const SourceRef where{index_.file, index_.link(link).line, "<link name=\"" + link + "\"> <mesh filename=\"" + m.filename + "\">"};
+    const SourceRef where{index_.file, mesh_line(link, m.filename), "<link name=\"" + link + "\"> <mesh filename=\"" + m.filename + "\">"};
     const std::filesystem::path file = options_.resolver.resolve(m.filename, where);
     const Vec3 scale(m.scale.x, m.scale.y, m.scale.z);
     const std::string key = file.string() + "|" + std::to_string(scale.x()) + "," + std::to_string(scale.y()) + "," + std::to_string(scale.z());
@@ -209,7 +223,7 @@ class Builder {
         pieces.push_back(std::move(hull));
       }
     } catch (const Error& e) {
-      throw Error({index_.file, index_.link(ls.name).line, "<link name=\"" + ls.name + "\"> <collision> <mesh filename=\"" + m.filename + "\">"},
+      throw Error({index_.file, mesh_line(ls.name, m.filename), "<link name=\"" + ls.name + "\"> <collision> <mesh filename=\"" + m.filename + "\">"},
                   "collision mesh " + last_file_ + ": " + e.message());
     }
     hull_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -358,13 +372,12 @@ SourceRef where_named(const tinyxml2::XMLElement* robot, const std::string& mess
     a = message.find('\'', b + 1);
   }
   for (auto q = quoted.rbegin(); q != quoted.rend(); ++q) {
-    std::vector<const tinyxml2::XMLElement*> stack{robot};
-    while (!stack.empty()) {
-      const tinyxml2::XMLElement* e = stack.back();
-      stack.pop_back();
-      if (e->Attribute("name") && *q == e->Attribute("name") && e != robot) return {file, e->GetLineNum(), describe(e)};
-      for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
-    }
+    const tinyxml2::XMLElement* found = nullptr;
+    visit_elements(robot, [&](const tinyxml2::XMLElement* e) {
+      if (!found && e != robot && e->Attribute("name") && *q == e->Attribute("name")) found = e;
+      return !found;
+    });
+    if (found) return {file, found->GetLineNum(), describe(found)};
   }
   return {file, robot->GetLineNum(), "<robot>"};
 }

@@ -76,19 +76,14 @@ void check_numbers(const XMLElement* robot, const XmlIndex& index) {
                                {"sphere", "radius", 1}, {"limit", "lower", 1}, {"limit", "upper", 1}, {"limit", "effort", 1},
                                {"limit", "velocity", 1}, {"dynamics", "damping", 1}, {"dynamics", "friction", 1},
                                {"mimic", "multiplier", 1}, {"mimic", "offset", 1}};
-  std::vector<const XMLElement*> stack;
-  for (const XMLElement* c = robot->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (std::strcmp(c->Name(), "gazebo") != 0) stack.push_back(c);  // Gazebo's own blocks are read elsewhere
-  }
-  while (!stack.empty()) {
-    const XMLElement* e = stack.back();
-    stack.pop_back();
+  visit_elements(robot, [&](const XMLElement* e) {
+    if (e != robot && e->Parent() == robot && std::strcmp(e->Name(), "gazebo") == 0) return false;  // Gazebo's own blocks are read elsewhere
     for (const Rule& r : rules) {
       if (std::strcmp(e->Name(), r.element) != 0) continue;
       if (const char* v = e->Attribute(r.attribute)) numbers_of(v, r.count, index, e, std::string("<") + r.element + " " + r.attribute + ">");
     }
-    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
-  }
+    return true;
+  });
 }
 
 /// Each <visual> and <collision> holds one <geometry> with exactly one shape and the
@@ -163,10 +158,7 @@ void refuse_xacro(const XMLElement* robot, const std::string& file) {
   const std::string how =
       "this is a xacro file, not URDF: expand it first with `xacro robot.urdf.xacro > robot.urdf` (xacro comes with ROS; "
       "`pip install xacro` elsewhere) and give rescuesim the result";
-  std::vector<const XMLElement*> stack{robot};
-  while (!stack.empty()) {
-    const XMLElement* e = stack.back();
-    stack.pop_back();
+  visit_elements(robot, [&](const XMLElement* e) {
     const std::string name = e->Name();
     if (name.rfind("xacro:", 0) == 0 && name != "xacro:arg" && name != "xacro:property") {
       throw Error({file, e->GetLineNum(), "<" + name + ">"}, how);
@@ -179,8 +171,8 @@ void refuse_xacro(const XMLElement* robot, const std::string& file) {
         throw Error({file, e->GetLineNum(), describe(e)}, "attribute " + std::string(a->Name()) + "=\"" + v + "\": " + how);
       }
     }
-    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
-  }
+    return true;
+  });
 }
 
 XmlIndex check_structure(const XMLElement* robot, const std::string& file) {

@@ -134,8 +134,8 @@ TEST(UrdfErrors, MissingMeshFileNamesTheUriAndWhereItLooked) {
   TempDir dir;
   const auto file = dir.write("robot/robot.urdf", mesh_robot("meshes/missing.stl"));
   const Error e = error_of([&] { load_urdf(file, isolated(dir.path())); });
-  // located at the link holding the mesh, quoting the <mesh> element
-  expect_at(e, file.string(), 2, "<mesh filename=\"meshes/missing.stl\">");
+  // located at the <mesh> element (line 4), quoting it
+  expect_at(e, file.string(), 4, "<mesh filename=\"meshes/missing.stl\">");
   EXPECT_THAT(e.what(), HasSubstr("'meshes/missing.stl'"));
   EXPECT_THAT(e.what(), HasSubstr((dir.path() / "robot" / "meshes" / "missing.stl").string()));
 }
@@ -148,7 +148,7 @@ TEST(UrdfErrors, UnresolvablePackageListsEveryPlaceSearched) {
   UrdfOptions o;
   o.resolver = ResourceResolver({dir.path() / "first", dir.path() / "second"}, true);
   const Error e = error_of([&] { load_urdf(file, o); });
-  expect_at(e, file.string(), 2, "package://nopkg/meshes/m.stl");
+  expect_at(e, file.string(), 4, "package://nopkg/meshes/m.stl");
   for (const auto& place : {dir.path() / "first/nopkg/meshes/m.stl", dir.path() / "second/nopkg/meshes/m.stl",
                             dir.path() / "ros_ws/nopkg/meshes/m.stl", dir.path() / "install/share/nopkg/meshes/m.stl"}) {
     EXPECT_THAT(e.what(), HasSubstr(place.string()));
@@ -178,7 +178,7 @@ TEST(UrdfErrors, GarbageMeshFilesAreRefusedNamingTheFile) {
       const Error e = error_of([&] { load_urdf(file, isolated(dir.path())); });
       EXPECT_THAT(e.what(), HasSubstr(mesh.string())) << name << " round " << round;
       EXPECT_EQ(e.where().file, file.string()) << e.what();
-      EXPECT_EQ(e.where().line, 2) << e.what();
+      EXPECT_EQ(e.where().line, 4) << e.what();
     }
   }
 }
@@ -194,7 +194,7 @@ TEST(UrdfErrors, StlHeaderClaimingTooManyTrianglesIsRefusedBeforeReading) {
   const Error e = error_of([&] { load_urdf(file, isolated(dir.path())); });
   EXPECT_THAT(e.what(), HasSubstr("2000001"));
   EXPECT_THAT(e.what(), HasSubstr(mesh.string()));
-  expect_at(e, file.string(), 2, "huge.stl");
+  expect_at(e, file.string(), 4, "huge.stl");
 }
 
 TEST(UrdfErrors, ZeroMeshScaleIsRefused) {
@@ -202,7 +202,7 @@ TEST(UrdfErrors, ZeroMeshScaleIsRefused) {
   dir.write("cube.stl", urdf_test::binary_stl(urdf_test::box_mesh(Vec3::Constant(-0.05), Vec3::Constant(0.05))));
   const auto file = dir.write("robot.urdf", mesh_robot("cube.stl", "0.001 0 0.001"));
   const Error e = error_of([&] { load_urdf(file, isolated(dir.path())); });
-  expect_at(e, file.string(), 2, "cube.stl");
+  expect_at(e, file.string(), 4, "cube.stl");
   EXPECT_THAT(e.what(), HasSubstr("scale"));
 }
 
@@ -215,7 +215,7 @@ TEST(UrdfErrors, FlatCollisionMeshNamesTheUrdfAndTheMesh) {
   const auto mesh = dir.write("plate.stl", urdf_test::binary_stl(square));
   const auto file = dir.write("robot.urdf", mesh_robot("plate.stl"));
   const Error e = error_of([&] { load_urdf(file, isolated(dir.path())); });
-  expect_at(e, file.string(), 2, "plate.stl");
+  expect_at(e, file.string(), 4, "plate.stl");
   EXPECT_THAT(e.what(), HasSubstr("plane"));
 }
 
