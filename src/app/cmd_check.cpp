@@ -103,6 +103,7 @@ bool check_one(const std::string& file, const CheckOptions& o) {
   try {
     if (ext == ".yaml" || ext == ".yml") {
       const Scenario s = load_scenario(p, builtin_models());
+      for (const auto& robot : s.robots) diag.append(robot.diagnostics);  // warnings from their URDFs
       world = build_world(s, &diag);
       scale_note = "scenario '" + s.name + "', seed " + std::to_string(s.seed);
     } else {

@@ -130,8 +130,16 @@ SourceRef XmlIndex::joint(const std::string& name) const {
 }
 
 std::string describe(const XMLElement* e) {
-  const char* name = e->Attribute("name");
-  return "<" + std::string(e->Name()) + (name ? " name=\"" + std::string(name) + "\"" : std::string()) + ">";
+  // appended piece by piece (GCC 12 warns, wrongly, about overlapping copies in a + chain here)
+  std::string out = "<";
+  out += e->Name();
+  if (const char* name = e->Attribute("name")) {
+    out += " name=\"";
+    out += name;
+    out += '"';
+  }
+  out += '>';
+  return out;
 }
 
 std::vector<double> numbers_of(const char* text, std::size_t n, const XmlIndex& index, const XMLElement* e, const std::string& what) {
