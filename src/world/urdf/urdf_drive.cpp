@@ -61,7 +61,7 @@ void configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left
       js.initial = 0;
       // wheels grip like the built-in robot's rubber (friction 1.0 rather than the body's 0.5)
       for (LinkShape& sh : robot.links[static_cast<std::size_t>(robot.link_index(js.child))].shapes) {
-        if (sh.collides) sh.material = "robot_wheel";
+        if (sh.collides && sh.material == "robot_body") sh.material = "robot_wheel";
       }
       radius_sum += wheel_radius_of(robot, js);
       const double y = (X_BP * js.X_PJ).p.y();

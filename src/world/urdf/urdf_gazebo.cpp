@@ -206,6 +206,30 @@ void read_sensor(const XMLElement* sensor, const std::string& link, const XmlInd
   out.spec.sensors.push_back(s);
 }
 
+/// A link's contact friction from Gazebo's <mu1> and <mu2>: its collision shapes get a material
+/// of their own with mu1 as the friction (Bullet's is isotropic), and a differing mu2 becomes an
+/// anisotropic scale along the link's y axis (Gazebo's second friction direction by default).
+void read_friction(const XMLElement* g, const std::string& link, const XmlIndex& index, UrdfRobot& out) {
+  const bool has1 = g->FirstChildElement("mu1") != nullptr, has2 = g->FirstChildElement("mu2") != nullptr;
+  if (!has1 && !has2) return;
+  const double mu1 = child_number(g, {"mu1", "mu2"}, 0, index);
+  const double mu2 = has2 ? child_number(g, {"mu2"}, mu1, index) : mu1;
+  if (!(mu1 >= 0) || !(mu2 >= 0) || mu1 > 1e3 || mu2 > 1e3) {
+    throw Error(index.at(g), "link '" + link + "': <mu1>/<mu2> must be friction coefficients in [0, 1000]");
+  }
+  RobotSpec& spec = out.spec;
+  MaterialSpec m;
+  m.name = spec.model + "/" + link + "_contact";
+  m.color = Vec3(0.5, 0.5, 0.5);
+  m.friction = mu1;
+  spec.materials.push_back(m);
+  LinkSpec& ls = spec.links[static_cast<std::size_t>(spec.link_index(link))];
+  for (LinkShape& sh : ls.shapes) {
+    if (sh.collides) sh.material = m.name;
+  }
+  if (mu1 > 0 && mu2 != mu1) ls.friction_scale = Vec3(1.0, mu2 / mu1, 1.0);
+}
+
 }  // namespace
 
 void read_gazebo(const XMLElement* robot, const XmlIndex& index, UrdfRobot& out) {
@@ -215,6 +239,7 @@ void read_gazebo(const XMLElement* robot, const XmlIndex& index, UrdfRobot& out)
       if (index.joints.count(reference)) continue;  // joint settings (e.g. implicitSpringDamper): nothing to honour
       throw Error(index.at(g), "<gazebo reference=\"" + std::string(reference) + "\"> names no link of the robot");
     }
+    if (reference) read_friction(g, reference, index, out);
     for (const XMLElement* s = g->FirstChildElement("sensor"); s; s = s->NextSiblingElement("sensor")) {
       read_sensor(s, reference ? reference : index.link_order.front(), index, out);
     }

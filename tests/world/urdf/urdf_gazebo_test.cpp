@@ -263,5 +263,37 @@ TEST(UrdfImport, UnknownPluginAndSensorTypeAreWarnings) {
   EXPECT_EQ(u.spec.links.size(), 6u);  // and the robot is all there
 }
 
+TEST(UrdfImport, GazeboMuSetsTheLinksContactFriction) {
+  // a slippery caster-like base (mu 0.1) and wheels whose friction differs along their y axis;
+  // the drive plugin keeps the wheels' own friction instead of the default rubber
+  const UrdfRobot u = parse_urdf(two_wheeler(R"(  <gazebo reference="base"><mu1>0.1</mu1><mu2>0.1</mu2></gazebo>
+  <gazebo reference="left_wheel"><mu1>1.2</mu1><mu2>0.6</mu2></gazebo>
+  <gazebo><plugin filename="libgazebo_ros_diff_drive.so"><leftJoint>l</leftJoint><rightJoint>r</rightJoint></plugin></gazebo>
+)"),
+                                 "rover.urdf", no_environment());
+  const RobotSpec& r = u.spec;
+  auto material = [&](const std::string& link) {
+    const LinkSpec& l = r.links[static_cast<std::size_t>(r.link_index(link))];
+    for (const auto& sh : l.shapes) {
+      if (sh.collides) return sh.material;
+    }
+    return std::string();
+  };
+  auto friction = [&](const std::string& name) {
+    for (const auto& m : r.materials) {
+      if (m.name == name) return m.friction;
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(material("base"), "rover/base_contact");
+  EXPECT_DOUBLE_EQ(friction("rover/base_contact"), 0.1);
+  EXPECT_EQ(r.links[0].friction_scale, Vec3::Ones());
+  EXPECT_DOUBLE_EQ(friction(material("left_wheel")), 1.2);
+  EXPECT_EQ(r.links[static_cast<std::size_t>(r.link_index("left_wheel"))].friction_scale, Vec3(1.0, 0.5, 1.0));
+  // the wheel without <mu1> grips like rubber
+  EXPECT_EQ(material("right_wheel"), "robot_wheel");
+  EXPECT_EQ(u.diagnostics.warning_count(), 0) << warnings(u);
+}
+
 }  // namespace
 }  // namespace rescuesim
