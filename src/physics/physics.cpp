@@ -44,12 +44,12 @@ bool finite(const Pose3& X) {
 /// joined by fixed joints are lumped into one body, see world/robot_lumping.h).
 struct RobotBody {
   btMultiBody* mb = nullptr;
-  LumpedRobot lumped;                       // bodies and moving joints, and where each link sits
+  LumpedRobot lumped;                       // bodies and moving joints, and where each link sits; a moving
+                                            // joint's Bullet link is its lumped index (lumped.lumped_joint)
   std::vector<int> bt_link;                 // per body: Bullet link index, -1 for the base
   std::vector<btMultiBodyLinkCollider*> colliders;  // per body
   std::vector<btMultiBodyJointMotor*> motors;       // per original joint, nullptr when uncontrolled
   std::vector<Pose3> X_BF;                  // per body: Bullet's frame (centre of mass, principal axes) in the body frame
-  std::vector<int> bt_joint;                // per original joint: Bullet link index, -1 for fixed joints
   std::vector<char> top;                    // per original link: it is its body's own frame
 };
 
@@ -238,14 +238,13 @@ struct Physics::Impl {
     // them), Coulomb friction on passive joints (a motor holding zero speed with a bounded
     // force, as pybullet does), and limits
     const RobotSpec& full = inst.spec;
-    body.bt_joint = body.lumped.lumped_joint;
     for (std::size_t l = 0; l < full.links.size(); ++l) {
       body.top.push_back(spec.links[static_cast<std::size_t>(body.lumped.body_of_link[l])].name == full.links[l].name);
     }
     body.motors.assign(full.joints.size(), nullptr);
     for (std::size_t j = 0; j < full.joints.size(); ++j) {
       const JointSpec& js = full.joints[j];
-      const int bt = body.bt_joint[j];
+      const int bt = body.lumped.lumped_joint[j];
       if (bt < 0) continue;
       const bool passive = js.control == JointSpec::Control::none;
       if (!passive || js.friction > 0) {
@@ -291,7 +290,7 @@ struct Physics::Impl {
   void apply_targets(const RobotSpec& spec, RobotBody& b, const RobotState& s) {
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       const JointSpec& js = spec.joints[j];
-      const int bt = b.bt_joint[j];
+      const int bt = b.lumped.lumped_joint[j];
       if (bt >= 0 && js.damping > 0) b.mb->addJointTorque(bt, btScalar(-js.damping * b.mb->getJointVel(bt)));
       btMultiBodyJointMotor* m = b.motors[j];
       if (!m) continue;
@@ -312,7 +311,7 @@ struct Physics::Impl {
     s.qd.resize(n);
     s.effort.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
-      const int bt = b.bt_joint[j];
+      const int bt = b.lumped.lumped_joint[j];
       s.q[j] = bt >= 0 ? b.mb->getJointPos(bt) : 0.0;
       s.qd[j] = bt >= 0 ? b.mb->getJointVel(bt) : 0.0;
       // motors have no impulse to report before their first solve
@@ -470,7 +469,7 @@ void Physics::restore(const State& state) {
     rb.mb->setBaseOmega(to_bt(rs.base.w_WB));
     rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * com)));
     for (std::size_t j = 0; j < spec.joints.size() && j < rs.q.size(); ++j) {
-      const int bt = rb.bt_joint[j];
+      const int bt = rb.lumped.lumped_joint[j];
       if (bt < 0) continue;
       rb.mb->setJointPos(bt, btScalar(rs.q[j]));
       rb.mb->setJointVel(bt, btScalar(rs.qd[j]));

@@ -1,5 +1,7 @@
 #include "session/explorer_settings.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace rescuesim {
@@ -14,10 +16,6 @@ autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller) 
   if (controller == "wall_follower") ec.frontier_trips = false;  // never plans: pure wall following
   return ec;
 }
-
-}  // namespace rescuesim
-
-namespace rescuesim {
 
 double footprint_radius(const RobotSpec& robot) {
   const auto X_BL = link_poses(robot, initial_positions(robot));

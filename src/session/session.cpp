@@ -9,6 +9,7 @@
 #include "session/camera_service.h"
 #include "session/explorer_settings.h"
 #include "session/session_controllers.h"
+#include "world/robot_lumping.h"
 
 namespace rescuesim {
 
@@ -76,21 +77,14 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     if (!wants) continue;
     const SourceRef where{scenario_.source_file, 0, "robots[" + std::to_string(r) + "].controller"};
     if (!laser || !odom) throw Error(where, "the " + configs[r].controller + " needs an enabled planar laser and odometry (a drive)");
-    // the laser must sit on the root link, or on links fixed to it
-    for (int l = robot.spec.link_index(laser->link); l > 0;) {
-      const JointSpec* up = nullptr;
-      for (const auto& j : robot.spec.joints) {
-        if (j.child == robot.spec.links[static_cast<std::size_t>(l)].name) up = &j;
-      }
-      if (!up || up->type != JointSpec::Type::fixed) {
-        throw Error(where, "the " + configs[r].controller + " needs its laser fixed to the robot's body; link '" + laser->link + "' moves on joint '" +
-                               (up ? up->name : std::string("?")) + "'");
-      }
-      l = robot.spec.link_index(up->parent);
-    }
+    // the laser must sit on the root link, or on links fixed to it (the root's rigid body)
     const int laser_link = robot.spec.link_index(laser->link);
-    const Pose3 X_BS = laser_link == 0 ? laser->X_LS
-                                       : link_poses(robot.spec, initial_positions(robot.spec))[static_cast<std::size_t>(laser_link)] * laser->X_LS;
+    const LumpedRobot lumped = lump_fixed_joints(robot.spec);
+    if (lumped.body_of_link[static_cast<std::size_t>(laser_link)] != 0) {
+      throw Error(where, "the " + configs[r].controller + " needs its laser fixed to the robot's body; link '" + laser->link +
+                             "' moves on a joint");
+    }
+    const Pose3 X_BS = laser_link == 0 ? laser->X_LS : lumped.X_BL[static_cast<std::size_t>(laser_link)] * laser->X_LS;
     const autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller, robot.spec);
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(X_BS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();

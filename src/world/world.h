@@ -86,9 +86,6 @@ struct CompileOptions {
 /// model that is not in `models`.
 World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options = {});
 
-/// Adds every robot's own materials (RobotSpec::materials) to the world's, once each.
-void add_robot_materials(World& world);
-
 /// The body parts of a victim as (geometry, pose in the world, material name) triples: torso,
 /// head, arms and legs from boxes, spheres and cylinders, lying or sitting.
 struct BodyPart {

@@ -80,15 +80,22 @@ std::vector<BodyPart> victim_body(const VictimSpec& v) {
   return parts;
 }
 
+namespace {
+/// Adds `m` unless a material of its name is already there.
+void add_missing(std::vector<MaterialSpec>& materials, const MaterialSpec& m) {
+  for (const auto& x : materials) {
+    if (x.name == m.name) return;
+  }
+  materials.push_back(m);
+}
+
+/// Adds every robot's own materials (RobotSpec::materials, e.g. a URDF's) to the world's.
 void add_robot_materials(World& world) {
   for (const auto& r : world.robots) {
-    for (const auto& m : r.spec.materials) {
-      bool have = false;
-      for (const auto& x : world.materials) have = have || x.name == m.name;
-      if (!have) world.materials.push_back(m);
-    }
+    for (const auto& m : r.spec.materials) add_missing(world.materials, m);
   }
 }
+}  // namespace
 
 World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options) {
   World w;
@@ -100,11 +107,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
   w.lights = spec.lights;
   w.world_seed = spec.seed;
   // robots need their materials even when a hand-built spec left them out
-  for (const auto& m : default_materials()) {
-    bool have = false;
-    for (const auto& x : w.materials) have = have || x.name == m.name;
-    if (!have) w.materials.push_back(m);
-  }
+  for (const auto& m : default_materials()) add_missing(w.materials, m);
 
   // the floor: a slab whose top is z = 0, a margin wider than the drawing
   {

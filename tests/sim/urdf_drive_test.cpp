@@ -67,7 +67,9 @@ TEST(UrdfDrive, BurgerDrivesAtTheCommandedSpeed) {
   // the drive wheels grip like rubber (the robot_wheel material), the body does not
   const RobotSpec spec = burger();
   for (const LinkShape& sh : spec.links[static_cast<std::size_t>(spec.link_index("wheel_left_link"))].shapes) {
-    if (sh.collides) EXPECT_EQ(sh.material, "robot_wheel");
+    if (sh.collides) {
+      EXPECT_EQ(sh.material, "robot_wheel");
+    }
   }
   Simulation sim(flat_world());
   drive(sim, 0.2, 0, 2.0);  // accelerate

@@ -173,7 +173,6 @@ World compile_scenario(const Scenario& scenario, const WorldSpec& spec, const Mo
   World world = compile_world(spec, all);
   const auto configs = robot_configs(scenario, spec, all);
   for (std::size_t i = 0; i < world.robots.size() && i < configs.size(); ++i) world.robots[i].spec = configs[i].spec;
-  add_robot_materials(world);
   return world;
 }
 

@@ -93,15 +93,17 @@ void read_sensor(const YamlNode& n, SensorSpec& s) {
   n.finish();
 }
 
-/// The sensor kinds a `sensors:` list may add, with their default topics.
+/// The kind of sensor a `sensors:` list entry adds (its `type:`, named as sensor_type_name names it).
 SensorSpec::Type sensor_type_of(const YamlNode& item) {
-  const std::string t = item.choice("type", "", {"lidar", "sonar", "imu", "color_camera", "depth_camera", "thermal_camera"});
-  if (t == "lidar") return SensorSpec::Type::lidar;
-  if (t == "sonar") return SensorSpec::Type::sonar;
-  if (t == "imu") return SensorSpec::Type::imu;
-  if (t == "color_camera") return SensorSpec::Type::color_camera;
-  if (t == "depth_camera") return SensorSpec::Type::depth_camera;
-  return SensorSpec::Type::thermal_camera;
+  using T = SensorSpec::Type;
+  static const T kinds[] = {T::lidar, T::sonar, T::imu, T::color_camera, T::depth_camera, T::thermal_camera};
+  std::vector<std::string> names;
+  for (T t : kinds) names.push_back(sensor_type_name(t));
+  const std::string name = item.choice("type", "", names);
+  for (T t : kinds) {
+    if (name == sensor_type_name(t)) return t;
+  }
+  return T::lidar;  // not reached: choice() accepts only the names above
 }
 
 /// `sensors:` as a list: each entry changes the sensor of that name, or adds one of `type` on
@@ -139,7 +141,6 @@ void read_sensor_list(const YamlNode& node, RobotSpec& spec) {
       case SensorSpec::Type::depth_camera: s.topic = s.name + "/depth/image_raw"; break;
       default: s.topic = s.name + "/image_raw"; break;
     }
-    s.X_LS = Pose3{};
     read_sensor(item, s);
     spec.sensors.push_back(s);
   }

@@ -11,6 +11,7 @@
 #include <console_bridge/console.h>
 #include <map>
 #include <mutex>
+#include <tuple>
 
 #include "core/atomic_file.h"
 #include "world/mesh/mesh.h"
@@ -73,7 +74,9 @@ class Builder {
   void build() {
     RobotSpec& spec = out_.spec;
     spec.model = model_.getName();
-    for (const auto& [name, m] : model_.materials_) material_for(m, "");
+    for (const auto& [name, m] : model_.materials_) {
+      if (m) material_for(*m, name);
+    }
     // links in tree order: the root, then each joint's child after its parent (document order)
     std::vector<std::string> order{model_.getRoot()->name};
     std::vector<std::string> joints;
@@ -101,47 +104,56 @@ class Builder {
   double hull_seconds = 0;
 
  private:
-  /// A robot material for a URDF material (or a mesh colour); returns its name.
-  std::string material_for(const urdf::MaterialSharedPtr& m, const std::string& fallback_name) {
-    const std::string name = out_.spec.model + "/" + (m && !m->name.empty() ? m->name : fallback_name);
+  /// The robot material `<model>/<name>` of this colour (added once); returns its name.
+  std::string add_material(const std::string& name, const Vec3& color) {
+    const std::string full = out_.spec.model + "/" + name;
     for (const auto& x : out_.spec.materials) {
-      if (x.name == name) return name;
+      if (x.name == full) return full;
     }
     MaterialSpec ms;
-    ms.name = name;
+    ms.name = full;
     ms.roughness = 0.6;
-    if (m) ms.color = Vec3(m->color.r, m->color.g, m->color.b);
+    ms.color = color;
     out_.spec.materials.push_back(ms);
-    return name;
+    return full;
   }
 
-  /// The line of the <mesh filename=...> element of a link (the link's line if not found).
+  /// The robot material of a URDF <material> (named, or `fallback_name` when it has no name).
+  std::string material_for(const urdf::Material& m, const std::string& fallback_name) {
+    return add_material(m.name.empty() ? fallback_name : m.name, Vec3(m.color.r, m.color.g, m.color.b));
+  }
+
+  /// The line of a link's <mesh filename=...> element (the link's line if not found).
   int mesh_line(const std::string& link, const std::string& filename) const {
-    int line = index_.link(link).line;
+    int line = 0;
     const auto it = index_.links.find(link);
-    if (it == index_.links.end()) return line;
-    visit_elements(it->second, [&](const tinyxml2::XMLElement* e) {
-      const char* f = e->Attribute("filename");
-      if (std::strcmp(e->Name(), "mesh") == 0 && f && filename == f && line == index_.link(link).line) line = e->GetLineNum();
-      return true;
-    });
-    return line;
+    if (it != index_.links.end()) {
+      visit_elements(it->second, [&](const tinyxml2::XMLElement* e) {
+        const char* f = e->Attribute("filename");
+        if (!line && std::strcmp(e->Name(), "mesh") == 0 && f && filename == f) line = e->GetLineNum();
+        return line == 0;
+      });
+    }
+    return line ? line : index_.link(link).line;
   }
 
-  const LoadedMesh& mesh(const urdf::Mesh& m, const std::string& link) {
+  /// A mesh file, loaded once per file and scale.
+  struct MeshFile {
+    const LoadedMesh& mesh;
+    std::string file;  ///< resolved path
+  };
+  MeshFile mesh(const urdf::Mesh& m, const std::string& link) {
     const SourceRef where{index_.file, mesh_line(link, m.filename), "<link name=\"" + link + "\"> <mesh filename=\"" + m.filename + "\">"};
     const std::filesystem::path file = options_.resolver.resolve(m.filename, where);
-    const Vec3 scale(m.scale.x, m.scale.y, m.scale.z);
-    const std::string key = file.string() + "|" + std::to_string(scale.x()) + "," + std::to_string(scale.y()) + "," + std::to_string(scale.z());
+    const auto key = std::make_tuple(file.string(), m.scale.x, m.scale.y, m.scale.z);
     auto it = meshes_.find(key);
     if (it == meshes_.end()) {
       MeshLoadOptions o;
-      o.scale = scale;
+      o.scale = Vec3(m.scale.x, m.scale.y, m.scale.z);
       o.max_triangles = options_.max_triangles;
       it = meshes_.emplace(key, load_mesh(file, o, where)).first;
     }
-    last_file_ = file.string();
-    return it->second;
+    return {it->second, file.string()};
   }
 
   /// Adds the shapes of one collision or visual element to `ls`.
@@ -184,23 +196,19 @@ class Builder {
       case urdf::Geometry::MESH: break;
     }
     const auto& m = static_cast<const urdf::Mesh&>(g);
-    const LoadedMesh& loaded = mesh(m, ls.name);
+    const MeshFile found = mesh(m, ls.name);
+    const LoadedMesh& loaded = found.mesh;
     UrdfMeshReport report;
     report.link = ls.name;
     report.uri = m.filename;
-    report.file = last_file_;
+    report.file = found.file;
     report.collision = collision;
     report.triangles = static_cast<int>(loaded.mesh.triangles.size());
     if (!collision) {
-      std::string mat = material;
-      if (mat == "robot_body" && loaded.color) {
-        auto colour = std::make_shared<urdf::Material>();
-        colour->name = "mesh:" + std::filesystem::path(m.filename).filename().string();
-        colour->color.r = static_cast<float>(loaded.color->x());
-        colour->color.g = static_cast<float>(loaded.color->y());
-        colour->color.b = static_cast<float>(loaded.color->z());
-        mat = material_for(colour, "");
-      }
+      // no URDF material: the mesh file's own colour, if it has one
+      const std::string mat = material == "robot_body" && loaded.color
+                                  ? add_material("mesh:" + std::filesystem::path(m.filename).filename().string(), *loaded.color)
+                                  : material;
       add(Geometry::triangles(loaded.mesh), mat);
       out_.meshes.push_back(report);
       return;
@@ -224,7 +232,7 @@ class Builder {
       }
     } catch (const Error& e) {
       throw Error({index_.file, mesh_line(ls.name, m.filename), "<link name=\"" + ls.name + "\"> <collision> <mesh filename=\"" + m.filename + "\">"},
-                  "collision mesh " + last_file_ + ": " + e.message());
+                  "collision mesh " + found.file + ": " + e.message());
     }
     hull_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     report.pieces = static_cast<int>(pieces.size());
@@ -256,7 +264,7 @@ class Builder {
     int k = 0;
     for (const auto& v : l.visual_array) {
       if (!v || !v->geometry) continue;
-      const std::string mat = v->material ? material_for(v->material, l.name + "_visual" + std::to_string(k)) : "robot_body";
+      const std::string mat = v->material ? material_for(*v->material, l.name + "_visual" + std::to_string(k)) : "robot_body";
       add_geometry(ls, *v->geometry, pose_of(v->origin), false, mat);
       ++k;
     }
@@ -344,8 +352,7 @@ class Builder {
   const XmlIndex& index_;
   const UrdfOptions& options_;
   UrdfRobot& out_;
-  std::map<std::string, LoadedMesh> meshes_;
-  std::string last_file_;
+  std::map<std::tuple<std::string, double, double, double>, LoadedMesh> meshes_;  // by file and scale
 };
 
 /// Bodies that physics would see without mass (massless links on moving joints) get a token
