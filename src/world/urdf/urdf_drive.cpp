@@ -26,8 +26,8 @@ double wheel_radius_of(const RobotSpec& robot, const JointSpec& joint) {
 
 }  // namespace
 
-void configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left, const std::vector<std::string>& right,
-                          double wheel_radius, double track_width, const SourceRef& where) {
+bool configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left, const std::vector<std::string>& right,
+                          double wheel_radius, double track_width, const SourceRef& where, bool sides_by_position) {
   if (left.empty() || right.empty()) throw Error(where, "a diff_drive needs at least one wheel joint on each side (left and right)");
   const std::vector<Pose3> X_BL = link_poses(robot, initial_positions(robot));
   DriveSpec& d = robot.drive;
@@ -76,11 +76,16 @@ void configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left
   }
   d.track_width = track_width > 0 ? track_width : std::abs(left_y - right_y);
   if (!(d.track_width > 1e-4)) throw Error(where, "the left and right wheels are at the same place; give drive.wheel_separation");
-  if (left_y < right_y && track_width <= 0) {
+  if (left_y < right_y) {
+    if (sides_by_position) {
+      configure_diff_drive(robot, right, left, wheel_radius, track_width, where, false);
+      return true;
+    }
     throw Error(where, "the 'left' wheels are to the right of the 'right' wheels (y " + num(left_y) + " < " + num(right_y) + " m); swap them");
   }
   // two wheels a side or more skid when turning: the effective track is wider (as the built-in robot's)
   d.track_multiplier = left.size() + right.size() > 2 ? 1.25 : 1.0;
+  return false;
 }
 
 }  // namespace rescuesim

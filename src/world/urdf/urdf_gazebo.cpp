@@ -78,7 +78,13 @@ void read_drive_plugin(const XMLElement* plugin, const std::string& filename, co
   std::vector<std::string> right = all_texts(plugin, {"rightJoint", "right_joint", "rightFrontJoint", "rightRearJoint"});
   const double separation = child_number(plugin, {"wheelSeparation", "wheel_separation"}, 0, index);
   const double diameter = child_number(plugin, {"wheelDiameter", "wheel_diameter"}, 0, index);
-  configure_diff_drive(out.spec, left, right, diameter / 2, separation, index.at(plugin));
+  // ROS 1's gazebo_ros_diff_drive turns the wrong way round, so many URDFs name the right wheel
+  // its leftJoint to compensate: the sides are taken from where the wheels are
+  if (configure_diff_drive(out.spec, left, right, diameter / 2, separation, index.at(plugin), true)) {
+    out.diagnostics.warn(index.at(plugin), "plugin '" + filename +
+                                               "' names the right-hand wheels as its left ones (a common workaround for the ROS 1 "
+                                               "plugin's reversed turning): rescuesim takes each side from where its wheels are");
+  }
   const double torque = child_number(plugin, {"wheelTorque", "max_wheel_torque", "torque"}, 0, index);
   if (torque > 0) {
     for (const auto* side : {&left, &right}) {

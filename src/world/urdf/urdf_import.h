@@ -75,10 +75,12 @@ namespace rescuesim {
 /// Makes the named joints a differential (or skid-steer, several a side) drive: they become
 /// velocity-controlled, each wheel's forward sign comes from its axis, and the wheel radius
 /// (from the wheel links' collision shapes) and the track (between the left and right wheel
-/// centres) are derived unless given (> 0). Throws Error at `where` for unknown or fixed joints
-/// or wheels whose axis does not point sideways.
-void configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left, const std::vector<std::string>& right,
-                          double wheel_radius, double track_width, const SourceRef& where);
+/// centres) are derived unless given (> 0). Throws Error at `where` for unknown or fixed joints,
+/// wheels whose axis does not point sideways, or 'left' wheels to the right of the 'right' ones
+/// — unless `sides_by_position`, when the sides are swapped to where the wheels are (returns
+/// true then).
+bool configure_diff_drive(RobotSpec& robot, const std::vector<std::string>& left, const std::vector<std::string>& right,
+                          double wheel_radius, double track_width, const SourceRef& where, bool sides_by_position = false);
 
 }  // namespace rescuesim
 

@@ -295,5 +295,22 @@ TEST(UrdfImport, GazeboMuSetsTheLinksContactFriction) {
   EXPECT_EQ(u.diagnostics.warning_count(), 0) << warnings(u);
 }
 
+TEST(UrdfImport, DiffDrivePluginSidesComeFromWhereTheWheelsAre) {
+  // URDFs written for ROS 1's gazebo_ros_diff_drive often name the right wheel leftJoint (that
+  // plugin turns the wrong way round); joint l is at y = +0.15 (left), r at y = -0.15
+  const UrdfRobot u = parse_urdf(two_wheeler(R"(  <gazebo><plugin filename="libgazebo_ros_diff_drive.so">
+    <leftJoint>r</leftJoint><rightJoint>l</rightJoint><wheelSeparation>0.3</wheelSeparation><wheelDiameter>0.1</wheelDiameter>
+  </plugin></gazebo>
+)"),
+                                 "rover.urdf", no_environment());
+  EXPECT_EQ(u.spec.drive.left_wheels, std::vector<std::string>{"l"});
+  EXPECT_EQ(u.spec.drive.right_wheels, std::vector<std::string>{"r"});
+  ASSERT_EQ(u.diagnostics.warning_count(), 1) << warnings(u);
+  EXPECT_THAT(u.diagnostics.items()[0].message, HasSubstr("left ones"));
+  // a scenario's drive: naming them the wrong way round is an error, not a guess
+  RobotSpec spec = u.spec;
+  EXPECT_THROW(configure_diff_drive(spec, {"r"}, {"l"}, 0, 0.3, {}), Error);
+}
+
 }  // namespace
 }  // namespace rescuesim
