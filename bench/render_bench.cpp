@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "render/render_bench.h"
+#include "render/bench/render_bench.h"
 #include "render/renderer.h"
 #include "world/maze/maze.h"
 
@@ -54,7 +54,7 @@ Renderer& renderer(Quality q) {
   return *slot;
 }
 
-void BM_Renderer(benchmark::State& state, Quality q, int kind) {
+void BM_Renderer(benchmark::State& state, Quality q, BenchImage image) {
   const auto w = static_cast<int>(state.range(0)), h = static_cast<int>(state.range(1));
   Renderer& r = renderer(q);
   const CameraView view = bench_view(w, h);
@@ -63,9 +63,11 @@ void BM_Renderer(benchmark::State& state, Quality q, int kind) {
   ThermalImage thermal;
   for (int i = 0; i < 3; ++i) r.color(view, color);
   for (auto _ : state) {
-    if (kind == 0) r.color(view, color);
-    else if (kind == 1) r.depth(view, depth);
-    else r.thermal(view, 1.5, thermal);
+    switch (image) {
+      case BenchImage::color: r.color(view, color); break;
+      case BenchImage::depth: r.depth(view, depth); break;
+      case BenchImage::thermal: r.thermal(view, 1.5, thermal); break;
+    }
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["triangles"] = static_cast<double>(maze_scene().triangle_count());
@@ -82,11 +84,11 @@ void BM_BareGl(benchmark::State& state) {
 
 #define SIZES Args({640, 480})->Args({320, 240})->Unit(benchmark::kMillisecond)->UseRealTime()
 BENCHMARK(BM_BareGl)->SIZES->Iterations(1);
-BENCHMARK_CAPTURE(BM_Renderer, color_low, Quality::low, 0)->SIZES;
-BENCHMARK_CAPTURE(BM_Renderer, depth, Quality::low, 1)->SIZES;
-BENCHMARK_CAPTURE(BM_Renderer, thermal_blur1_5, Quality::low, 2)->SIZES;
-BENCHMARK_CAPTURE(BM_Renderer, color_medium, Quality::medium, 0)->SIZES;
-BENCHMARK_CAPTURE(BM_Renderer, color_high, Quality::high, 0)->SIZES;
+BENCHMARK_CAPTURE(BM_Renderer, color_low, Quality::low, BenchImage::color)->SIZES;
+BENCHMARK_CAPTURE(BM_Renderer, depth, Quality::low, BenchImage::depth)->SIZES;
+BENCHMARK_CAPTURE(BM_Renderer, thermal_blur1_5, Quality::low, BenchImage::thermal)->SIZES;
+BENCHMARK_CAPTURE(BM_Renderer, color_medium, Quality::medium, BenchImage::color)->SIZES;
+BENCHMARK_CAPTURE(BM_Renderer, color_high, Quality::high, BenchImage::color)->SIZES;
 
 }  // namespace
 }  // namespace rescuesim

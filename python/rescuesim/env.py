@@ -96,13 +96,21 @@ class Env:
         return dict(self._views)
 
     def reset(self, *, seed=None, options=None):
-        """Starts an episode: a fresh simulation with run seed ``seed``. -> (observations, info)"""
+        """Starts an episode with run seed ``seed``. -> (observations, info)
+
+        With the previous episode's seed the simulation is restored to the snapshot taken when it
+        was built (exact, and much faster than building it again); another seed builds it anew."""
         del options  # accepted for Gymnasium compatibility
         if seed is None:
             seed = self.scenario.seed if self._seed is None else self._seed + 1
         self._seed = int(seed)
         self._core.reset(self._seed)
         return self._observations(), self._core.info()
+
+    @property
+    def builds(self):
+        """How many times the simulation was built; a reset with the same seed restores instead."""
+        return self._core.builds
 
     def step(self, action):
         """Drives for one control period. -> (observations, reward, terminated, truncated, info)"""

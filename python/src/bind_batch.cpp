@@ -10,9 +10,9 @@
 #include "bindings.h"
 #include "core/error.h"
 #include "robots/rescue_robot.h"
-#include "session/batch_results.h"
-#include "session/batch_summary.h"
-#include "session/batch_trial.h"
+#include "batch/batch_results.h"
+#include "batch/batch_summary.h"
+#include "batch/batch_trial.h"
 
 namespace py = pybind11;
 

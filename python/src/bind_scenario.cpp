@@ -7,7 +7,7 @@
 
 #include "bindings.h"
 #include "robots/rescue_robot.h"
-#include "session/batch_trial.h"
+#include "batch/batch_trial.h"
 
 namespace py = pybind11;
 

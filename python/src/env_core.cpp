@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "session/scenario_load.h"
 #include "session/session.h"
 
 namespace rescuesim::python {
@@ -123,8 +124,7 @@ void EnvCore::bind(const std::vector<std::uint8_t*>& buffers) {
 void EnvCore::build(std::uint64_t seed) {
   ready_ = false;
   Scenario s = scenario_;
-  s.seed = seed;
-  if (s.maze && !options_.fixed_world) s.maze->seed = seed;
+  reseed_scenario(s, seed, !options_.fixed_world);
   s.realtime = false;
   s.stop_when_all_found = false;
   // the controlled robot listens to the actions (unless a built-in controller is asked for);
@@ -145,6 +145,8 @@ void EnvCore::build(std::uint64_t seed) {
   so.cameras = options_.cameras;
   session_.reset();  // the old simulation goes first: its camera service may hold the GL context
   session_ = std::make_unique<Session>(s, models_, so);
+  start_ = std::make_unique<SessionSnapshot>(session_->snapshot());
+  ++builds_;
   robot_ = r;
   robot_name_ = s.robots[static_cast<std::size_t>(r)].name;
   seed_ = seed;
@@ -211,9 +213,17 @@ void EnvCore::clear_buffers() {
 }
 
 void EnvCore::reset(std::uint64_t seed) {
-  if (!(fresh_ && seed == seed_)) {
+  if (!session_ || seed != seed_) {
     build(seed);
     subscribe();
+  } else if (!fresh_) {
+    // the same seed: back to the start instead of building everything again
+    session_->restore(*start_);
+    done_ = false;
+    steps_ = 0;
+    std::fill(found_.begin(), found_.end(), 0);
+    collisions_ = 0;
+    new_victims_.clear();
   }
   clear_buffers();
   // the first step publishes every sensor's sample at t = 0

@@ -23,6 +23,7 @@
 namespace rescuesim {
 
 class Session;
+struct SessionSnapshot;
 
 namespace python {
 
@@ -98,13 +99,18 @@ class EnvCore {
   double max_linear() const { return max_linear_; }
   double max_angular() const { return max_angular_; }
 
-  /// Starts an episode with run seed `seed`: a fresh simulation, observations of t = 0.
+  /// Starts an episode with run seed `seed`, observations of t = 0. With the seed of the last
+  /// episode the simulation goes back to the snapshot taken when it was built (exact: the
+  /// episode replays bitwise under the same actions, and costs no rebuild of the world,
+  /// Bullet, Embree or GL); with another seed it is built anew.
   void reset(std::uint64_t seed);
   /// Drives at `linear` m/s and `angular` rad/s for one control period and scores it. Throws
   /// Error before the first reset() or for non-finite commands.
   StepOutcome step(double linear, double angular);
   /// True once an episode has terminated or been truncated (step() then throws until reset()).
   bool done() const { return done_; }
+  /// How many times the simulation was built: once per seed change, not per reset.
+  int builds() const { return builds_; }
   EpisodeInfo info() const;
   /// The simulation of the current episode (null before the first reset()).
   Session* session() const { return session_.get(); }
@@ -121,10 +127,12 @@ class EnvCore {
   std::vector<std::vector<std::uint8_t>> own_;   // storage unless bind() gave other memory
   std::vector<std::uint8_t*> buffers_;
   std::unique_ptr<Session> session_;
+  std::unique_ptr<SessionSnapshot> start_;  // session_ as built, before its first step
   int robot_ = 0;
   std::string robot_name_;
   std::uint64_t seed_ = 0;
   bool fresh_ = false;     // the session was built but not stepped
+  int builds_ = 0;
   bool ready_ = false;     // reset() has been called
   bool done_ = false;
   int steps_ = 0;

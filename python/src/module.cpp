@@ -13,7 +13,7 @@
 #include "env_core.h"
 #include "raycast/ray_scene.h"
 #include "robots/rescue_robot.h"
-#include "session/batch_trial.h"
+#include "batch/batch_trial.h"
 #include "vector_env_core.h"
 
 namespace py = pybind11;
@@ -104,6 +104,7 @@ void bind_environments(py::module_& m) {
           py::arg("linear"), py::arg("angular"), "-> (reward, terminated, truncated)")
       .def("info", [](const EnvCore& e) { return info_dict(e.info()); })
       .def_property_readonly("done", &EnvCore::done)
+      .def_property_readonly("builds", &EnvCore::builds, "how many times the simulation was built (a reset with the same seed restores instead)")
       .def_property_readonly("max_linear", &EnvCore::max_linear)
       .def_property_readonly("max_angular", &EnvCore::max_angular)
       .def(

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "robots/rescue_robot.h"
-#include "session/batch_results.h"
-#include "session/batch_runner.h"
+#include "batch/batch_results.h"
+#include "batch/batch_runner.h"
 
 namespace rescuesim::app {
 

@@ -206,7 +206,7 @@ Scenario ros_scenario(const Scenario& def) {
         sensor.camera.width = 640;
         sensor.camera.height = 480;
         sensor.rate = 10;
-      } else if (sensor.type == SensorSpec::Type::depth_camera || sensor.type == SensorSpec::Type::thermal_camera) {
+      } else if (sensor.is_camera()) {
         sensor.enabled = false;
       }
     }

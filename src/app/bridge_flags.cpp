@@ -76,6 +76,8 @@ std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f, [[maybe_
     McapOptions o;
     o.path = f.record;
     o.library = std::string("rescuesim ") + RESCUESIM_VERSION;
+    o.chunk_seconds = f.record_chunk_seconds;
+    o.chunk_wall_seconds = f.record_chunk_wall_seconds;
     if (run.scenario && run.world) describe_run(o, *run.scenario, *run.world, run.cameras, RESCUESIM_VERSION);
     bridges.push_back(make_mcap_recorder(o));
 #else

@@ -28,6 +28,8 @@ struct BridgeFlags {
   std::optional<int> foxglove;    ///< --foxglove[=PORT]: serve the Foxglove WebSocket protocol on this port
   std::string foxglove_host = "127.0.0.1";  ///< interface the Foxglove server listens on
   std::string record;             ///< --record FILE.mcap: record every topic (not a live transport: runs stay lockstep)
+  double record_chunk_seconds = 1.0;       ///< --record-chunk-seconds (rescuesim run): sim-time budget of a chunk
+  double record_chunk_wall_seconds = 1.0;  ///< --record-chunk-wall-seconds (rescuesim run): wall-time budget (realtime runs)
 
   /// True when a live transport (ROS or Foxglove) is attached: runs default to realtime,
   /// until Ctrl-C, with the built-in controllers off.

@@ -14,10 +14,10 @@
 
 #include "app/commands.h"
 #include "robots/rescue_robot.h"
-#include "session/batch_results.h"
-#include "session/batch_runner.h"
-#include "session/batch_summary.h"
-#include "session/batch_trial.h"
+#include "batch/batch_results.h"
+#include "batch/batch_runner.h"
+#include "batch/batch_summary.h"
+#include "batch/batch_trial.h"
 
 namespace rescuesim::app {
 

@@ -13,15 +13,18 @@
 
 #include "app/bench_batch.h"
 #include "app/bench_child.h"
+#include "app/bench_reset.h"
 #include "app/bench_ros.h"
+#include "app/bench_soak.h"
 #include "app/bench_urdf.h"
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "physics/physics.h"
-#include "raycast/raycast_bench.h"
-#include "render/render_bench.h"
+#include "physics/bench/bare_bullet.h"
+#include "raycast/bench/raycast_bench.h"
+#include "render/bench/render_bench.h"
 #include "render/renderer.h"
-#include "sensors/camera.h"
+#include "sensors/camera/camera.h"
 #include "robots/drive_controller.h"
 #include "robots/rescue_robot.h"
 #include "sensors/lidar.h"
@@ -48,7 +51,10 @@ struct BenchOptions {
   bool ros_only = false;        ///< only the ROS figures
   std::string urdf_scenario = "worlds/turtlebot3_maze.yaml";  ///< the URDF figures' scenario
   bool urdf_only = false;       ///< only the URDF figures
+  bool reset_only = false;      ///< only the reset figure (bench_reset.h)
   BenchRosOptions ros_options;
+  bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
+  double soak_hours = 10;       ///< sim hours of the soak run
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -139,14 +145,14 @@ json bench_cameras(const World& world, double seconds) {
   j["device"] = renderer->device();
   j["triangles"] = scene.triangle_count();
   const SensorSpec* head = world.robots[0].spec.find_sensor("color_camera");
-  const char* kinds[3] = {"color", "depth", "thermal"};
+  const std::pair<BenchImage, const char*> kinds[3] = {{BenchImage::color, "color"}, {BenchImage::depth, "depth"}, {BenchImage::thermal, "thermal"}};
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{640, 480}, {320, 240}}) {
     const double bare = bare_gl_frames_per_second(w, h, static_cast<int>(scene.triangle_count()), seconds);
     CameraView view = camera_view(world, s, 0, *head);
     view.k = Intrinsics::from_hfov(w, h, 70 * M_PI / 180);
-    for (int k = 0; k < 3; ++k) {
-      const double fps = renderer_frames_per_second(*renderer, view, k, seconds);
-      j[std::string(kinds[k]) + "_" + std::to_string(w) + "x" + std::to_string(h)] =
+    for (const auto& [image, name] : kinds) {
+      const double fps = renderer_frames_per_second(*renderer, view, image, seconds);
+      j[std::string(name) + "_" + std::to_string(w) + "x" + std::to_string(h)] =
           figure(fps, "frames/s", bare, "bare GL loop, same triangles, RGB8 readback", 0.8);
     }
   }
@@ -246,6 +252,13 @@ json bench_recording([[maybe_unused]] const Scenario& def, [[maybe_unused]] cons
 }
 
 int run_bench(const BenchOptions& o) {
+  if (o.soak) {
+    SoakOptions so;
+    so.hours = o.soak_hours;
+    if (!o.out.empty()) so.out = o.out;
+    std::fputs((bench_soak(so).dump(2) + "\n").c_str(), stdout);
+    return kExitOk;
+  }
   const ModelMap models = builtin_models();
   Scenario def = default_scenario(models);
   def.duration = o.scenario_time;
@@ -257,6 +270,13 @@ int run_bench(const BenchOptions& o) {
   report["machine"] = {{"cores", std::thread::hardware_concurrency()}};
   if (o.ros_only) {
     report["ros"] = bench_ros(def, models, o.ros_options);
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
+  if (o.reset_only) {
+    report["reset"] = bench_reset(def, models);
     const std::string text = report.dump(2) + "\n";
     std::fputs(text.c_str(), stdout);
     if (!o.out.empty()) write_file_atomic(o.out, text);
@@ -296,8 +316,7 @@ int run_bench(const BenchOptions& o) {
   cams.duration = std::min(o.scenario_time, 60.0);
   for (auto& rc : cams.robots) {
     for (auto& sensor : rc.spec.sensors) {
-      if (sensor.type == SensorSpec::Type::color_camera || sensor.type == SensorSpec::Type::depth_camera ||
-          sensor.type == SensorSpec::Type::thermal_camera) {
+      if (sensor.is_camera()) {
         sensor.camera.width = 320;
         sensor.camera.height = 240;
         sensor.rate = 10;
@@ -317,6 +336,7 @@ int run_bench(const BenchOptions& o) {
                               [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
   report["mcap_recording"] = bench_recording(def, models);
   if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
+  report["reset"] = bench_reset(def, models);
   report["python_step"] = bench_python_step();
   if (o.ros) report["ros"] = bench_ros(def, models, o.ros_options);
 
@@ -360,12 +380,18 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost)");
   cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
   cmd->add_flag("--urdf-only", o->urdf_only, "measure only the URDF figures");
+  cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
   cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
       ->capture_default_str();
   cmd->add_option("--ros-latency-time", o->ros_options.latency_seconds, "wall seconds of each realtime ROS latency run")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--ros-cost-time", o->ros_options.rtf_seconds, "sim seconds of each lockstep run with and without bridges")
       ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_flag("--soak", o->soak,
+                "only a soak run: the default scenario for --soak-hours of sim time with cameras and every bridge built "
+                "attached, memory and real-time factor every sim minute, every message checked for NaN; writes soak.csv, "
+                "soak.json and soak.png into --out (a folder, default runs/soak)");
+  cmd->add_option("--soak-hours", o->soak_hours, "sim hours of the soak run")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
   add_bench_probe_command(app, action);
 }

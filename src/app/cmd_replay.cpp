@@ -1,6 +1,7 @@
 // rescuesim replay: re-publishes an MCAP recording through the bridges (ROS 1, ROS 2,
-// Foxglove, even another recording), at the recorded pace or scaled. The simulation is rebuilt
-// from the recording but never stepped (bridges/mcap/mcap_player.h).
+// Foxglove, even another recording), at the recorded pace or scaled. The world is rebuilt from
+// the recording, but nothing is simulated: bridges attach to a ReplayHost, a Bus and a clock
+// without physics (bridges/mcap/mcap_player.h).
 
 #include <unistd.h>
 
@@ -66,7 +67,7 @@ int replay(const ReplayCommand& c) {
   auto bridges = make_bridges(c.bridges, {&paced, &player.run().spec, cameras == player.run().info.end() || cameras->second != "off"});
   print_recording(player);
   for (auto& b : bridges) {
-    b->start(player.sim());
+    b->start(player.host());
     std::printf("  bridge        %s started\n", b->name().c_str());
   }
   if (bridges.empty()) {
@@ -83,11 +84,9 @@ int replay(const ReplayCommand& c) {
   bool told_commands = false;
   double next_line = 0;
   const PlayResult r = player.play(c.rate, &g_replay_interrupted, [&](const PlayProgress& p) {
-    // nothing is simulated: commands that bridges take in are queued but never applied, so
-    // they are dropped here rather than left to pile up over a long replay
-    player.sim().discard_commands();
+    // nothing is simulated: the host discards the commands that bridges take in
     for (const auto& b : bridges) {
-      if (!told_commands && b->stats().received > 0) {
+      if (!told_commands && player.host().discarded() > 0 && b->stats().received > 0) {
         std::fprintf(stderr, "%sreplay: commands received through %s are ignored (a replay re-publishes a recording; nothing is simulated)\n",
                      tty ? "\n" : "", b->name().c_str());
         told_commands = true;

@@ -16,6 +16,8 @@
 #include "app/commands.h"
 #include "core/log.h"
 #include "robots/rescue_robot.h"
+#include "session/run_mode.h"
+#include "session/scenario_load.h"
 #include "session/session.h"
 #include "sim/bridge.h"
 
@@ -57,34 +59,21 @@ void print_progress(const RunResult& r, double duration, bool tty) {
 
 int run(const RunCommand& c) {
   namespace fs = std::filesystem;
+  // the scenario with the command line's overrides, then the run mode (session/run_mode.h)
   const ModelMap models = builtin_models();
-  Scenario s = c.scenario.empty() ? default_scenario(models) : load_scenario(c.scenario, models);
-  if (c.seed) {
-    s.seed = *c.seed;
-    if (s.maze) s.maze->seed = *c.seed;
-  }
-  const bool ros = c.bridges.live();
-  if (c.duration) {
-    s.duration = *c.duration;
-  } else if (ros) {
-    s.duration = std::numeric_limits<double>::infinity();  // like a ROS simulator: until Ctrl-C
-  }
-  if (c.realtime || (ros && !c.bridges.lockstep)) s.realtime = true;
-  if (c.bridges.lockstep || c.sync) s.realtime = false;
-  if (c.rate) s.rate = *c.rate;
-  if (!c.world_svg.empty()) {
-    s.svg = c.world_svg;
-    s.maze.reset();
-  }
-  if (!c.quality.empty()) s.render_quality = c.quality;
+  Scenario s = load_scenario_with_overrides(
+      c.scenario, models, {.seed = c.seed, .duration = c.duration, .rate = c.rate, .world_svg = c.world_svg, .render_quality = c.quality});
+  const RunMode mode = resolve_run_mode({.scenario_realtime = s.realtime,
+                                         .realtime = c.realtime,
+                                         .lockstep = c.bridges.lockstep,
+                                         .sync = c.sync,
+                                         .live_bridge = c.bridges.live(),
+                                         .no_controllers = c.no_controllers,
+                                         .keep_controllers = c.bridges.keep_controllers,
+                                         .duration_given = c.duration.has_value()});
   SessionOptions so;
   so.cameras = !c.no_cameras;
-  // with a ROS bridge, ROS drives the robots: the built-in controllers stay off unless kept
-  so.controllers = !c.no_controllers && (!ros || c.bridges.keep_controllers);
-  if (c.sync) {
-    if (!ros) throw Error({"", 0, "--sync"}, "--sync waits for a ROS controller's cmd_vel: use it with --ros1 or --ros2");
-    so.sync_timeout = *c.sync;
-  }
+  apply_run_mode(mode, s, so);
   Session session(s, models, so);
   auto bridges = make_bridges(c.bridges, {&session.scenario(), &session.world_spec(), so.cameras});
   print_diagnostics(session.diagnostics());
@@ -92,7 +81,7 @@ int run(const RunCommand& c) {
   const WorldSpec& w = session.world_spec();
   const bool forever = !std::isfinite(s.duration);
   std::printf("scenario %s (seed %llu, %s, %s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
-              s.realtime ? "realtime" : c.sync ? "lockstep, synchronous with cmd_vel" : "lockstep", forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
+              pacing_name(mode.pacing), forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
               w.name.c_str(), world_summary(w).c_str());
   if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
   if (!so.controllers) std::printf("  controllers   off (robots wait for cmd_vel)\n");
@@ -120,7 +109,7 @@ int run(const RunCommand& c) {
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (session.sync_timeouts() > 0) {
-    std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), *c.sync);
+    std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), mode.sync_timeout);
   }
   for (auto& b : bridges) {
     b->stop();
@@ -167,9 +156,13 @@ void add_run_command(CLI::App& app, Action& action) {
       "  rescuesim run --ros2 --ros-domain 7 --duration 600\n"
       "  rescuesim run worlds/arena.yaml --ros1 --ros2 --keep-controllers\n"
       "  rescuesim run --ros1 --use-sim-time --sync     lockstep with your node: each scan waits for its cmd_vel\n\n"
+      "Modes, first match wins: --sync (lockstep, waiting for cmd_vel); --lockstep; --realtime or a\n"
+      "live bridge (--ros1, --ros2, --foxglove): realtime; else the scenario's realtime: setting\n"
+      "(default lockstep). --realtime with --sync or --lockstep is an error (exit 2).\n\n"
       "Watch in Foxglove or Lichtblick (docs/foxglove.md), record for later (docs/recording.md):\n"
       "  rescuesim run --foxglove --keep-controllers     then open ws://127.0.0.1:8765\n"
-      "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed");
+      "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed\n"
+      "  rescuesim recover runs/default.mcap.part        a killed recording, indexed again up to its last chunk");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
   cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
@@ -188,6 +181,16 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-cameras", c->no_cameras, "switch off the colour, depth and thermal cameras (no OpenGL needed; faster)");
   cmd->add_option("--quality", c->quality, "camera rendering quality")->check(CLI::IsMember({"low", "medium", "high"}));
   add_bridge_flags(cmd, c->bridges);
+  cmd->add_option("--record-chunk-seconds", c->bridges.record_chunk_seconds,
+                  "with --record: write a chunk once it spans this much sim time (0: only at 1 MiB), so a killed run "
+                  "loses at most about this much; 'rescuesim recover' saves the rest of its .part file")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--record-chunk-wall-seconds", c->bridges.record_chunk_wall_seconds,
+                  "with --record in realtime: also write a chunk once it is this many wall seconds old (0: off; lockstep "
+                  "recordings ignore it so they stay byte-identical per seed)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-controllers", c->no_controllers, "switch the scenario's built-in controllers off (robots wait for cmd_vel)");
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }

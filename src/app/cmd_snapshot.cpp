@@ -1,6 +1,6 @@
 // rescuesim snapshot: the seed paper's Fig. 2 as a PNG, headless. Runs a scenario in lockstep
 // to a sim time, renders a chase view of the robot, and composes it with the last images and
-// scan the robot's sensors published (src/session/figure.h).
+// scan the robot's sensors published (src/app/figure.h).
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +11,12 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/figure.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "robots/rescue_robot.h"
-#include "session/figure.h"
+#include "sensors/camera/camera.h"
+#include "session/scenario_load.h"
 #include "session/session.h"
 
 namespace rescuesim::app {
@@ -47,11 +49,9 @@ int snapshot(const SnapshotCommand& c) {
   }
 
   const ModelMap models = builtin_models();
-  Scenario s = c.scenario.empty() ? default_scenario(models) : load_scenario(c.scenario, models);
-  if (c.seed) {
-    s.seed = *c.seed;
-    if (s.maze) s.maze->seed = *c.seed;
-  }
+  ScenarioOverrides overrides;
+  overrides.seed = c.seed;
+  const Scenario s = load_scenario_with_overrides(c.scenario, models, overrides);
   Session session(s, models);
   print_diagnostics(session.diagnostics());
   Simulation& sim = session.sim();

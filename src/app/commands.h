@@ -26,6 +26,7 @@ void add_snapshot_command(CLI::App& app, Action& action);
 void add_view_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);
 void add_batch_command(CLI::App& app, Action& action);
+void add_recover_command(CLI::App& app, Action& action);
 
 /// Several lines describing a world: size, counts of each kind, starts.
 std::string world_summary(const WorldSpec& world);

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
       "  rescuesim maze --seed 3 --count 5  five random mazes as SVG + PNG in mazes/\n"
       "  rescuesim check worlds/arena.svg   what a drawing contains, or what is wrong with it\n"
       "  rescuesim run --record run.mcap    also record every topic (open it in Foxglove)\n"
-      "  rescuesim replay run.mcap --ros2   publish a recording again (docs/recording.md)\n\n"
+      "  rescuesim replay run.mcap --ros2   publish a recording again (docs/recording.md)\n"
+      "  rescuesim recover run.mcap.part    save what a killed recording holds\n\n"
       "Worlds are SVG drawings: black = walls, red = raised areas, blue = victims, green = robot\n"
       "start, orange = rubble (docs/worlds.md). Run 'rescuesim <command> --help' for details.",
       "rescuesim"};
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   app::add_view_command(app, action);
   app::add_replay_command(app, action);
   app::add_batch_command(app, action);
+  app::add_recover_command(app, action);
 
   try {
     app.parse(argc, argv);

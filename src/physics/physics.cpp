@@ -9,11 +9,11 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <set>
 
 #include "physics/bullet_convert.h"
+#include "physics/physics_internal.h"
 #include "world/robot_lumping.h"
 
 namespace rescuesim {
@@ -32,6 +32,23 @@ int sub_of(int code) { return (code >> 16) & 0xfff; }
 
 /// How far apart two shapes may be for Bullet to keep a (speculative) contact between them (m).
 constexpr double kContactDistance = 0.03;
+
+/// A rigid body's sleeping state in State's terms, and back in Bullet's.
+BodyState::Sleep sleep_of(const btCollisionObject& b) {
+  switch (b.getActivationState()) {
+    case ISLAND_SLEEPING: return BodyState::Sleep::asleep;
+    case WANTS_DEACTIVATION: return BodyState::Sleep::drowsy;
+    default: return BodyState::Sleep::awake;
+  }
+}
+int bullet_activation(BodyState::Sleep s) {
+  switch (s) {
+    case BodyState::Sleep::asleep: return ISLAND_SLEEPING;
+    case BodyState::Sleep::drowsy: return WANTS_DEACTIVATION;
+    case BodyState::Sleep::awake: break;
+  }
+  return ACTIVE_TAG;
+}
 
 bool finite(const Pose3& X) {
   return std::isfinite(X.p.x()) && std::isfinite(X.p.y()) && std::isfinite(X.p.z()) && std::isfinite(X.q.w()) &&
@@ -334,6 +351,24 @@ struct Physics::Impl {
     s.base.v_WB = v_com + w.cross(s.base.X_WB.q * (-lr.spec.links[0].com));
   }
 
+  /// Puts Bullet's hidden state into the one canonical form that depends only on the bodies'
+  /// poses (Bullet's advice for repeatable runs): every collision object is taken out of the
+  /// world — which frees their broadphase proxies, overlapping pairs and contact manifolds with
+  /// the warm-start impulses in them — the then empty broadphase is reset (tree, ids, staging)
+  /// and the solver's seed zeroed, and the objects go back in the order they were built in.
+  /// Multibodies and their motors and limits stay: their order never changes and they keep no
+  /// memory between steps beyond what State holds.
+  void canonicalise() {
+    for (auto it = colliders.rbegin(); it != colliders.rend(); ++it) dynamics.removeCollisionObject(it->get());
+    for (auto it = rubble.rbegin(); it != rubble.rend(); ++it) dynamics.removeRigidBody(it->get());
+    for (auto it = statics.rbegin(); it != statics.rend(); ++it) dynamics.removeRigidBody(it->get());
+    broadphase.resetPool(&dispatcher);
+    solver.reset();
+    for (auto& b : statics) dynamics.addRigidBody(b.get());
+    for (auto& b : rubble) dynamics.addRigidBody(b.get());
+    for (auto& c : colliders) dynamics.addCollisionObject(c.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+  }
+
   /// Names of what touches each robot, and whether a new collision began.
   void read_contacts(State& state) {
     std::vector<std::vector<int>> touching(robots.size());
@@ -418,22 +453,14 @@ Physics::Physics(const World& world, const PhysicsOptions& options) : options_(o
 Physics::~Physics() = default;
 
 void Physics::init_state(State& state) const {
+  // the kinematic start state, then what Bullet made of it (its single-precision poses, and
+  // which rubble starts asleep)
   const World& w = impl_->world;
-  state.dynamics.resize(w.dynamics.size());
-  for (std::size_t i = 0; i < w.dynamics.size(); ++i) state.dynamics[i] = BodyState{w.dynamics[i].X_WO, Vec3::Zero(), Vec3::Zero()};
-  state.robots.resize(w.robots.size());
-  for (std::size_t r = 0; r < w.robots.size(); ++r) {
-    RobotState& rs = state.robots[r];
-    const RobotSpec& spec = w.robots[r].spec;
-    impl_->read_robot(spec, impl_->robots[r], rs, false);
-    rs.prev_v_WB = Vec3::Zero();
-    rs.joint_target.assign(spec.joints.size(), 0.0);
-    rs.head_target.clear();
-    for (const auto& name : spec.head_joints) rs.head_target.push_back(spec.joints[static_cast<std::size_t>(spec.joint_index(name))].initial);
-    for (std::size_t j = 0; j < spec.joints.size(); ++j) {
-      if (spec.joints[j].control == JointSpec::Control::position) rs.joint_target[j] = spec.joints[j].initial;
-    }
-  }
+  State start = initial_state(w);
+  state.dynamics = std::move(start.dynamics);
+  for (std::size_t i = 0; i < state.dynamics.size(); ++i) state.dynamics[i].sleep = sleep_of(*impl_->rubble[i]);
+  state.robots = std::move(start.robots);
+  for (std::size_t r = 0; r < w.robots.size(); ++r) impl_->read_robot(w.robots[r].spec, impl_->robots[r], state.robots[r], false);
 }
 
 void Physics::step(State& state) {
@@ -443,7 +470,8 @@ void Physics::step(State& state) {
   // read back
   for (std::size_t i = 0; i < m.rubble.size(); ++i) {
     const btRigidBody& b = *m.rubble[i];
-    state.dynamics[i] = {from_bt(b.getWorldTransform()), from_bt(b.getLinearVelocity()), from_bt(b.getAngularVelocity())};
+    state.dynamics[i] = {from_bt(b.getWorldTransform()), from_bt(b.getLinearVelocity()), from_bt(b.getAngularVelocity()), sleep_of(b),
+                         b.getDeactivationTime()};
   }
   for (std::size_t r = 0; r < m.robots.size(); ++r) m.read_robot(m.world.robots[r].spec, m.robots[r], state.robots[r]);
   m.read_contacts(state);
@@ -454,11 +482,15 @@ void Physics::restore(const State& state) {
   Impl& m = *impl_;
   for (std::size_t i = 0; i < m.rubble.size() && i < state.dynamics.size(); ++i) {
     btRigidBody& b = *m.rubble[i];
-    b.setWorldTransform(to_bt(state.dynamics[i].X_WB));
+    const BodyState& d = state.dynamics[i];
+    b.setLinearVelocity(to_bt(d.v_WB));
+    b.setAngularVelocity(to_bt(d.w_WB));
+    // also sets the interpolation transform and velocities and the world inertia tensor
+    b.setCenterOfMassTransform(to_bt(d.X_WB));
     b.getMotionState()->setWorldTransform(b.getWorldTransform());
-    b.setLinearVelocity(to_bt(state.dynamics[i].v_WB));
-    b.setAngularVelocity(to_bt(state.dynamics[i].w_WB));
-    b.activate(true);
+    b.forceActivationState(bullet_activation(d.sleep));
+    b.setDeactivationTime(btScalar(d.still_time));
+    b.setHitFraction(1);
   }
   for (std::size_t r = 0; r < m.robots.size() && r < state.robots.size(); ++r) {
     RobotBody& rb = m.robots[r];
@@ -476,10 +508,8 @@ void Physics::restore(const State& state) {
     }
     Impl::sync_colliders(rb);
   }
-  // forget contact caches so that a restored run does not depend on what came before
-  m.broadphase.resetPool(&m.dispatcher);
-  m.dynamics.getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(nullptr, &m.dispatcher);
-  m.solver.reset();
+  // contact caches, broadphase and solver: the same canonical form whatever came before
+  m.canonicalise();
 }
 
 PhysicsStats Physics::stats() const {
@@ -491,18 +521,20 @@ PhysicsStats Physics::stats() const {
   return s;
 }
 
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed) {
-  Physics::Impl impl(world, options);
+namespace physics_internal {
+
+btMultiBodyDynamicsWorld& bullet_world(Physics::Impl& impl) { return impl.dynamics; }
+
+void hold_velocity_joints(const World& world, Physics::Impl& impl, double speed) {
   for (std::size_t r = 0; r < impl.robots.size(); ++r) {
     const RobotSpec& spec = world.robots[r].spec;
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       btMultiBodyJointMotor* m = impl.robots[r].motors[j];
-      if (m) m->setVelocityTarget(btScalar(spec.joints[j].control == JointSpec::Control::velocity ? wheel_speed : 0.0), 1.0f);
+      if (m) m->setVelocityTarget(btScalar(spec.joints[j].control == JointSpec::Control::velocity ? speed : 0.0), 1.0f);
     }
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int k = 0; k < steps; ++k) impl.dynamics.stepSimulation(btScalar(options.dt), 0, btScalar(options.dt));
-  return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+}  // namespace physics_internal
 
 }  // namespace rescuesim

@@ -34,9 +34,6 @@ struct PhysicsStats {
   int multibody_links = 0;
 };
 
-class Physics;
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed);
-
 /// Bullet, set up from a World.
 class Physics {
  public:
@@ -45,32 +42,37 @@ class Physics {
   Physics(const Physics&) = delete;
   Physics& operator=(const Physics&) = delete;
 
-  /// Fills the physical parts of a fresh State: rubble and robots at their starting poses.
+  /// Fills the physical parts of a fresh State (dynamics, robots): initial_state(world) as
+  /// Bullet holds it (its single-precision poses; rubble resting on the ground asleep).
   void init_state(State& state) const;
 
   /// Advances one step of dt: applies joint targets from `state`, steps, reads back. Sets
   /// state.trouble when a body's pose becomes non-finite or leaves the world.
   void step(State& state);
 
-  /// Puts every body at the poses and velocities of `state` (contact caches are cleared, so
-  /// stepping on from a restored state is repeatable but not bitwise equal to never having
-  /// restored).
+  /// Puts every body at the poses, velocities and sleeping states of `state`, and Bullet's
+  /// hidden state into a canonical form that depends on nothing else: contact manifolds (with
+  /// their warm-start impulses) and overlapping pairs are dropped, the broadphase is rebuilt
+  /// with its objects inserted in build order, the solver's seed is reset. So stepping on from
+  /// a restore is a function of `state` alone: two restores of one state step on bitwise alike,
+  /// whatever ran before. It is not bitwise the run that never restored (that one keeps its warm
+  /// start, and the poses went through State's double-precision frames), which is why
+  /// Simulation::snapshot restores the live engine from the snapshot it takes. Cost: every
+  /// collision object out of and back into the broadphase, O(n log n) in the number of bodies.
   void restore(const State& state);
 
   double dt() const { return options_.dt; }
   PhysicsStats stats() const;
 
- private:
-  friend double bare_bullet_steps_per_second(const World&, const PhysicsOptions&, int, double);
+  /// The Bullet engine behind this object: an incomplete type outside src/physics. Only the
+  /// folder's internal header physics_internal.h (for the bare-Bullet baseline in
+  /// src/physics/bench) offers functions on it.
   struct Impl;
+  Impl& internals() { return *impl_; }
+
+ private:
   std::unique_ptr<Impl> impl_;
   PhysicsOptions options_;
 };
-
-/// A bare Bullet loop over the same World: the same bodies, but no State, no controllers, no
-/// read-back — the baseline that `rescuesim bench` compares Physics against. Every velocity-
-/// controlled joint is held at `wheel_speed` (rad/s), so a wheeled robot drives straight on
-/// as Physics would make it. Returns steps per second over `steps` steps from a fresh start.
-double bare_bullet_steps_per_second(const World& world, const PhysicsOptions& options, int steps, double wheel_speed);
 
 }  // namespace rescuesim

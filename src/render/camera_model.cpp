@@ -94,4 +94,41 @@ Vec2 undistort(const BrownDistortion& d, const Vec2& xy_distorted, int iteration
   return p;
 }
 
+Pose3 look_at(const Vec3& p_WE, const Vec3& p_WT) {
+  // body frame: x towards the target, y left (level), z completing a right-handed frame
+  Vec3 x = p_WT - p_WE;
+  if (!(x.norm() > 1e-9)) x = Vec3::UnitX();
+  x.normalize();
+  Vec3 y = Vec3::UnitZ().cross(x);
+  if (y.norm() < 1e-6) y = Vec3::UnitY();  // looking straight up or down
+  y.normalize();
+  const Vec3 z = x.cross(y);
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = y;
+  R.col(2) = z;
+  return {p_WE, Quat(R).normalized()};
+}
+
+ChasePoints chase_points(const Pose3& X_WB) {
+  const double yaw = X_WB.yaw();
+  const Vec3 forward(std::cos(yaw), std::sin(yaw), 0);
+  return {X_WB.p - kChaseBack * forward + Vec3(0, 0, kChaseUp), X_WB.p + kChaseAhead * forward + Vec3(0, 0, kChaseAim)};
+}
+
+Vec3 clear_eye(const SightBlocked& blocked, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR) {
+  const auto clear = [&](const Vec3& eye) { return !blocked(eye, p_WT) && !blocked(eye, p_WR); };
+  // over the wall if a modest lift will do (the framing stays), else closer in under it
+  for (int i = 0; i <= 6; ++i) {
+    const Vec3 eye = p_WE + Vec3(0, 0, kMaxEyeLift * i / 6);
+    if (clear(eye)) return eye;
+  }
+  const Vec3 lifted = p_WE + Vec3(0, 0, kMaxEyeLift);
+  for (int i = 9; i >= 1; --i) {
+    const Vec3 eye = p_WT + (lifted - p_WT) * (i / 10.0);
+    if (clear(eye)) return eye;
+  }
+  return p_WT + (lifted - p_WT) * 0.1;
+}
+
 }  // namespace rescuesim

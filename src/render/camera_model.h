@@ -10,6 +10,8 @@
 /// (and the renderer's projection) uses the same convention, so a rendered point lands exactly
 /// where project() says.
 
+#include <functional>
+
 #include <Eigen/Core>
 
 #include "core/pose.h"
@@ -70,5 +72,40 @@ Vec2 distort(const BrownDistortion& d, const Vec2& xy);
 /// Inverts distort() by fixed-point iteration (as OpenCV's undistortPoints); accurate to about
 /// 1e-9 for distortions of real lenses within their field of view.
 Vec2 undistort(const BrownDistortion& d, const Vec2& xy_distorted, int iterations = 20);
+
+/// Pose of a level camera body frame B (x forward, y left, z up; no roll) at the eye `p_WE`
+/// looking at the target `p_WT` (world frame, m). Straight up or down, y is taken as world +y;
+/// eye = target gives the world's orientation.
+Pose3 look_at(const Vec3& p_WE, const Vec3& p_WT);
+
+/// How the chase camera (the third-person view of `rescuesim view` and `snapshot`) trails the
+/// robot (m, in the robot's heading frame).
+inline constexpr double kChaseBack = 2.5;   ///< behind the robot
+inline constexpr double kChaseUp = 1.8;     ///< above the robot's base
+inline constexpr double kChaseAhead = 1.2;  ///< the point looked at, ahead of the robot
+inline constexpr double kChaseAim = 0.1;    ///< height of that point above the base (m)
+
+/// Eye and aim point of a camera (world frame, m).
+struct ChasePoints {
+  Vec3 eye = Vec3::Zero(), target = Vec3::Zero();
+};
+
+/// Where the chase camera is for a robot whose base is at `X_WB`: kChaseBack behind and kChaseUp
+/// above it, aimed kChaseAhead ahead and kChaseAim up (heading only: it does not roll or pitch
+/// with the chassis).
+ChasePoints chase_points(const Pose3& X_WB);
+
+/// Most an eye is raised to see over a wall (m).
+inline constexpr double kMaxEyeLift = 1.5;
+
+/// Whether something hides `to` from `from` (world frame, m). A function rather than a ray scene
+/// so that render needs no raycast (the caller binds RayScene::occluded).
+using SightBlocked = std::function<bool(const Vec3& from, const Vec3& to)>;
+
+/// The eye moved so that nothing `blocked` reports hides the target `p_WT` or the robot point
+/// `p_WR` from it: raised in sixths of kMaxEyeLift while that is enough, else moved from the
+/// lifted eye towards the target in tenths (at most to 0.1 of the way). Unchanged when both are
+/// in sight.
+Vec3 clear_eye(const SightBlocked& blocked, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR);
 
 }  // namespace rescuesim

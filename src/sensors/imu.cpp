@@ -17,15 +17,15 @@ msg::Imu sample_imu(const World& world, const State& state, int robot, const Sen
   const Vec3 r_W = rs.base.X_WB.q * spec.X_LS.p;
   const Vec3 v_S = rs.base.v_WB + rs.base.w_WB.cross(r_W);
   const double dt = slot.last_sample.ns >= 0 ? (stamp - slot.last_sample).seconds() : 0.0;
-  const Vec3 a_W = dt > 0 ? Vec3((v_S - slot.memory[2]) / dt) : Vec3::Zero();
-  slot.memory[2] = v_S;
+  const Vec3 a_W = dt > 0 ? Vec3((v_S - slot.imu.v_WS) / dt) : Vec3::Zero();
+  slot.imu.v_WS = v_S;
   // an accelerometer measures acceleration minus gravity: at rest it reads +g upward
   const Vec3 f_S = R_SW * (a_W + Vec3(0, 0, world.gravity));
   const Vec3 w_S = R_SW * rs.base.w_WB;
 
   // biases walk between samples, then white noise on top
-  Vec3& gyro_bias = slot.memory[0];
-  Vec3& accel_bias = slot.memory[1];
+  Vec3& gyro_bias = slot.imu.gyro_bias;
+  Vec3& accel_bias = slot.imu.accel_bias;
   if (slot.last_sample.ns < 0) {
     gyro_bias = Vec3::Constant(imu.gyro.bias);
     accel_bias = Vec3::Constant(imu.accel.bias);

@@ -41,9 +41,9 @@ void integrate_odometry(const World& world, State& state, int robot, const Senso
   }
   BodyRate rate = wheel_odometry_rate(rspec, qd);
   if (spec.odometry.gyro_heading) {
-    // the chassis gyro's yaw rate, with its own white noise and drifting bias (memory[0].x)
+    // the chassis gyro's yaw rate, with its own white noise and drifting bias (kept in slot.odometry)
     const double true_rate = (rs.base.X_WB.q.conjugate() * rs.base.w_WB).z();
-    double& bias = slot.memory[0].x();
+    double& bias = slot.odometry.gyro_bias;
     bias = walk_bias(bias, spec.odometry.gyro, dt, slot.rng);
     rate.w = add_noise(true_rate, spec.odometry.gyro, bias, slot.rng);
   }

@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "core/log.h"
-#include "session/camera_service.h"
+#include "sensors/camera/render_camera_service.h"
 #include "session/explorer_settings.h"
 #include "session/session_controllers.h"
 #include "world/robot_lumping.h"
@@ -29,8 +29,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   bool any_camera = false;
   for (auto& robot : world.robots) {
     for (auto& sensor : robot.spec.sensors) {
-      const bool camera = sensor.type == SensorSpec::Type::color_camera || sensor.type == SensorSpec::Type::depth_camera ||
-                          sensor.type == SensorSpec::Type::thermal_camera;
+      const bool camera = sensor.is_camera();
       if (camera && !options_.cameras) sensor.enabled = false;
       any_camera = any_camera || (camera && sensor.enabled);
     }
@@ -51,6 +50,13 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
                   std::string(e.what()) + "\n(the cameras need OpenGL 4.5 through EGL; run without them with --no-cameras)");
     }
     sim_->set_camera_service(cameras_.get());
+  }
+  // victim detection, picked once: in the thermal images when cameras render and a robot has
+  // a thermal camera, else by line of sight (the Simulation's default)
+  if (cameras_ && !world_has_no_thermal()) {
+    std::vector<bool> rendered(sim_->world().robots.size());
+    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(static_cast<int>(r));
+    sim_->set_victim_detector(std::make_unique<ThermalImageDetector>(rendered));
   }
   last_scans_.resize(sim_->world().robots.size());
 
@@ -190,7 +196,7 @@ RunResult Session::result() const {
     r.victims_found += vr.found;
     r.victims.push_back(vr);
   }
-  r.victim_detection = cameras_ && !world_has_no_thermal() ? "thermal images" : "line of sight";
+  r.victim_detection = std::string(sim_->victim_detector().name());
   r.coverage = coverage();
   for (const auto& rs : s.robots) {
     r.collisions += rs.collisions;
@@ -221,7 +227,7 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
   // (the Bus calls this on this thread, as the scan is published, before any bridge sends it)
   const bool sync = options_.sync_timeout > 0;
   std::uint64_t commands_owed = sim_->velocity_commands();
-  std::vector<int> scan_subscriptions;
+  std::vector<SubscriptionId> scan_subscriptions;
   if (sync) {
     for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
       for (const auto& s : sim_->world().robots[r].spec.sensors) {
@@ -273,7 +279,7 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       }
     }
   }
-  for (int h : scan_subscriptions) sim_->bus().unsubscribe(h);
+  for (SubscriptionId h : scan_subscriptions) sim_->bus().unsubscribe(h);
   if (sync_timeouts_ > 1) log::warn("sync: {} scans in all got no cmd_vel in time", sync_timeouts_);
   // frames still being rendered belong to this run
   sim_->flush_cameras();

@@ -15,6 +15,8 @@
 
 namespace rescuesim {
 
+class RenderCameraService;  // sensors/camera/render_camera_service.h (rs_sensors_camera)
+
 /// How a victim fared.
 struct VictimResult {
   std::string name;
@@ -63,6 +65,14 @@ struct SessionOptions {
   SimOptions sim;               ///< seed and physics are filled from the scenario
 };
 
+/// Everything Session::restore needs to go back to a moment of a run: the simulation's State
+/// and what lives beside it (camera frames in flight, the built-in controllers' memory, the
+/// trajectory and coverage recorded so far). Copyable; only for the Session that made it.
+struct SessionSnapshot {
+  State state;
+  std::shared_ptr<const struct SessionExtras> extras;  ///< the rest, opaque (session_snapshot.cpp)
+};
+
 class Session {
  public:
   /// Builds the world, validates it (throws Error listing the problems), compiles and sets up.
@@ -85,6 +95,16 @@ class Session {
   /// coverage as run() does; for callers that drive the robots between steps (the Python API).
   /// Returns false as soon as numerical trouble stops the simulation.
   bool step_until(SimTime t);
+
+  /// The run as it is now, to restore() later: Simulation::snapshot (a synchronisation point
+  /// for the physics engine, see there) plus the camera frames in flight, the built-in
+  /// controllers and the recordings. Restoring it and stepping on with the same commands gives
+  /// bitwise the same messages, images included. Not while run() is stepping.
+  SessionSnapshot snapshot();
+  /// Goes back to `snapshot` (from this Session): frames in flight now are dropped and the
+  /// snapshot's are rendered anew. The Bus's message counts, the wall time and the last camera
+  /// frames (sensors/*.png) are not rewound.
+  void restore(const SessionSnapshot& snapshot);
 
   /// Scans a synchronous run (SessionOptions::sync_timeout) waited for in vain.
   std::uint64_t sync_timeouts() const { return sync_timeouts_; }
@@ -109,7 +129,7 @@ class Session {
   Diagnostics diagnostics_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<Controllers> controllers_;
-  std::unique_ptr<class RenderCameraService> cameras_;
+  std::unique_ptr<RenderCameraService> cameras_;  ///< attached to sim_ (not owned there); detached in ~Session
   SessionOptions options_;
   std::vector<TrajectoryPoint> trajectory_;
   SimTime next_record_;

@@ -9,7 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "session/session.h"
-#include "session/camera_service.h"
+#include "sensors/camera/render_camera_service.h"
 #include "session/session_controllers.h"
 #include "viz/world_plot.h"
 #include "world/svg/svg_world.h"

@@ -4,21 +4,33 @@
 /// subscribe and hand messages to their own threads; nothing here blocks on them.
 ///
 /// Subscribing and advertising are for set-up time (before a run starts, or from the
-/// simulation thread); publishing is for the simulation thread only.
+/// simulation thread between publishes); publishing is for the simulation thread only. Like
+/// Box2D's locked world, the Bus is locked while it delivers: subscribe, subscribe_shared,
+/// unsubscribe and advertise called from inside a subscriber callback (including the latched
+/// replay that subscribe itself makes) are bugs and abort with a message (RS_DEMAND), because
+/// they would change the lists being walked. A callback may publish (nested delivery is fine).
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "msgs/messages.h"
+#include "sensors/topic_id.h"  // TopicId, kNoTopic
 
 namespace rescuesim {
 
+/// A subscription's handle, from Bus::subscribe, for Bus::unsubscribe. Handles start at 1.
+enum class SubscriptionId : int {};
+/// No subscription (a bridge not yet started).
+inline constexpr SubscriptionId kNoSubscription{0};
+
 /// A topic's description.
 struct Topic {
-  int id = -1;
+  TopicId id = kNoTopic;
   std::string name;        ///< absolute, e.g. "/scan" or "/robot2/scan"
   std::string type;        ///< ROS 1 type name, e.g. "sensor_msgs/LaserScan"
   double rate = 0;         ///< nominal rate (Hz), 0 when irregular
@@ -34,41 +46,50 @@ class Bus {
   using SharedMessage = std::shared_ptr<const msg::Message>;
   using SharedCallback = std::function<void(const Topic&, const SharedMessage&)>;
 
-  /// Declares a topic (or returns the existing one of that name; the type must match).
-  int advertise(const std::string& name, const std::string& type, double rate = 0, bool latched = false, int robot = -1);
-  /// Delivers a message to the topic's subscribers, in subscription order.
-  void publish(int topic, msg::Message message);
+  /// Declares a topic (or returns the existing one of that name; the type must match, else
+  /// throws Error naming the topic). Not from a subscriber callback.
+  TopicId advertise(const std::string& name, const std::string& type, double rate = 0, bool latched = false, int robot = -1);
+  /// Delivers a message to the topic's subscribers, in subscription order. `topic` must be
+  /// one this Bus advertised.
+  void publish(TopicId topic, msg::Message message);
   /// Subscribes to one topic by name, or to every topic with name "". A latched topic's last
-  /// message is delivered at once. Returns a handle for unsubscribe.
-  int subscribe(const std::string& name, Callback callback);
+  /// message is delivered at once. Returns a handle for unsubscribe. Not from a subscriber callback.
+  SubscriptionId subscribe(const std::string& name, Callback callback);
   /// As subscribe, but the callback gets the message itself, shared, to keep without a copy.
   /// Subscribers of both kinds are called in subscription order.
-  int subscribe_shared(const std::string& name, SharedCallback callback);
-  void unsubscribe(int handle);
+  SubscriptionId subscribe_shared(const std::string& name, SharedCallback callback);
+  /// Ends a subscription (an unknown or already ended handle: nothing happens). Not from a
+  /// subscriber callback.
+  void unsubscribe(SubscriptionId handle);
 
   const std::vector<Topic>& topics() const { return topics_; }
-  /// The id of a topic, or -1.
-  int find(const std::string& name) const;
+  /// The topic of that id (which must be valid).
+  const Topic& topic(TopicId id) const;
+  /// The id of a topic, or kNoTopic.
+  TopicId find(const std::string& name) const;
   /// Messages published on a topic so far.
-  std::uint64_t count(int topic) const { return counts_[static_cast<std::size_t>(topic)]; }
+  std::uint64_t count(TopicId topic) const;
 
  private:
   struct Subscriber {
-    int handle;
+    SubscriptionId handle;
     std::string name;
-    Callback callback;        ///< one of the two is set
-    SharedCallback shared;
+    std::variant<Callback, SharedCallback> callback;
   };
-  void deliver_latched(Subscriber& s);
+  SubscriptionId add(const std::string& name, std::variant<Callback, SharedCallback> callback);
+  void deliver_latched(const Subscriber& s);
+  void demand_unlocked(const char* function) const;
+  std::size_t index(TopicId topic, const char* function) const;
+  void rebuild_index();
+
   std::vector<Topic> topics_;
   std::vector<std::uint64_t> counts_;
-  std::vector<std::vector<int>> subscribers_of_;  ///< per topic: indices into subscribers_
+  std::vector<std::vector<std::size_t>> subscribers_of_;  ///< per topic: indices into subscribers_
   std::vector<Subscriber> subscribers_;
   std::vector<int> shared_subscribers_;           ///< per topic: how many take SharedMessage
   std::vector<SharedMessage> latched_;            ///< per topic: the last message of a latched one
   int next_handle_ = 1;
-
-  void rebuild_index();
+  int delivering_ = 0;                            ///< depth of deliveries under way (> 0: locked)
 };
 
 }  // namespace rescuesim

@@ -4,8 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.h"
 #include "robots/drive_controller.h"
+#include "sensors/contact.h"
+#include "sensors/ground_truth.h"
 #include "sensors/imu.h"
+#include "sensors/joint_state.h"
 #include "sensors/lidar.h"
 #include "sensors/odometry.h"
 #include "sensors/sonar.h"
@@ -24,26 +28,6 @@ msg::TransformStamped transform(SimTime stamp, const std::string& parent, const 
   t.child_frame_id = child;
   t.transform = X;
   return t;
-}
-
-bool is_camera(SensorSpec::Type t) {
-  return t == SensorSpec::Type::color_camera || t == SensorSpec::Type::depth_camera || t == SensorSpec::Type::thermal_camera;
-}
-
-const char* topic_type(const SensorSpec& s) {
-  switch (s.type) {
-    case SensorSpec::Type::lidar: return s.lidar.layers > 1 ? "sensor_msgs/PointCloud2" : "sensor_msgs/LaserScan";
-    case SensorSpec::Type::sonar: return "sensor_msgs/Range";
-    case SensorSpec::Type::imu: return "sensor_msgs/Imu";
-    case SensorSpec::Type::odometry: return "nav_msgs/Odometry";
-    case SensorSpec::Type::ground_truth: return "geometry_msgs/PoseStamped";
-    case SensorSpec::Type::joint_states: return "sensor_msgs/JointState";
-    case SensorSpec::Type::contact: return "rescuesim_msgs/Contacts";
-    case SensorSpec::Type::color_camera:
-    case SensorSpec::Type::depth_camera:
-    case SensorSpec::Type::thermal_camera: return "sensor_msgs/Image";
-  }
-  return "";
 }
 
 /// The optical frame beside a camera's body frame, named as ROS drivers do.
@@ -124,7 +108,7 @@ void Simulation::setup_topics() {
   tf_topic_ = bus_.advertise("/tf", "tf2_msgs/TFMessage", options_.tf_rate);
   tf_static_topic_ = bus_.advertise("/tf_static", "tf2_msgs/TFMessage", 0, true);
   // a robot loaded from a description (URDF) offers it, latched, as robot_state_publisher does
-  description_topics_.assign(world_.robots.size(), -1);
+  description_topics_.assign(world_.robots.size(), kNoTopic);
   for (std::size_t r = 0; r < world_.robots.size(); ++r) {
     if (world_.robots[r].spec.description.empty()) continue;
     const int ri = static_cast<int>(r);
@@ -142,18 +126,18 @@ void Simulation::setup_topics() {
       s.slot = static_cast<int>(state_.sensors.size());
       s.period = period_of(spec.rate);
       // images are in an optical frame (z forward, x right, y down) beside the camera's body frame (REP-103)
-      s.frame_id = frame_name(s.robot, is_camera(spec.type) ? optical_frame(spec.frame_id) : spec.frame_id);
+      s.frame_id = frame_name(s.robot, spec.is_camera() ? optical_frame(spec.frame_id) : spec.frame_id);
+      s.spec = spec;
+      s.spec.frame_id = s.frame_id;
+      // the main topic, then what the kind publishes beside it, in the folder of the main topic
       const std::string topic = topic_name(s.robot, spec.topic);
-      s.topic = bus_.advertise(topic, topic_type(spec), spec.rate, false, s.robot);
-      if (is_camera(spec.type)) {
-        const std::string base = topic.substr(0, topic.rfind('/'));
-        s.info_topic = bus_.advertise(base + "/camera_info", "sensor_msgs/CameraInfo", spec.rate, false, s.robot);
-        if (spec.type == SensorSpec::Type::depth_camera && spec.camera.point_cloud) {
-          s.extra_topic = bus_.advertise(base + "/points", "sensor_msgs/PointCloud2", spec.rate, false, s.robot);
-        }
-        if (spec.type == SensorSpec::Type::thermal_camera) {
-          s.extra_topic = bus_.advertise(base + "/image_mono8", "sensor_msgs/Image", spec.rate, false, s.robot);
-        }
+      s.topic = bus_.advertise(topic, spec.ros_type(), spec.rate, false, s.robot);
+      const std::string folder = topic.substr(0, topic.rfind('/') + 1);
+      if (spec.is_camera()) {
+        s.info_topic = bus_.advertise(folder + kCameraInfoTopic.name, kCameraInfoTopic.ros_type, spec.rate, false, s.robot);
+      }
+      if (const SensorExtraTopic* extra = spec.extra_topic()) {
+        s.extra_topic = bus_.advertise(folder + extra->name, extra->ros_type, spec.rate, false, s.robot);
       }
       SensorSlot slot;
       slot.rng = Rng(options_.seed, "sensor/" + robot.name + "/" + spec.name);
@@ -251,6 +235,25 @@ bool Simulation::command_joints(int robot, const msg::JointState& command, std::
   return true;
 }
 
+CommandOutcome Simulation::submit_velocity(int robot, const msg::Twist& twist) {
+  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+  return command_velocity(robot, twist) ? CommandOutcome::ok() : CommandOutcome::refused("a value is not finite");
+}
+
+CommandOutcome Simulation::submit_head(int robot, const std::vector<double>& positions) {
+  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+  const std::size_t joints = world_.robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
+  if (positions.size() != joints) {
+    return CommandOutcome::refused(std::to_string(positions.size()) + " positions for " + std::to_string(joints) + " head joints");
+  }
+  return command_head(robot, positions) ? CommandOutcome::ok() : CommandOutcome::refused("a position is not finite");
+}
+
+CommandOutcome Simulation::submit_joints(int robot, const msg::JointState& command) {
+  std::string why;
+  return command_joints(robot, command, &why) ? CommandOutcome::ok() : CommandOutcome::refused(why);
+}
+
 std::size_t Simulation::discard_commands() {
   std::lock_guard lock(commands_mutex_);
   const std::size_t n = commands_.size();
@@ -289,8 +292,8 @@ void Simulation::pre_step() {
 
 void Simulation::step() {
   if (in_trouble()) return;
-  if (!started_) {
-    started_ = true;
+  if (!state_.schedule.started) {
+    state_.schedule.started = true;
     publish_tf_static();
     publish_descriptions();
     post_step();
@@ -322,10 +325,10 @@ bool Simulation::step_until(SimTime t) {
 
 void Simulation::post_step() {
   const SimTime now = state_.time;
-  if (now >= next_clock_) {
+  Schedule& due = state_.schedule;
+  if (now >= due.next_clock) {
     bus_.publish(clock_topic_, msg::Clock{now});
-    next_clock_ = options_.clock_rate > 0 ? next_clock_ + period_of(options_.clock_rate) : now;
-    if (options_.clock_rate <= 0) next_clock_ = now + SimTime{1};
+    due.next_clock = options_.clock_rate > 0 ? due.next_clock + period_of(options_.clock_rate) : now + SimTime{1};
   }
   for (const auto& s : sensors_) {
     SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
@@ -335,25 +338,22 @@ void Simulation::post_step() {
     // the next due time keeps the nominal grid, even if a step overshot this one
     while (slot.next_due <= now) slot.next_due += s.period;
   }
-  if (now >= next_tf_) {
+  if (now >= due.next_tf) {
     publish_tf();
-    while (next_tf_ <= now) next_tf_ += period_of(options_.tf_rate);
+    while (due.next_tf <= now) due.next_tf += period_of(options_.tf_rate);
   }
-  if (cameras_) cameras_->deliver(world_, state_, now, [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
-  if (now >= next_victim_check_ && !world_.victims.empty()) {
+  if (cameras_) cameras_->deliver(world_, state_, now, [this](TopicId topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
+  if (now >= due.next_victim_check && !world_.victims.empty()) {
     check_victims();
-    while (next_victim_check_ <= now) next_victim_check_ += period_of(options_.victim_check_rate);
+    while (due.next_victim_check <= now) due.next_victim_check += period_of(options_.victim_check_rate);
   }
 }
 
 void Simulation::sample(const SensorInstance& s) {
-  const RobotInstance& robot = world_.robots[static_cast<std::size_t>(s.robot)];
-  const SensorSpec& spec = robot.spec.sensors[static_cast<std::size_t>(s.index)];
+  // samplers take the spec framed at set-up (namespaced frame_id) and this sensor's slot
+  const SensorSpec& spec = s.spec;
   SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
-  const RobotState& rs = state_.robots[static_cast<std::size_t>(s.robot)];
   const SimTime now = state_.time;
-  SensorSpec framed = spec;
-  framed.frame_id = s.frame_id;
   auto rays = [&]() -> const RayScene& {
     if (!rays_current_) {
       rays_->update(state_);
@@ -361,19 +361,21 @@ void Simulation::sample(const SensorInstance& s) {
     }
     return *rays_;
   };
+  // the robot's root link (base_link for the rescue robot, maybe base_footprint for a URDF robot)
+  const auto root_frame = [&] { return frame_name(s.robot, world_.robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
   switch (spec.type) {
     case SensorSpec::Type::lidar:
       if (spec.lidar.layers > 1) {
-        bus_.publish(s.topic, sample_lidar_cloud(world_, state_, rays(), s.robot, framed, now, slot.rng));
+        bus_.publish(s.topic, sample_lidar_cloud(world_, state_, rays(), s.robot, spec, now, slot.rng));
       } else {
-        bus_.publish(s.topic, sample_lidar(world_, state_, rays(), s.robot, framed, now, slot.rng));
+        bus_.publish(s.topic, sample_lidar(world_, state_, rays(), s.robot, spec, now, slot.rng));
       }
       break;
-    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_sonar(world_, state_, rays(), s.robot, framed, now, slot.rng)); break;
-    case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, framed, now, slot)); break;
+    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_sonar(world_, state_, rays(), s.robot, spec, now, slot.rng)); break;
+    case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, spec, now, slot)); break;
     case SensorSpec::Type::odometry: {
-      // the child frame is the robot's root link: base_link for the rescue robot, maybe base_footprint for a URDF robot
-      const msg::Odometry odom = odometry_message(world_, state_, s.robot, framed, now, frame_name(s.robot, robot.spec.links[0].name));
+      // odom -> root link on /tf from wheel odometry, unless ground truth gives it
+      const msg::Odometry odom = odometry_message(world_, state_, s.robot, spec, now, root_frame());
       if (!options_.tf_from_ground_truth) {
         msg::TFMessage tf;
         tf.transforms.push_back(transform(now, odom.header.frame_id, odom.child_frame_id, odom.pose));
@@ -383,43 +385,15 @@ void Simulation::sample(const SensorInstance& s) {
       break;
     }
     case SensorSpec::Type::ground_truth: {
-      msg::PoseStamped p;
-      p.header = {now, "map"};
-      p.pose = rs.base.X_WB;
-      bus_.publish(s.topic, std::move(p));
-      msg::TFMessage tf;
-      if (options_.tf_from_ground_truth) {
-        tf.transforms.push_back(transform(now, frame_name(s.robot, "odom"), frame_name(s.robot, robot.spec.links[0].name), rs.base.X_WB));
+      bus_.publish(s.topic, sample_ground_truth(state_, s.robot, now));
+      if (options_.tf_from_ground_truth || options_.publish_map_to_odom) {
+        const GroundTruthTf which{frame_name(s.robot, "odom"), root_frame(), options_.tf_from_ground_truth, options_.publish_map_to_odom};
+        bus_.publish(tf_topic_, ground_truth_tf(state_, s.robot, now, which));
       }
-      if (options_.publish_map_to_odom) {
-        // map -> odom such that map -> odom -> root link is the true pose
-        const Pose3 X_OB = options_.tf_from_ground_truth ? rs.base.X_WB : Pose3::from_pose2(rs.odom);
-        tf.transforms.push_back(transform(now, "map", frame_name(s.robot, "odom"), rs.base.X_WB * X_OB.inverse()));
-      }
-      if (!tf.transforms.empty()) bus_.publish(tf_topic_, std::move(tf));
       break;
     }
-    case SensorSpec::Type::joint_states: {
-      msg::JointState js;
-      js.header = {now, ""};
-      for (std::size_t j = 0; j < robot.spec.joints.size(); ++j) {
-        if (robot.spec.joints[j].type == JointSpec::Type::fixed) continue;
-        js.name.push_back(robot.spec.joints[j].name);
-        js.position.push_back(rs.q[j]);
-        js.velocity.push_back(rs.qd[j]);
-        js.effort.push_back(rs.effort[j]);
-      }
-      bus_.publish(s.topic, std::move(js));
-      break;
-    }
-    case SensorSpec::Type::contact: {
-      msg::Contacts c;
-      c.header.stamp = now;
-      c.header.frame_id = framed.frame_id;
-      c.touching = rs.touching;
-      bus_.publish(s.topic, std::move(c));
-      break;
-    }
+    case SensorSpec::Type::joint_states: bus_.publish(s.topic, sample_joint_states(world_, state_, s.robot, now)); break;
+    case SensorSpec::Type::contact: bus_.publish(s.topic, sample_contacts(state_, s.robot, spec, now)); break;
     case SensorSpec::Type::color_camera:
     case SensorSpec::Type::depth_camera:
     case SensorSpec::Type::thermal_camera:
@@ -438,9 +412,9 @@ void Simulation::publish_tf_static() {
       if (j.type == JointSpec::Type::fixed) tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
     }
     for (const auto& s : spec.sensors) {
-      if (s.frame_id.empty() || s.frame_id == s.link || s.type == SensorSpec::Type::odometry || s.type == SensorSpec::Type::ground_truth) continue;
+      if (s.frame_id.empty() || s.frame_id == s.link || !s.kind().mounted) continue;
       tf.transforms.push_back(transform(SimTime{}, frame_name(ri, s.link), frame_name(ri, s.frame_id), s.X_LS));
-      if (is_camera(s.type)) {
+      if (s.is_camera()) {
         // optical axes in the body frame: x_O = -y_B, y_O = -z_B, z_O = x_B
         Eigen::Matrix3d R_BO;
         R_BO << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -454,7 +428,7 @@ void Simulation::publish_tf_static() {
 
 void Simulation::publish_descriptions() {
   for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    if (description_topics_[r] >= 0) bus_.publish(description_topics_[r], msg::String{world_.robots[r].spec.description});
+    if (description_topics_[r] != kNoTopic) bus_.publish(description_topics_[r], msg::String{world_.robots[r].spec.description});
   }
 }
 
@@ -480,49 +454,33 @@ void Simulation::check_victims() {
     rays_->update(state_);
     rays_current_ = true;
   }
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    const RobotSpec& spec = world_.robots[r].spec;
-    // a victim is seen when it is in the thermal camera's view, in range, and not hidden
-    const SensorSpec* cam = nullptr;
-    for (const auto& s : spec.sensors) {
-      if (s.type == SensorSpec::Type::thermal_camera) cam = &s;
-    }
-    // with rendered cameras, victims are found in the thermal images instead
-    if (!cam || (cameras_ && cameras_->detects_victims(static_cast<int>(r)))) continue;
-    const int link = spec.link_index(cam->link);
-    const Pose3 X_WC = state_.robots[r].X_WL[static_cast<std::size_t>(link)] * cam->X_LS;
-    const double tan_h = std::tan(cam->camera.hfov / 2);
-    const double tan_v = tan_h * cam->camera.height / cam->camera.width;
-    for (std::size_t v = 0; v < world_.victims.size(); ++v) {
-      VictimState& vs = state_.victims[v];
-      if (vs.first_seen.ns >= 0) continue;
-      for (int part : world_.victims[v].parts) {
-        const Vec3 p_W = world_.statics[static_cast<std::size_t>(part)].X_WO.p;
-        const Vec3 p_C = X_WC.inverse() * p_W;
-        if (p_C.x() <= cam->camera.min_range || p_C.x() > cam->camera.max_range) continue;
-        if (std::abs(p_C.y()) > tan_h * p_C.x() || std::abs(p_C.z()) > tan_v * p_C.x()) continue;
-        const Vec3 d = p_W - X_WC.p;
-        Ray ray{X_WC.p, d.normalized(), static_cast<float>(d.norm() + 0.05)};
-        RayHit hit;
-        rays_->cast({&ray, 1}, {&hit, 1}, static_cast<int>(r));
-        if (hit.source == RayHit::Source::static_object && world_.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
-          vs.first_seen = state_.time;
-          vs.seen_by = world_.robots[r].name;
-          break;
-        }
-      }
-    }
-  }
+  // one detector, picked at set-up (line of sight, or thermal images: those robots' victims are
+  // recorded as their frames are delivered)
+  victim_detector_->check(world_, state_, *rays_);
+}
+
+void Simulation::set_victim_detector(std::unique_ptr<VictimDetector> detector) {
+  victim_detector_ = detector ? std::move(detector) : std::make_unique<LineOfSightDetector>();
 }
 
 void Simulation::flush_cameras() {
   if (cameras_) {
     cameras_->deliver(world_, state_, SimTime{std::numeric_limits<std::int64_t>::max()},
-                      [this](int topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
+                      [this](TopicId topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
   }
 }
 
+State Simulation::snapshot() {
+  // a synchronisation point: the live engine is put into the same canonical state a restore of
+  // this snapshot produces, so the run on from here and every restored run are bitwise equal
+  physics_->restore(state_);
+  return state_;
+}
+
 void Simulation::restore(const State& state) {
+  RS_DEMAND(state.robots.size() == state_.robots.size() && state.dynamics.size() == state_.dynamics.size() &&
+                state.sensors.size() == state_.sensors.size() && state.victims.size() == state_.victims.size(),
+            "Simulation::restore: the state is of another world");
   state_ = state;
   physics_->restore(state_);
   rays_current_ = false;

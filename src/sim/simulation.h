@@ -18,6 +18,10 @@
 
 #include "physics/physics.h"
 #include "raycast/ray_scene.h"
+#include "sensors/camera_service.h"    // CameraService (its renderer: sensors/camera/render_camera_service.h)
+#include "sensors/sensor_instance.h"
+#include "sensors/victim_detector.h"
+#include "sim/bridge_host.h"
 #include "sim/bus.h"
 #include "world/state.h"
 #include "world/world.h"
@@ -39,53 +43,21 @@ struct SimOptions {
   double victim_check_rate = 5;        ///< Hz: how often victims in view are looked for
 };
 
-/// A sensor of a robot, as the simulation schedules it.
-struct SensorInstance {
-  int robot = 0;
-  int index = 0;                       ///< into the robot's spec.sensors
-  int slot = 0;                        ///< into State::sensors
-  int topic = -1;                      ///< Bus topic id of the main output
-  int info_topic = -1;                 ///< cameras: camera_info
-  int extra_topic = -1;                ///< depth: points; thermal: image_mono8
-  std::string frame_id;                ///< header frame of its messages, namespaced; cameras: the optical frame
-  SimTime period;
-};
-
-/// True when /joint_command may drive joint `j` of `spec`: a moving joint with a controller that
-/// is neither a drive wheel (cmd_vel drives those), a head joint (/head/command) nor a mimic.
-bool is_commandable(const RobotSpec& spec, std::size_t j);
-/// Whether any joint of `spec` is commandable (the bridges subscribe joint_command only then).
-bool has_commandable_joints(const RobotSpec& spec);
-
-/// Renders camera sensors. The simulation hands it each camera sample as it falls due and,
-/// after every step, asks it to deliver finished frames; an implementation may render on
-/// another thread meanwhile (src/sensors/camera_service.h does), as long as what it delivers at
-/// a given step never depends on thread timing.
-class CameraService {
- public:
-  virtual ~CameraService() = default;
-  /// A camera is due at `state.time`: take what it needs from `state` and start its frame;
-  /// draw any randomness from `slot.rng` now, on the simulation thread.
-  virtual void sample(const World& world, const State& state, const SensorInstance& sensor, SensorSlot& slot) = 0;
-  /// Publishes, in sample order, every frame due for delivery at or before `now` (waiting for
-  /// it if it is not finished), and may record victims it saw in `state.victims`.
-  virtual void deliver(const World& world, State& state, SimTime now, const std::function<void(int, msg::Message)>& publish) = 0;
-  /// True when this service decides which victims are seen (from thermal images) for `robot`.
-  virtual bool detects_victims(int robot) const = 0;
-};
-
-class Simulation {
+/// The simulation is the BridgeHost of a run: bridges attach to it through that interface.
+class Simulation : public BridgeHost {
  public:
   Simulation(World world, const SimOptions& options = {});
-  ~Simulation();
+  ~Simulation() override;
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  const World& world() const { return world_; }
-  const State& state() const { return state_; }
-  Bus& bus() { return bus_; }
+  const World& world() const override { return world_; }
+  const State& state() const override { return state_; }
+  Bus& bus() override { return bus_; }
   const SimOptions& options() const { return options_; }
-  SimTime time() const { return state_.time; }
+  SimTime time() const override { return state_.time; }
+  std::uint64_t seed() const override { return options_.seed; }
+  HostFrames frames() const override { return {options_.publish_map_to_odom, options_.tf_from_ground_truth}; }
   double dt() const { return physics_->dt(); }
   const std::vector<SensorInstance>& sensors() const { return sensors_; }
   const RayScene& ray_scene() const { return *rays_; }
@@ -118,6 +90,10 @@ class Simulation {
   /// Velocity commands accepted so far (every robot); with wait_for_velocity_commands, what a
   /// synchronous run (SessionOptions::sync_timeout) waits on.
   std::uint64_t velocity_commands() const;
+  /// BridgeHost: command_velocity / command_head / command_joints with the reason for a refusal.
+  CommandOutcome submit_velocity(int robot, const msg::Twist& twist) override;
+  CommandOutcome submit_head(int robot, const std::vector<double>& positions) override;
+  CommandOutcome submit_joints(int robot, const msg::JointState& command) override;
   /// Waits until at least `count` velocity commands have been accepted in all, or `timeout`
   /// of wall time passes; returns whether they have.
   bool wait_for_velocity_commands(std::uint64_t count, std::chrono::duration<double> timeout);
@@ -125,17 +101,37 @@ class Simulation {
   /// Robot index by name, or -1.
   int robot_index(const std::string& name) const;
   /// The absolute topic name of a robot's relative topic ("scan" -> "/scan" or "/robot2/scan").
-  std::string topic_name(int robot, const std::string& relative) const;
+  std::string topic_name(int robot, const std::string& relative) const override;
   /// A robot's frame name ("base_link" -> "base_link" or "robot2/base_link").
-  std::string frame_name(int robot, const std::string& frame) const;
+  std::string frame_name(int robot, const std::string& frame) const override;
 
   /// Cameras are sampled through this service when one is attached (none: cameras are skipped).
+  /// Not owned: the caller keeps the service alive while it is attached and detaches it
+  /// (set_camera_service(nullptr)) before destroying it, or destroys the Simulation first;
+  /// the service must not be used by two simulations. Session owns its RenderCameraService
+  /// and detaches it in its destructor.
   void set_camera_service(CameraService* service) { cameras_ = service; }
+  /// How victims are found (victim_check_rate); owned. Default, and with nullptr: line of
+  /// sight for every robot. Set once at set-up, before the first step (Session does).
+  void set_victim_detector(std::unique_ptr<VictimDetector> detector);
+  const VictimDetector& victim_detector() const { return *victim_detector_; }
   /// Publishes every camera frame still in flight (at the end of a run).
   void flush_cameras();
 
-  /// A copy of the state, and a way back to it (see Physics::restore for the fine print).
-  State snapshot() const { return state_; }
+  /// A copy of the whole changing state — bodies, joints, controller and sensor memory, RNG
+  /// streams, the /clock, /tf and victim-check schedule — to restore() later. Exact: run on
+  /// from a snapshot, restore it, run again with the same commands, and the messages and
+  /// state_hash are bitwise the same. The price is that a snapshot is a synchronisation point
+  /// for the physics engine: it drops Bullet's contact caches (warm start) and rebuilds its
+  /// broadphase in a canonical order (Physics::restore), so a run that takes a snapshot is
+  /// bitwise equal to its own replays but not to a run that never took one (the golden hash
+  /// test takes none). The cost is a State copy and one Physics::restore: about 0.3 ms for the
+  /// default world (`rescuesim bench --reset-only`). Built-in controllers and camera frames in
+  /// flight live outside the Simulation: Session::snapshot covers them.
+  State snapshot();
+  /// Puts the simulation back to a state from snapshot() of this simulation (same World and
+  /// options); publishing resumes on the state's own schedule at once. Commands queued and not
+  /// yet applied stay queued; the Bus's message counts are not rewound.
   void restore(const State& state);
 
  private:
@@ -155,13 +151,12 @@ class Simulation {
   Bus bus_;
   std::unique_ptr<Physics> physics_;
   std::unique_ptr<RayScene> rays_;
-  bool rays_current_ = false;
+  bool rays_current_ = false;          ///< the ray scene shows state_ (a cache: restore clears it)
   std::vector<SensorInstance> sensors_;
-  CameraService* cameras_ = nullptr;
-  bool started_ = false;
-  int clock_topic_ = -1, tf_topic_ = -1, tf_static_topic_ = -1;
-  std::vector<int> description_topics_;  ///< per robot: its latched robot_description topic, -1 without a description
-  SimTime next_clock_, next_tf_, next_victim_check_;
+  CameraService* cameras_ = nullptr;  ///< not owned (set_camera_service says how long it must live)
+  std::unique_ptr<VictimDetector> victim_detector_ = std::make_unique<LineOfSightDetector>();
+  TopicId clock_topic_ = kNoTopic, tf_topic_ = kNoTopic, tf_static_topic_ = kNoTopic;
+  std::vector<TopicId> description_topics_;  ///< per robot: its latched robot_description topic, kNoTopic without a description
 
   /// A command waiting for the next step boundary.
   struct Command {

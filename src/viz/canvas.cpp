@@ -345,4 +345,13 @@ Vec2 PlotFrame::to_px(const Vec2& p_W) const {
   return {margin + (p_W.x() - world.min.x()) * px_per_m, margin + (world.max.y() - p_W.y()) * px_per_m};
 }
 
+double nice_step(double span, int max_ticks) {
+  const double raw = span / std::max(1, max_ticks);
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0}) {
+    if (m * p >= raw) return m * p;
+  }
+  return 10 * p;
+}
+
 }  // namespace rescuesim

@@ -64,6 +64,17 @@ class Canvas {
 /// Decodes an 8-bit RGB or RGBA PNG (for tests and tools); throws `Error` on anything else.
 Canvas decode_png(std::string_view bytes);
 
+/// Width in px that Canvas::text draws for `s` at `scale`: (6 × length − 1) × scale, 0 when empty.
+int text_width(std::string_view s, int scale = 1);
+
+/// `s` cut and ended with ".." so that it is at most `max_w` px wide at `scale` (unchanged when
+/// it fits).
+std::string fit_text(std::string_view s, int max_w, int scale = 1);
+
+/// A round step for axis ticks or colour-bar labels over `span`: the smallest of 1, 2, 5 or 10
+/// times a power of ten that gives at most `max_ticks` intervals (span 10, 6 ticks → 2).
+double nice_step(double span, int max_ticks);
+
 /// Maps world metres to canvas pixels for top-down plots: north up, a margin around.
 struct PlotFrame {
   Box2 world;          ///< region shown (m)

@@ -1,6 +1,7 @@
 #include "viz/font.h"
 
 #include <algorithm>
+#include <string>
 
 #include "viz/canvas.h"
 
@@ -159,6 +160,16 @@ int Canvas::text(int x, int y, std::string_view s, Rgb8 c, int scale) {
     pen += font::kAdvance * k;
   }
   return font::text_width(s, k);
+}
+
+int text_width(std::string_view s, int scale) { return font::text_width(s, scale); }
+
+std::string fit_text(std::string_view s, int max_w, int scale) {
+  if (font::text_width(s, scale) <= max_w) return std::string(s);
+  // drop characters until the text with its ".." fits
+  std::string t(s);
+  while (!t.empty() && font::text_width(t + "..", scale) > max_w) t.pop_back();
+  return t + "..";
 }
 
 }  // namespace rescuesim

@@ -87,20 +87,4 @@ std::vector<double> initial_positions(const RobotSpec& robot) {
   return q;
 }
 
-const char* sensor_type_name(SensorSpec::Type t) {
-  switch (t) {
-    case SensorSpec::Type::lidar: return "lidar";
-    case SensorSpec::Type::sonar: return "sonar";
-    case SensorSpec::Type::imu: return "imu";
-    case SensorSpec::Type::odometry: return "odometry";
-    case SensorSpec::Type::ground_truth: return "ground_truth";
-    case SensorSpec::Type::joint_states: return "joint_states";
-    case SensorSpec::Type::contact: return "contact";
-    case SensorSpec::Type::color_camera: return "color_camera";
-    case SensorSpec::Type::depth_camera: return "depth_camera";
-    case SensorSpec::Type::thermal_camera: return "thermal_camera";
-  }
-  return "unknown";
-}
-
 }  // namespace rescuesim

@@ -3,6 +3,7 @@
 /// and how it is noisy. Samplers live in src/sensors; these are plain settings.
 
 #include <array>
+#include <span>
 #include <string>
 
 #include "core/pose.h"
@@ -72,6 +73,9 @@ struct CameraSpec {
   double mono8_min = 288.15, mono8_max = 313.15;  ///< thermal: temperature window (K) mapped to 0..255
 };
 
+struct SensorKindInfo;
+struct SensorExtraTopic;
+
 /// What kind of sensor, and the settings of that kind.
 struct SensorSpec {
   enum class Type { lidar, sonar, imu, odometry, ground_truth, joint_states, contact, color_camera, depth_camera, thermal_camera };
@@ -88,9 +92,49 @@ struct SensorSpec {
   ImuSpec imu;
   OdometrySpec odometry;
   CameraSpec camera;
+
+  /// The facts of this sensor's kind (sensor_kind(type)).
+  const SensorKindInfo& kind() const;
+  /// True for the rendered kinds (colour, depth, thermal camera).
+  bool is_camera() const;
+  /// The message type of the main topic: the kind's, except that a lidar with more than one
+  /// layer publishes a PointCloud2 instead of a LaserScan.
+  const char* ros_type() const;
+  /// The output beside the main topic, or nullptr: the kind's extra topic unless its switch
+  /// (SensorKindInfo::extra_switch, e.g. a depth camera's point_cloud) is off.
+  const SensorExtraTopic* extra_topic() const;
 };
 
-/// Readable name of a sensor type ("lidar", "sonar", ...).
+/// A topic a sensor publishes beside its main one, named relative to the main topic's folder
+/// (main "/camera/depth/image_raw", name "points" → "/camera/depth/points").
+struct SensorExtraTopic {
+  const char* name;      ///< last path element, e.g. "points"
+  const char* ros_type;  ///< message type, e.g. "sensor_msgs/PointCloud2"
+};
+
+/// Everything the code needs to know about one kind of sensor besides its settings and its
+/// sampler: one row per SensorSpec::Type, so that adding a kind is a row here, a sampler in
+/// src/sensors and a case in Simulation::sample.
+struct SensorKindInfo {
+  SensorSpec::Type type = SensorSpec::Type::lidar;
+  const char* name = "";                     ///< as scenario files and `rescuesim check` spell it ("lidar", "thermal_camera")
+  const char* ros_type = "";                 ///< message type of the main topic
+  const char* layered_ros_type = nullptr;    ///< the main topic's type instead when a lidar has layers > 1 (nullptr: none)
+  bool camera = false;                       ///< rendered by the camera service, in an optical frame, with camera_info beside the image
+  bool mounted = true;                       ///< frame_id names the sensor's mount (X_LS on its link), published on /tf_static; false where it is a world-fixed frame (odometry's "odom", ground truth's "map")
+  SensorExtraTopic extra{nullptr, nullptr};  ///< a further output beside the main topic (name nullptr: none)
+  bool CameraSpec::*extra_switch = nullptr;  ///< the setting that turns `extra` off when false (depth: point_cloud); nullptr: always on
+};
+
+/// The topic every camera publishes beside its image: sensor_msgs/CameraInfo on "camera_info".
+inline constexpr SensorExtraTopic kCameraInfoTopic{"camera_info", "sensor_msgs/CameraInfo"};
+
+/// The row of kind `t`.
+const SensorKindInfo& sensor_kind(SensorSpec::Type t);
+/// Every kind, in SensorSpec::Type order.
+std::span<const SensorKindInfo> sensor_kinds();
+
+/// Readable name of a sensor type ("lidar", "sonar", ...): sensor_kind(t).name.
 const char* sensor_type_name(SensorSpec::Type t);
 
 }  // namespace rescuesim

@@ -2,7 +2,7 @@
 /// World: the compiled, immutable description of a simulation — every object as a shape with a
 /// pose and a material, victims as human figures, robots as placed RobotSpecs. Physics, ray
 /// casting and rendering are built from it; nothing in it changes while a simulation runs (that
-/// is State, in src/sim).
+/// is State, in world/state.h).
 
 #include <map>
 #include <string>

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "session/batch_results.h"
+#include "batch/batch_results.h"
 #include "support/command.h"
 
 extern char** environ;

@@ -153,7 +153,7 @@ void expect_content(const Image& img, const std::vector<Region>& regions) {
   }
 }
 
-// figure regions at the default width 1600 (src/session/figure.h, rescuesim snapshot --help)
+// figure regions at the default width 1600 (src/app/figure.h, rescuesim snapshot --help)
 const Region kFigMain{"main view", 20, 53, 896, 548};
 const Region kFigLaser{"laser", 928, 53, 320, 240};
 const Region kFigColour{"colour camera", 1260, 53, 320, 240};

@@ -1,9 +1,15 @@
+// The frontier explorer driven in closed loop on a kinematic simulator (autonomy/kinematic_sim.h:
+// 2-D walls, an ideal laser, unicycle motion): it waits for scan and odometry, explores random
+// mazes without touching a wall, leaves a pillar it would circle for ever, gets out of dead ends
+// and slipping wheels by planning to a frontier, and reaches goals. Every run is a function of
+// sim time only (no wall clock): what happened is attached to a failing assertion as a trace.
+
 #include "autonomy/explorer.h"
 
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <functional>
 #include <limits>
 #include <set>
@@ -25,8 +31,6 @@ const Pose2 kLaserMount{0.1, 0.0, 0.0};
 struct RunLog {
   std::set<std::pair<int, int>> visited;  // maze cells the robot's centre entered
   std::vector<double> first_visit_s;      // sim time of each new cell's first visit
-  double scan_us = 0, command_us = 0;     // mean wall time per call (measurement only)
-  double max_command_us = 0;              // the dearest command (a plan)
   int steps = 0;
 
   // sim time (s) when n cells had been visited, or -1
@@ -39,26 +43,15 @@ RunLog drive(Explorer& explorer, KinematicSim& sim, double seconds, double cell,
              const std::function<void(SimTime)>& before_step = {},
              std::size_t all_cells = std::numeric_limits<std::size_t>::max()) {
   RunLog run;
-  using Clock = std::chrono::steady_clock;
-  Clock::duration scan_time{}, command_time{};
-  int scans = 0;
   const int steps = static_cast<int>(std::lround(seconds / kDt));
   for (int k = 0; k < steps && run.visited.size() != all_cells; ++k) {
     const SimTime t = SimTime::from_ms(50) * k;
     if (before_step) before_step(t);
     explorer.on_odometry(sim.odometry(t));
     if (k % 2 == 0) {
-      const msg::LaserScan scan = sim.scan(t);
-      const auto t0 = Clock::now();
-      explorer.on_scan(scan);
-      scan_time += Clock::now() - t0;
-      ++scans;
+      explorer.on_scan(sim.scan(t));
     }
-    const auto t0 = Clock::now();
     const msg::Twist cmd = explorer.command(t);
-    const auto spent = Clock::now() - t0;
-    command_time += spent;
-    run.max_command_us = std::max(run.max_command_us, std::chrono::duration<double, std::micro>(spent).count());
     sim.step(cmd, kDt);
     ++run.steps;
     const Vec2 p = sim.pose().position();
@@ -66,22 +59,18 @@ RunLog drive(Explorer& explorer, KinematicSim& sim, double seconds, double cell,
       run.first_visit_s.push_back((t + SimTime::from_ms(50)).seconds());
     }
   }
-  run.scan_us = std::chrono::duration<double, std::micro>(scan_time).count() / std::max(scans, 1);
-  run.command_us = std::chrono::duration<double, std::micro>(command_time).count() / std::max(run.steps, 1);
   return run;
 }
 
-void print(const char* name, const RunLog& run, const KinematicSim& sim, const Explorer& e) {
+// what a run did, for the trace of a failing assertion
+std::string describe(const char* name, const RunLog& run, const KinematicSim& sim, const Explorer& e) {
   const ExplorerStats& s = e.stats();
-  std::printf(
-      "[%s] cells %zu, distance %.1f m, min clearance %.3f m, collisions %d; on_scan %.0f us, command %.0f us "
-      "(max %.0f us); "
-      "plans %d, trips %d, reached %d, stuck(progress %d, blocked %d, looping %d), no frontier %d, path blocked %d, "
-      "path stuck %d, abandoned %d, backups %d\n",
-      name, run.visited.size(), sim.distance(), sim.min_clearance(), sim.collisions(), run.scan_us, run.command_us,
-      run.max_command_us,
-      s.plans, s.frontier_trips, s.frontiers_reached, s.stuck_no_progress, s.stuck_blocked, s.stuck_looping,
-      s.no_frontier, s.path_blocked, s.path_stuck, s.abandoned, s.backups);
+  return fmt::format(
+      "[{}] cells {}, distance {:.1f} m, min clearance {:.3f} m, collisions {}; plans {}, trips {}, reached {}, stuck(progress {}, "
+      "blocked {}, looping {}), no frontier {}, path blocked {}, path stuck {}, abandoned {}, backups {}; last new cell at {:.1f} s",
+      name, run.visited.size(), sim.distance(), sim.min_clearance(), sim.collisions(), s.plans, s.frontier_trips, s.frontiers_reached,
+      s.stuck_no_progress, s.stuck_blocked, s.stuck_looping, s.no_frontier, s.path_blocked, s.path_stuck, s.abandoned, s.backups,
+      run.time_to(run.first_visit_s.size()));
 }
 
 TEST(Explorer, StandsStillUntilItHasScanAndOdometry) {
@@ -108,8 +97,7 @@ TEST_P(ExplorerMaze, VisitsMostCellsWithoutTouchingAWall) {
   Explorer explorer(kLaserMount);
   const RunLog run = drive(explorer, sim, 600.0, kCell, {}, kN * kN);
   const std::string name = "maze seed " + std::to_string(GetParam());
-  print(name.c_str(), run, sim, explorer);
-  std::printf("[%s] 80%% of cells after %.1f s, all after %.1f s\n", name.c_str(), run.time_to(29), run.time_to(36));
+  SCOPED_TRACE(describe(name.c_str(), run, sim, explorer));
   EXPECT_GE(run.visited.size(), static_cast<std::size_t>(0.8 * kN * kN));
   EXPECT_EQ(sim.collisions(), 0);
   EXPECT_GE(sim.min_clearance(), kRadius);
@@ -125,7 +113,7 @@ TEST(Explorer, LeavesAPillarItWouldCircleForever) {
   KinematicSim sim(walls, {7.0, 3.9, M_PI}, kLaserMount, kRadius, 3.0);
   Explorer explorer(kLaserMount);
   const RunLog run = drive(explorer, sim, 300.0, 1.5);
-  print("pillar", run, sim, explorer);
+  SCOPED_TRACE(describe("pillar", run, sim, explorer));
   EXPECT_GE(explorer.stats().stuck_looping, 1);
   EXPECT_GE(explorer.stats().frontier_trips, 1);
   // it reached the room's outer ring (28 cells of 1.5 m along the outer wall)
@@ -145,9 +133,9 @@ TEST(Explorer, StuckInADeadEndTriggersAStarToAFrontier) {
     if (t >= SimTime::from_seconds(15)) sim.set_frozen(false);
     saw_path = saw_path || (explorer.mode() == ExplorerMode::to_frontier && !explorer.current_path().poses.empty());
   });
-  print("dead end", run, sim, explorer);
+  SCOPED_TRACE(describe("dead end", run, sim, explorer));
   EXPECT_GE(explorer.stats().stuck_no_progress, 1);
-  EXPECT_EQ(explorer.last_stuck_reason() == StuckReason::none, false);
+  EXPECT_NE(explorer.last_stuck_reason(), StuckReason::none);
   EXPECT_GE(explorer.stats().plans, 1);
   EXPECT_TRUE(saw_path);
   EXPECT_GE(run.visited.size(), 3u);  // and once free it drove on
@@ -163,7 +151,7 @@ TEST(Explorer, SlippingWheelsAreSeenByTheLaserAndItBacksOff) {
     sim.set_slipping(t >= SimTime::from_seconds(5) && t < SimTime::from_seconds(25));
     reversed = reversed || explorer.mode() == ExplorerMode::backing_up;
   });
-  print("slipping", run, sim, explorer);
+  SCOPED_TRACE(describe("slipping", run, sim, explorer));
   EXPECT_GE(explorer.stats().stuck_no_progress, 1);
   EXPECT_GE(explorer.stats().backups, 1);
   EXPECT_TRUE(reversed);
@@ -187,7 +175,7 @@ TEST(Explorer, WithA270DegreeLaserItReversesOnlyOverGroundItKnowsIsFree) {
   const RunLog run = drive(second, later, 40.0, 1.5, [&](SimTime t) {
     later.set_slipping(t >= SimTime::from_seconds(6) && t < SimTime::from_seconds(20));
   });
-  print("270 degrees", run, later, second);
+  SCOPED_TRACE(describe("270 degrees", run, later, second));
   EXPECT_GE(second.stats().backups, 1);
   EXPECT_EQ(later.collisions(), 0);
 }
@@ -212,7 +200,7 @@ TEST(Explorer, GoalModeDrivesAcrossTheMazeAndStops) {
   const Vec2 goal(8.25, 8.25);
   explorer.set_goal(goal);
   const RunLog run = drive(explorer, sim, 400.0, 1.5);
-  print("goal", run, sim, explorer);
+  SCOPED_TRACE(describe("goal", run, sim, explorer));
   EXPECT_EQ(explorer.mode(), ExplorerMode::at_goal);
   EXPECT_LT((sim.pose().position() - goal).norm(), 0.3);
   EXPECT_EQ(sim.collisions(), 0);

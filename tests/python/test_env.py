@@ -55,6 +55,30 @@ class ResetAndStep(unittest.TestCase):
         obs, _ = other.reset(seed=8)
         self.assertFalse(same(first, obs))
 
+    def test_reset_with_the_same_seed_restores_the_start_instead_of_rebuilding(self):
+        env = rescuesim.Env(tiny())
+        episodes = []
+        builds = []
+        for _ in range(3):
+            obs, info = env.reset(seed=5)
+            builds.append(env._core.builds)
+            run = [snapshot(obs)]
+            for a in ACTIONS:
+                obs, reward, *_ = env.step(a)
+                run.append(snapshot(obs))
+                run.append(reward)
+            episodes.append((run, env._core.info()))
+        # the first reset builds for seed 5 (construction built the scenario's seed 11); the next
+        # two restore, and replay bitwise the first (observations, rewards, final info)
+        self.assertEqual(builds, [2, 2, 2])
+        for run, info in episodes[1:]:
+            self.assertEqual(info, episodes[0][1])
+            for x, y in zip(run, episodes[0][0]):
+                self.assertTrue(same(x, y) if isinstance(x, dict) else x == y)
+        # another seed builds anew
+        env.reset(seed=6)
+        self.assertEqual(env._core.builds, 3)
+
     def test_reset_without_a_seed_continues_from_the_last(self):
         env = rescuesim.Env(tiny())
         self.assertEqual(env.reset()[1]["seed"], 11)  # the scenario's

@@ -40,19 +40,6 @@ RobotSpec box_robot() {
 
 World compile(const WorldSpec& spec) { return compile_world(spec, {{"box_bot", box_robot()}}); }
 
-/// The state at the start: rubble where the world put it, robots at their start poses.
-State initial_state(const World& w) {
-  State s;
-  for (const auto& d : w.dynamics) s.dynamics.push_back({d.X_WO});
-  for (const auto& r : w.robots) {
-    RobotState rs;
-    for (const Pose3& X_BL : link_poses(r.spec, initial_positions(r.spec))) rs.X_WL.push_back(r.X_W_start * X_BL);
-    rs.base.X_WB = rs.X_WL.front();
-    s.robots.push_back(rs);
-  }
-  return s;
-}
-
 RayHit cast_one(const RayScene& scene, const Vec3& origin, const Vec3& direction, float max_distance = INFINITY, int ignore = -1) {
   const Ray ray{origin, direction.normalized(), max_distance};
   RayHit hit;

@@ -1,7 +1,7 @@
 // measure_ray_throughput as a function (speed itself is for bench/, not tests): it measures
 // both sides, and leaves the thread limit as it found it.
 
-#include "raycast/raycast_bench.h"
+#include "raycast/bench/raycast_bench.h"
 
 #include <gtest/gtest.h>
 

@@ -43,17 +43,4 @@ inline WallSpec wall_facing_west(double d) { return WallSpec{{d + 0.05, -20}, {d
 /// Compiles with the given robot model available as "box_bot".
 inline World compile_with(const WorldSpec& spec, const RobotSpec& model) { return compile_world(spec, {{"box_bot", model}}); }
 
-/// The state at the start: rubble where the world put it, robots at their start poses.
-inline State initial_state(const World& w) {
-  State s;
-  for (const auto& d : w.dynamics) s.dynamics.push_back({d.X_WO});
-  for (const auto& r : w.robots) {
-    RobotState rs;
-    for (const Pose3& X_BL : link_poses(r.spec, initial_positions(r.spec))) rs.X_WL.push_back(r.X_W_start * X_BL);
-    rs.base.X_WB = rs.X_WL.front();
-    s.robots.push_back(rs);
-  }
-  return s;
-}
-
 }  // namespace rescuesim::testing

@@ -146,9 +146,9 @@ TEST(JointCommand, OdometryChildFrameIsTheRootLink) {
 
 TEST(RobotDescription, LatchedOnceForRobotsThatHaveOne) {
   Simulation sim(slider_world());
-  const int id = sim.bus().find("/robot_description");
-  ASSERT_GE(id, 0);
-  const Topic& topic = sim.bus().topics()[static_cast<std::size_t>(id)];
+  const TopicId id = sim.bus().find("/robot_description");
+  ASSERT_NE(id, kNoTopic);
+  const Topic& topic = sim.bus().topic(id);
   EXPECT_EQ(topic.type, "std_msgs/String");
   EXPECT_TRUE(topic.latched);
   EXPECT_EQ(topic.robot, 0);
@@ -161,7 +161,7 @@ TEST(RobotDescription, LatchedOnceForRobotsThatHaveOne) {
 
   // the built-in rescue robot has no description: no topic
   Simulation rescue(compile_world(testing::room_spec(), builtin_models()));
-  EXPECT_EQ(rescue.bus().find("/robot_description"), -1);
+  EXPECT_EQ(rescue.bus().find("/robot_description"), kNoTopic);
 }
 
 TEST(RobotDescription, NamespacedWithSeveralRobots) {
@@ -174,9 +174,9 @@ TEST(RobotDescription, NamespacedWithSeveralRobots) {
   auto models = builtin_models();
   models["slider"] = testing::slider_robot();
   Simulation sim(compile_world(spec, models));
-  EXPECT_GE(sim.bus().find("/arm/robot_description"), 0);
-  EXPECT_EQ(sim.bus().find("/robot_description"), -1);
-  EXPECT_EQ(sim.bus().find("/rescue/robot_description"), -1);
+  EXPECT_NE(sim.bus().find("/arm/robot_description"), kNoTopic);
+  EXPECT_EQ(sim.bus().find("/robot_description"), kNoTopic);
+  EXPECT_EQ(sim.bus().find("/rescue/robot_description"), kNoTopic);
   std::string odom_child;
   sim.bus().subscribe("/arm/odom", [&](const Topic&, const msg::Message& m) { odom_child = std::get<msg::Odometry>(m).child_frame_id; });
   sim.step();

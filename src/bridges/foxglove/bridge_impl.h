@@ -20,14 +20,17 @@
 #include <utility>
 #include <vector>
 
+#include "bridges/common/commands.h"
 #include "bridges/foxglove/foxglove_bridge.h"
 #include "bridges/foxglove/protocol.h"
 #include "bridges/foxglove/scene.h"
 #include "bridges/foxglove/ws_server.h"
+#include "core/bounded_queue.h"
+#include "core/throttle.h"
 #include "sim/bus.h"
 
 namespace rescuesim {
-class Simulation;
+class BridgeHost;
 }  // namespace rescuesim
 
 namespace rescuesim::foxglove {
@@ -36,7 +39,7 @@ namespace rescuesim::foxglove {
 constexpr std::size_t kMaxTopics = 4096;
 /// The scene channel's id; Bus topic t is channel t + 2.
 constexpr std::uint32_t kSceneChannel = 1;
-constexpr std::uint32_t channel_of(int topic) { return static_cast<std::uint32_t>(topic) + 2; }
+constexpr std::uint32_t channel_of(TopicId topic) { return static_cast<std::uint32_t>(topic) + 2; }
 
 /// Holds a share of a byte budget while a message copy is alive (in the queue or being sent).
 class BudgetShare {
@@ -69,7 +72,7 @@ class BudgetShare {
 struct Outgoing {
   enum class Kind { message, scene };
   Kind kind = Kind::message;
-  int topic = -1;
+  TopicId topic = kNoTopic;
   SimTime at;                    ///< sim time when it was published
   Bus::SharedMessage message;    ///< Kind::message (shared with the Bus and other bridges, never copied)
   BudgetShare budget;            ///< Kind::message: its bytes, counted against FoxgloveOptions::bridge_queue_bytes
@@ -79,7 +82,7 @@ struct Outgoing {
 /// A server channel with who subscribes to it.
 struct ChannelState {
   Channel channel;
-  int topic = -1;                                  ///< Bus topic, -1 for the scene
+  TopicId topic = kNoTopic;                        ///< Bus topic, kNoTopic for the scene
   bool latched = false;
   Payload last;                                    ///< latched channels: the message a new subscriber gets
   std::uint64_t last_stamp = 0;
@@ -109,7 +112,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   ~FoxgloveBridge() override { stop(); }
 
   std::string name() const override { return "foxglove"; }
-  void start(Simulation& sim) override;
+  void start(BridgeHost& host) override;
   void stop() override;
   BridgeStats stats() const override;
 
@@ -142,10 +145,10 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::string accepted_topics(std::size_t robot) const;
 
   FoxgloveOptions options_;
-  Simulation* sim_ = nullptr;
+  BridgeHost* host_ = nullptr;
   bool started_ = false, stopped_ = false;
-  int bus_handle_ = -1;
-  int clock_topic_ = -1;
+  SubscriptionId bus_handle_ = kNoSubscription;
+  TopicId clock_topic_ = kNoTopic;
   std::unique_ptr<WsServer> server_;
   std::string server_info_;
 
@@ -173,6 +176,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::vector<std::size_t> head_sizes_;
   std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
   std::atomic<std::uint64_t> received_{0}, rejected_{0};
+  std::unique_ptr<CommandGate> gate_;  ///< checks client commands, hands them to the host, warns (as ROS 1 and 2 do)
   Throttle client_log_{std::chrono::seconds(5)};
   Throttle error_log_{std::chrono::seconds(5)};
 };

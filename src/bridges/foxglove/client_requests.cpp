@@ -9,7 +9,7 @@
 #include "bridges/foxglove/bridge_impl.h"
 #include "core/error.h"
 #include "core/log.h"
-#include "sim/simulation.h"
+#include "sim/bridge_host.h"
 
 namespace rescuesim::foxglove {
 
@@ -51,7 +51,7 @@ void FoxgloveBridge::on_close(ClientId client) {
     auto c = channels_.find(channel);
     if (c == channels_.end()) continue;
     c->second.subscribers.erase(client);
-    if (c->second.topic >= 0 && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+    if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
   }
   clients_.erase(it);
 }
@@ -118,7 +118,7 @@ void FoxgloveBridge::subscribe(ClientId client, const Subscribe& s) {
       }
       cs.subscriptions[sub] = channel;
       c.subscribers[client] = sub;
-      if (c.topic >= 0 && static_cast<std::size_t>(c.topic) < kMaxTopics) ++wanted_[static_cast<std::size_t>(c.topic)];
+      if (c.topic != kNoTopic && static_cast<std::size_t>(c.topic) < kMaxTopics) ++wanted_[static_cast<std::size_t>(c.topic)];
       // latched channels (the scene, /tf_static) start with their last message
       if (c.last) server_->send_data(client, message_data_header(sub, c.last_stamp), c.last);
     }
@@ -142,7 +142,7 @@ void FoxgloveBridge::unsubscribe(ClientId client, const Unsubscribe& u) {
       auto c = channels_.find(it->second);
       if (c != channels_.end()) {
         c->second.subscribers.erase(client);
-        if (c->second.topic >= 0 && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+        if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
       }
       cs.subscriptions.erase(it);
     }
@@ -187,7 +187,7 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
       // a robot whose moving joints are all driven otherwise (wheels, head) or not at all
       const auto robot = static_cast<std::size_t>(target.robot);
       if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[robot]) {
-        errors.push_back(where + "robot '" + sim_->world().robots[robot].name +
+        errors.push_back(where + "robot '" + host_->world().robots[robot].name +
                          "' has no joints that joint_command can drive (drive wheels take cmd_vel, head joints head/command; fixed, "
                          "passive and mimic joints take nothing); it takes " + accepted_topics(robot));
         continue;
@@ -246,30 +246,16 @@ void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> by
 void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload) {
   const std::string& topic = target.channel.topic;
   try {
+    // decoded here; checked, handed to the host and warned about by the gate every bridge shares
+    CommandOutcome r;
     if (target.kind == CommandTarget::Kind::twist) {
-      const msg::Twist t = decode_twist(target.channel.encoding, payload);
-      static const char* names[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
-      const double values[6] = {t.linear.x(), t.linear.y(), t.linear.z(), t.angular.x(), t.angular.y(), t.angular.z()};
-      for (int i = 0; i < 6; ++i) {
-        if (!std::isfinite(values[i])) return reject(client, topic + ": rejected: " + names[i] + " is not finite");
-      }
-      if (!sim_->command_velocity(target.robot, t)) return reject(client, topic + ": rejected by the simulation");
+      r = gate_->velocity(target.robot, topic, decode_twist(target.channel.encoding, payload));
     } else if (target.kind == CommandTarget::Kind::head) {
-      const msg::Float64MultiArray a = decode_multi_array(target.channel.encoding, payload);
-      const std::size_t want = head_sizes_[static_cast<std::size_t>(target.robot)];
-      if (a.data.size() != want) {
-        return reject(client, topic + ": rejected: expected " + std::to_string(want) + " joint positions (rad), got " + std::to_string(a.data.size()));
-      }
-      for (std::size_t i = 0; i < a.data.size(); ++i) {
-        if (!std::isfinite(a.data[i])) return reject(client, topic + ": rejected: data[" + std::to_string(i) + "] is not finite");
-      }
-      if (!sim_->command_head(target.robot, a.data)) return reject(client, topic + ": rejected by the simulation");
+      r = gate_->head(target.robot, topic, decode_multi_array(target.channel.encoding, payload).data);
     } else {
-      // command_joints checks names, sizes and finiteness, and says why it refuses
-      const msg::JointState command = decode_joint_state(target.channel.encoding, payload);
-      std::string why;
-      if (!sim_->command_joints(target.robot, command, &why)) return reject(client, topic + ": rejected: " + why);
+      r = gate_->joints(target.robot, topic, decode_joint_state(target.channel.encoding, payload));
     }
+    if (!r) return reject(client, topic + ": rejected: " + r.reason);
   } catch (const Error& e) {
     return reject(client, topic + ": " + e.message());
   }

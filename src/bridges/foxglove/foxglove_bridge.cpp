@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "msgs/serialize.h"
-#include "sim/simulation.h"
+#include "sim/bridge_host.h"
 
 namespace rescuesim {
 
@@ -43,11 +43,12 @@ std::string mib(std::size_t bytes) {
 
 }  // namespace
 
-void FoxgloveBridge::start(Simulation& sim) {
+void FoxgloveBridge::start(BridgeHost& host) {
   if (started_) return;
-  sim_ = &sim;
-  const World& world = sim.world();
-  const Bus& bus = sim.bus();
+  host_ = &host;
+  gate_ = std::make_unique<CommandGate>(host, "foxglove");
+  const World& world = host.world();
+  const Bus& bus = host.bus();
   clock_topic_ = bus.find("/clock");
 
   // every Bus topic becomes a cdr channel with its ROS 2 schema
@@ -56,15 +57,15 @@ void FoxgloveBridge::start(Simulation& sim) {
 
   // the scene, drawn where the 3D panel can place it: in "map" when the simulation publishes
   // map -> odom, else in the first robot's odom frame at the robot's start pose
-  if (!options_.scene_topic.empty() && bus.find(options_.scene_topic) < 0) {
+  if (!options_.scene_topic.empty() && bus.find(options_.scene_topic) == kNoTopic) {
     SceneFrames frames;
-    if (!sim.options().publish_map_to_odom && !world.robots.empty()) {
-      frames.world_frame = sim.frame_name(0, "odom");
-      frames.X_FW = sim.options().tf_from_ground_truth ? Pose3{} : world.robots[0].X_W_start.inverse();
+    if (!host.frames().publish_map_to_odom && !world.robots.empty()) {
+      frames.world_frame = host.frame_name(0, "odom");
+      frames.X_FW = host.frames().tf_from_ground_truth ? Pose3{} : world.robots[0].X_W_start.inverse();
     }
     for (std::size_t r = 0; r < world.robots.size(); ++r) {
       std::vector<std::string> links;
-      for (const LinkSpec& l : world.robots[r].spec.links) links.push_back(sim.frame_name(static_cast<int>(r), l.name));
+      for (const LinkSpec& l : world.robots[r].spec.links) links.push_back(host.frame_name(static_cast<int>(r), l.name));
       frames.link_frames.push_back(std::move(links));
     }
     scene_ = std::make_unique<SceneBuilder>(world, frames);
@@ -72,9 +73,9 @@ void FoxgloveBridge::start(Simulation& sim) {
     scene.channel = {kSceneChannel, options_.scene_topic, "json", "foxglove.SceneUpdate", scene_update_schema(), "jsonschema"};
     scene.latched = true;
     last_scene_ = scene_state();
-    const std::string full = scene_->full(sim.time(), last_scene_);
+    const std::string full = scene_->full(host.time(), last_scene_);
     scene.last = std::make_shared<const std::vector<std::uint8_t>>(full.begin(), full.end());
-    scene.last_stamp = static_cast<std::uint64_t>(sim.time().ns);
+    scene.last_stamp = static_cast<std::uint64_t>(host.time().ns);
     channels_[kSceneChannel] = std::move(scene);
     scene_period_ = SimTime::from_seconds(options_.scene_rate > 0 ? 1.0 / options_.scene_rate : 0.5);
   } else if (!options_.scene_topic.empty()) {
@@ -83,10 +84,10 @@ void FoxgloveBridge::start(Simulation& sim) {
 
   // what clients may publish: each robot's cmd_vel, head command and joint command
   for (std::size_t r = 0; r < world.robots.size(); ++r) {
-    twist_topics_.push_back(sim.topic_name(static_cast<int>(r), "cmd_vel"));
-    head_topics_.push_back(sim.topic_name(static_cast<int>(r), "head/command"));
+    twist_topics_.push_back(host.topic_name(static_cast<int>(r), "cmd_vel"));
+    head_topics_.push_back(host.topic_name(static_cast<int>(r), "head/command"));
     head_sizes_.push_back(world.robots[r].spec.head_joints.size());
-    joint_topics_.push_back(sim.topic_name(static_cast<int>(r), "joint_command"));
+    joint_topics_.push_back(host.topic_name(static_cast<int>(r), "joint_command"));
     joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
   }
 
@@ -94,7 +95,7 @@ void FoxgloveBridge::start(Simulation& sim) {
   for (const auto& r : world.robots) robots += (robots.empty() ? "" : ", ") + r.name;
   server_info_ = server_info(
       "rescuesim", {"clientPublish", "time"}, {"cdr", "json"},
-      {{"world", world.name}, {"seed", std::to_string(sim.options().seed)}, {"robots", robots}, {"scene_topic", options_.scene_topic}},
+      {{"world", world.name}, {"seed", std::to_string(host.seed())}, {"robots", robots}, {"scene_topic", options_.scene_topic}},
       std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch()).count()));
 
   ServerLimits limits;
@@ -107,13 +108,13 @@ void FoxgloveBridge::start(Simulation& sim) {
 
   started_ = true;
   worker_ = std::thread([this] { run(); });
-  bus_handle_ = sim.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
+  bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
 }
 
 void FoxgloveBridge::stop() {
   if (!started_ || stopped_) return;
   stopped_ = true;
-  sim_->bus().unsubscribe(bus_handle_);
+  host_->bus().unsubscribe(bus_handle_);
   queue_.close();
   if (worker_.joinable()) worker_.join();
   server_->shutdown(std::chrono::milliseconds(500));
@@ -135,7 +136,7 @@ BridgeStats FoxgloveBridge::stats() const {
 // ---- simulation thread ----
 
 SceneState FoxgloveBridge::scene_state() const {
-  const State& st = sim_->state();
+  const State& st = host_->state();
   SceneState s;
   for (const BodyState& b : st.dynamics) s.rubble.push_back(b.X_WB);
   for (const VictimState& v : st.victims) {
@@ -146,7 +147,7 @@ SceneState FoxgloveBridge::scene_state() const {
 }
 
 void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
-  const SimTime now = sim_->time();
+  const SimTime now = host_->time();
   if (topic.id == clock_topic_) latest_time_.store(now.ns, std::memory_order_relaxed);
   // moving parts of the scene, at a low rate
   if (scene_ && now >= next_scene_) {
@@ -159,7 +160,7 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
   }
   // topics advertised after start become new channels, announced to every client at once
   // (rare, so the simulation thread takes the lock itself rather than risk a dropped item)
-  const auto& topics = sim_->bus().topics();
+  const auto& topics = host_->bus().topics();
   if (known_topics_ < topics.size()) {
     std::vector<Channel> added;
     std::lock_guard lock(mutex_);

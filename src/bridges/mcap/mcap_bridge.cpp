@@ -6,10 +6,12 @@
 #include <mutex>
 #include <thread>
 
+#include "core/bounded_queue.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/throttle.h"
 #include "msgs/serialize.h"
-#include "sim/simulation.h"
+#include "sim/bridge_host.h"
 
 namespace rescuesim {
 
@@ -40,8 +42,8 @@ struct McapRecorder::Impl {
   explicit Impl(McapOptions o) : options(std::move(o)), queue(options.queue_size) {}
 
   McapOptions options;
-  Simulation* sim = nullptr;
-  int handle = -1;
+  BridgeHost* host = nullptr;
+  SubscriptionId handle = kNoSubscription;
   std::unique_ptr<mcap::McapWriter> writer;
   BoundedQueue<Item> queue;
   std::thread thread;
@@ -90,7 +92,7 @@ struct McapRecorder::Impl {
       sequences.resize(id + 1, 0);
     }
     if (!topics[id]) topics[id] = std::make_shared<const Topic>(t);
-    Item item{topics[id], ++sequences[id], static_cast<std::uint64_t>(sim->time().ns), m};
+    Item item{topics[id], ++sequences[id], static_cast<std::uint64_t>(host->time().ns), m};
     if (options.lossless) {
       queue.push_wait(std::move(item));
     } else if (!queue.push(std::move(item))) {
@@ -153,31 +155,33 @@ McapRecorder::~McapRecorder() {
   }
 }
 
-void McapRecorder::start(Simulation& sim) {
+void McapRecorder::start(BridgeHost& host) {
   Impl& m = *impl_;
-  RS_DEMAND(!m.sim, "McapRecorder::start: started twice");
+  RS_DEMAND(!m.host, "McapRecorder::start: started twice");
   mcap::WriterOptions wo;
   wo.profile = "ros2";
   wo.library = m.options.library;
   wo.compression = m.options.compression;
   wo.compression_level = m.options.compression_level;
   wo.chunk_size = m.options.chunk_size;
+  wo.chunk_log_seconds = m.options.chunk_seconds;
+  wo.chunk_wall_seconds = m.options.lossless ? 0 : m.options.chunk_wall_seconds;
   m.writer = std::make_unique<mcap::McapWriter>(std::make_unique<mcap::FileSink>(m.options.path), wo);
   // the run's description first, then a channel per topic known now (in topic order, so two
   // runs of one scenario number their channels alike); later topics get theirs on first use
   for (const auto& md : m.options.metadata) m.writer->write_metadata(md);
   for (const auto& a : m.options.attachments) m.writer->write_attachment(a);
-  for (const Topic& t : sim.bus().topics()) m.channel_for(t);
-  m.sim = &sim;
+  for (const Topic& t : host.bus().topics()) m.channel_for(t);
+  m.host = &host;
   m.thread = std::thread([&m] { m.run(); });
-  m.handle = sim.bus().subscribe_shared("", [&m](const Topic& t, const Bus::SharedMessage& msg) { m.on_message(t, msg); });
+  m.handle = host.bus().subscribe_shared("", [&m](const Topic& t, const Bus::SharedMessage& msg) { m.on_message(t, msg); });
 }
 
 void McapRecorder::stop() {
   Impl& m = *impl_;
-  if (!m.sim || m.stopped) return;
+  if (!m.host || m.stopped) return;
   m.stopped = true;
-  m.sim->bus().unsubscribe(m.handle);
+  m.host->bus().unsubscribe(m.handle);
   m.queue.close();
   if (m.thread.joinable()) m.thread.join();
   const auto t0 = Clock::now();

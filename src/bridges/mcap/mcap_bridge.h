@@ -29,6 +29,12 @@ struct McapOptions {
   mcap::Compression compression = mcap::Compression::zstd;
   int compression_level = 3;                           ///< zstd level
   std::size_t chunk_size = std::size_t(1) << 20;       ///< uncompressed bytes per chunk
+  /// Sim-time budget of a chunk (s, 0 off): a chunk is written once it spans this much log time,
+  /// so a killed run loses at most about this much sim time (`rescuesim recover` saves the rest).
+  double chunk_seconds = 1.0;
+  /// Wall-time budget of a chunk (s, 0 off), for bounded (realtime) recordings only: lossless
+  /// (lockstep) recordings ignore it, so they stay byte-identical per seed.
+  double chunk_wall_seconds = 1.0;
   bool lossless = true;                                ///< block the simulation thread rather than drop (lockstep)
   std::size_t queue_size = 1024;                       ///< messages waiting for the recorder thread
   std::string library = "rescuesim";                   ///< Header.library, e.g. "rescuesim 0.1.0"
@@ -53,7 +59,7 @@ class McapRecorder : public Bridge {
   /// Creates PATH.part, writes the header, the run's metadata and attachments and one channel
   /// per Bus topic, subscribes to every topic and starts the recorder thread. Throws Error
   /// naming the file when it cannot be created.
-  void start(Simulation& sim) override;
+  void start(BridgeHost& host) override;
   /// Writes what is queued, the summary and the footer, and renames PATH.part to PATH.
   void stop() override;
   BridgeStats stats() const override;

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/throttle.h"
 
 namespace rescuesim {
 
@@ -24,12 +25,7 @@ bool latched(const mcap::Channel& c) {
 
 McapPlayer::McapPlayer(const std::filesystem::path& path, const ModelMap& models)
     : reader_(path), run_(rebuild_run(reader_, models)) {
-  SimOptions so;
-  so.seed = run_.scenario.seed;
-  so.physics.dt = run_.scenario.physics_dt;
-  so.physics.solver_iterations = run_.scenario.solver_iterations;
-  sim_ = std::make_unique<Simulation>(run_.world, so);
-  clock_state_ = sim_->snapshot();
+  host_ = std::make_unique<ReplayHost>(run_.world, run_.scenario.seed);
   // every recorded topic is on the Bus before bridges start (they advertise what they see then)
   for (const auto& [id, channel] : reader_.channels()) route(channel);
 }
@@ -46,13 +42,13 @@ const McapPlayer::Route& McapPlayer::route(const mcap::Channel& channel) {
   } else if (!(r.type = msg::find_type(schema->second.name))) {
     log::warn("replay: {} is not replayed: rescuesim does not know its type {}", channel.topic, schema->second.name);
   } else {
-    Bus& bus = sim_->bus();
-    const int existing = bus.find(channel.topic);
-    if (existing >= 0 && bus.topics()[static_cast<std::size_t>(existing)].type != r.type->ros1_name) {
-      log::warn("replay: {} is not replayed: recorded as {} but this simulation has it as {}", channel.topic, r.type->ros1_name,
-                bus.topics()[static_cast<std::size_t>(existing)].type);
+    Bus& bus = host_->bus();
+    const TopicId existing = bus.find(channel.topic);
+    if (existing != kNoTopic && bus.topic(existing).type != r.type->ros1_name) {
+      log::warn("replay: {} is not replayed: recorded as {} but this world has it as {}", channel.topic, r.type->ros1_name,
+                bus.topic(existing).type);
     } else {
-      r.topic = existing >= 0 ? existing : bus.advertise(channel.topic, r.type->ros1_name, 0, latched(channel));
+      r.topic = existing != kNoTopic ? existing : bus.advertise(channel.topic, r.type->ros1_name, 0, latched(channel));
     }
   }
   return routes_.emplace(channel.id, r).first->second;
@@ -64,7 +60,7 @@ PlayResult McapPlayer::play(double rate, const std::atomic<bool>* stop, const st
   const auto t0 = Clock::now();
   auto last_report = t0;
   std::optional<std::uint64_t> first;
-  std::uint64_t now_ns = static_cast<std::uint64_t>(sim_->time().ns);
+  std::uint64_t now_ns = static_cast<std::uint64_t>(host_->time().ns);
   PlayProgress p;
   if (reader_.statistics()) p.duration = 1e-9 * static_cast<double>(reader_.statistics()->message_end_time - reader_.statistics()->message_start_time);
   Throttle decode_log;
@@ -73,7 +69,7 @@ PlayResult McapPlayer::play(double rate, const std::atomic<bool>* stop, const st
   reader_.read_messages([&](const mcap::Channel& channel, const mcap::MessageView& m) {
     if (stopped()) return false;
     const Route& r = route(channel);
-    if (r.topic < 0) {
+    if (r.topic == kNoTopic) {
       ++result.skipped;
       return true;
     }
@@ -95,13 +91,12 @@ PlayResult McapPlayer::play(double rate, const std::atomic<bool>* stop, const st
       std::this_thread::sleep_for(std::chrono::duration<double>(std::min(due - late, 0.05)));
     }
     if (stopped()) return false;
-    // the simulation's clock shows the replayed time
+    // the host's clock shows the replayed time
     if (m.log_time != now_ns) {
       now_ns = m.log_time;
-      clock_state_.time = SimTime{static_cast<std::int64_t>(now_ns)};
-      sim_->restore(clock_state_);
+      host_->set_time(SimTime{static_cast<std::int64_t>(now_ns)});
     }
-    sim_->bus().publish(r.topic, std::move(message));
+    host_->bus().publish(r.topic, std::move(message));
     ++result.messages;
     result.duration = 1e-9 * static_cast<double>(m.log_time - std::min(m.log_time, *first));
     if (progress) {

@@ -1,10 +1,11 @@
 #pragma once
-/// Replay of a rescuesim recording: the simulation it ran is rebuilt from the recording (see
-/// run_record.h) but never stepped; recorded topics it lacks are advertised on its Bus; then the
-/// recorded messages are decoded and published on that Bus in file (= log-time) order, paced
-/// to the wall clock, so bridges attached to it (ROS 1, ROS 2, Foxglove, even a recorder)
-/// re-publish the recording as if it were running. The simulation's clock follows the replay
-/// (its State is restored at each new log time), so bridges that read sim time see replay time.
+/// Replay of a rescuesim recording: the run's world is rebuilt from the recording (see
+/// run_record.h) and put behind a ReplayHost (a Bus and a clock; no physics, no ray scene);
+/// every recorded topic is advertised on that Bus; then the recorded messages are decoded and
+/// published on it in file (= log-time) order, paced to the wall clock, so bridges attached to
+/// the host (ROS 1, ROS 2, Foxglove, even a recorder) re-publish the recording as if it were
+/// running. The host's clock is set to each message's log time before it is published, so
+/// bridges that read sim time see replay time.
 
 #include <atomic>
 #include <cstdint>
@@ -14,9 +15,9 @@
 #include <memory>
 
 #include "bridges/mcap/mcap_reader.h"
+#include "bridges/mcap/replay_host.h"
 #include "bridges/mcap/run_record.h"
 #include "msgs/serialize.h"
-#include "sim/simulation.h"
 
 namespace rescuesim {
 
@@ -39,13 +40,13 @@ struct PlayResult {
 
 class McapPlayer {
  public:
-  /// Opens and checks the recording, rebuilds its simulation and advertises its topics.
+  /// Opens and checks the recording, rebuilds its world and advertises its topics.
   /// Throws Error naming the file for a damaged file or one rescuesim did not record.
   McapPlayer(const std::filesystem::path& path, const ModelMap& models);
   ~McapPlayer();
 
-  /// The rebuilt simulation: attach bridges to it before play().
-  Simulation& sim() { return *sim_; }
+  /// What bridges attach to (before play()): the Bus, the world, the replay clock.
+  ReplayHost& host() { return *host_; }
   const mcap::McapReader& reader() const { return reader_; }
   const RecordedRun& run() const { return run_; }
 
@@ -57,15 +58,14 @@ class McapPlayer {
 
  private:
   struct Route {
-    int topic = -1;                           ///< Bus topic, -1: not replayed
+    TopicId topic = kNoTopic;                 ///< Bus topic, kNoTopic: not replayed
     const msg::TypeSupport* type = nullptr;
   };
   const Route& route(const mcap::Channel& channel);
 
   mcap::McapReader reader_;
   RecordedRun run_;
-  std::unique_ptr<Simulation> sim_;
-  State clock_state_;                          ///< restored with each new log time
+  std::unique_ptr<ReplayHost> host_;           ///< on run_.world
   std::map<std::uint16_t, Route> routes_;      ///< by channel id
 };
 

@@ -35,8 +35,8 @@ bool same(const Channel& a, const Channel& b) {
 }
 
 constexpr const char* kTruncatedHint =
-    " (a recording whose run was killed? rescuesim leaves such a file as FILE.mcap.part; stream readers can still read it up to "
-    "its last complete chunk)";
+    " (a recording whose run was killed? rescuesim leaves such a file as FILE.mcap.part: 'rescuesim recover FILE.mcap.part' "
+    "writes an indexed FILE.mcap of it up to its last complete chunk, which replay and Foxglove can open)";
 
 }  // namespace
 
@@ -57,7 +57,7 @@ McapReader::McapReader(const std::filesystem::path& path, ReaderOptions options)
                        " instead of the MCAP magic 89 4D 43 41 50 30 0D 0A";
     if (start.rfind("#ROSBAG", 0) == 0) what = "not an MCAP file: it is a ROS 1 bag (starts with #ROSBAG)";
     if (start.rfind("SQLite format 3", 0) == 0) what = "not an MCAP file: it is an SQLite database (a ROS 2 sqlite3 bag?)";
-    if (head.size() >= 5 && std::memcmp(head.data(), "\x89MCAP", 5) == 0) {
+    if (head.size() >= 6 && std::memcmp(head.data(), "\x89MCAP", 5) == 0) {
       what = "an MCAP file of major version '" + std::string(1, static_cast<char>(head[5])) + "', this reader knows version '0'";
     }
     throw Error({path_.string(), 0, "offset 0"}, what);

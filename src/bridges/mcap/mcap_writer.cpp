@@ -67,7 +67,8 @@ void McapWriter::write_message(std::uint16_t channel_id, std::uint32_t sequence,
   chunk_entries_[c].emplace_back(log_time, chunk_.size());
   append_message(chunk_, channel_id, sequence, log_time, publish_time, data);
   if (!chunk_has_messages_) {
-    chunk_start_ = chunk_end_ = log_time;
+    chunk_start_ = chunk_end_ = chunk_first_log_time_ = log_time;
+    if (options_.chunk_wall_seconds > 0) chunk_first_wall_ = wall_now();
     chunk_has_messages_ = true;
   }
   chunk_start_ = std::min(chunk_start_, log_time);
@@ -78,7 +79,17 @@ void McapWriter::write_message(std::uint16_t channel_id, std::uint32_t sequence,
   ++channel_counts_[c];
   ++stats_.messages;
   stats_.message_bytes += data.size();
-  if (chunk_.size() >= options_.chunk_size) flush_chunk();
+  // a full chunk, or one that has spent its log-time or wall-time budget, goes to the sink
+  const bool full = chunk_.size() >= options_.chunk_size;
+  const bool log_spent = options_.chunk_log_seconds > 0 && log_time >= chunk_first_log_time_ &&
+                         static_cast<double>(log_time - chunk_first_log_time_) >= options_.chunk_log_seconds * 1e9;
+  const bool wall_spent = options_.chunk_wall_seconds > 0 && wall_now() - chunk_first_wall_ >= options_.chunk_wall_seconds;
+  if (full || log_spent || wall_spent) flush_chunk();
+}
+
+double McapWriter::wall_now() const {
+  if (options_.wall_clock) return options_.wall_clock();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 void McapWriter::flush_chunk() {

@@ -6,6 +6,7 @@
 /// readers (Foxglove, McapIndexedReader) can seek. Single-threaded: one thread calls it.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -19,13 +20,23 @@
 
 namespace rescuesim::mcap {
 
-/// Settings of a writer.
+/// Settings of a writer. A chunk is written (and flushed to the sink) as soon as any of its
+/// three budgets is spent, so a killed writer loses at most the open chunk; 0 switches a
+/// time budget off. The budgets are checked after each message is added.
 struct WriterOptions {
   std::string profile = "ros2";               ///< Header.profile
   std::string library = "rescuesim";          ///< Header.library, e.g. "rescuesim 0.1.0"
   Compression compression = Compression::zstd;
   int compression_level = 3;                  ///< zstd level
   std::size_t chunk_size = std::size_t(1) << 20;  ///< uncompressed bytes after which a chunk is written
+  /// Log-time budget (s): the chunk is written once a message's log time is this far past the
+  /// chunk's first message. Deterministic (a function of the messages alone).
+  double chunk_log_seconds = 0;
+  /// Wall-time budget (s): the chunk is written once a message arrives this long after the
+  /// chunk's first message did. Not deterministic: chunk boundaries then depend on the machine.
+  double chunk_wall_seconds = 0;
+  /// The wall clock in seconds for chunk_wall_seconds (empty: std::chrono::steady_clock); tests set it.
+  std::function<double()> wall_clock;
 };
 
 /// What a writer has done so far.
@@ -53,7 +64,8 @@ class McapWriter {
   /// Declares a channel on a schema (ids count up from 1); its record goes into the current chunk.
   std::uint16_t add_channel(std::uint16_t schema_id, const std::string& topic, const std::string& message_encoding,
                             KeyValues metadata = {});
-  /// Adds a message (times in ns). Writes the chunk once it holds chunk_size bytes.
+  /// Adds a message (times in ns). Writes the chunk once it holds chunk_size bytes or has spent
+  /// a time budget (see WriterOptions).
   void write_message(std::uint16_t channel_id, std::uint32_t sequence, std::uint64_t log_time, std::uint64_t publish_time,
                      std::span<const std::uint8_t> data);
   /// Writes a Metadata record to the data section at once (outside any chunk).
@@ -72,6 +84,7 @@ class McapWriter {
   /// Writes bytes to the sink, counting them and, in the data section, adding them to its CRC.
   void emit(std::span<const std::uint8_t> bytes);
   void write_summary();
+  double wall_now() const;
 
   std::unique_ptr<ByteSink> sink_;
   WriterOptions options_;
@@ -94,6 +107,8 @@ class McapWriter {
   std::vector<std::uint8_t> chunk_;
   std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_entries_;  ///< per channel id - 1
   std::uint64_t chunk_start_ = 0, chunk_end_ = 0;
+  std::uint64_t chunk_first_log_time_ = 0;  ///< log time of the chunk's first message (the log-time budget's origin)
+  double chunk_first_wall_ = 0;             ///< wall clock when that message was added
   bool chunk_has_messages_ = false;
   std::vector<std::uint8_t> compressed_, scratch_;
 };

@@ -30,10 +30,6 @@ const std::string* find(const mcap::KeyValues& kv, const std::string& key) {
   return nullptr;
 }
 
-bool is_camera(SensorSpec::Type t) {
-  return t == SensorSpec::Type::color_camera || t == SensorSpec::Type::depth_camera || t == SensorSpec::Type::thermal_camera;
-}
-
 }  // namespace
 
 void describe_run(McapOptions& o, const Scenario& s, const WorldSpec& world, bool cameras, const std::string& version) {
@@ -118,7 +114,7 @@ RecordedRun rebuild_run(const mcap::McapReader& reader, const ModelMap& models) 
   if (cameras && *cameras == "off") {
     for (auto& robot : run.world.robots) {
       for (auto& sensor : robot.spec.sensors) {
-        if (is_camera(sensor.type)) sensor.enabled = false;
+        if (sensor.is_camera()) sensor.enabled = false;
       }
     }
   }

@@ -26,14 +26,15 @@
 #include <set>
 #include <thread>
 
-#include "bridges/ros1/command_gate.h"
+#include "bridges/common/commands.h"
+#include "bridges/common/outbox.h"
 #include "bridges/ros1/ros1_console.h"
 #include "bridges/ros1/ros1_endpoint.h"
 #include "bridges/ros1/ros1_raw_message.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "msgs/serialize.h"
-#include "sim/simulation.h"
+#include "sim/bridge_host.h"
 
 
 namespace rescuesim {
@@ -62,18 +63,18 @@ std::optional<int> master_pid() {
 
 class Ros1Bridge final : public Bridge {
  public:
-  explicit Ros1Bridge(const Ros1Options& options) : options_(options), queue_(std::max<std::size_t>(1, options.queue_size)) {}
+  explicit Ros1Bridge(const Ros1Options& options) : options_(options), outbox_({.per_topic = std::max<std::size_t>(1, options.queue_size)}) {}
   /// Without stop(), the Bus subscription is left to the simulation (which then must not publish
   /// again): stop() belongs on the simulation thread, the destructor may run anywhere.
   ~Ros1Bridge() override { shut_down(); }
 
   std::string name() const override { return "ros1"; }
-  void start(Simulation& sim) override;
+  void start(BridgeHost& host) override;
   void stop() override;
   BridgeStats stats() const override {
     BridgeStats s;
     s.sent = sent_.load();
-    s.dropped = queue_.dropped();
+    s.dropped = outbox_.stats().dropped;
     s.received = gate_ ? gate_->received() : 0;
     s.rejected = gate_ ? gate_->rejected() : 0;
     return s;
@@ -97,18 +98,13 @@ class Ros1Bridge final : public Bridge {
     ros::Subscriber sub;                      ///< spinner thread only (after start)
     int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
   };
-  struct Outgoing {
-    int topic;
-    std::uint32_t seq;  ///< std_msgs/Header.seq
-    Bus::SharedMessage message;  ///< shared with the Bus and other bridges, never copied
-  };
 
   void advertise_all();
   void set_parameters();
   void subscribe(std::size_t input);
   bool register_again();
   void publish_loop();
-  void publish(const Outgoing& item, RawMessage& raw);
+  void publish(const OutboxItem& item, RawMessage& raw);
   void refresh_wanted();
   void spin_loop();
   void watch_master();
@@ -117,16 +113,15 @@ class Ros1Bridge final : public Bridge {
   void shut_down();
 
   Ros1Options options_;
-  Simulation* sim_ = nullptr;
+  BridgeHost* host_ = nullptr;
   std::unique_ptr<CommandGate> gate_;
   Ros1Endpoint endpoint_;
-  int bus_handle_ = -1;
+  SubscriptionId bus_handle_ = kNoSubscription;
   bool started_ = false;
 
-  BoundedQueue<Outgoing> queue_;
+  Outbox outbox_;  ///< per topic, queue_size each; its sequence numbers are Header.seq + 1
   std::vector<Output> outputs_;  ///< by Bus topic id
   std::unique_ptr<std::atomic<bool>[]> wanted_;  ///< by Bus topic id: someone subscribes, or latched
-  std::vector<std::uint32_t> seq_;  ///< by Bus topic id: next Header.seq (simulation thread only)
   std::vector<Input> inputs_;
   std::unique_ptr<ros::NodeHandle> nh_;
   ros::CallbackQueue callbacks_;
@@ -139,14 +134,14 @@ class Ros1Bridge final : public Bridge {
   bool connected_ = true;
   int master_pid_ = -1;
   bool shutdown_reported_ = false;
-  std::set<int> mismatch_reported_;  ///< topics whose messages could not be published (type mismatch, serialiser error)
+  std::set<TopicId> mismatch_reported_;  ///< topics whose messages could not be published (type mismatch, serialiser error)
 };
 
-void Ros1Bridge::start(Simulation& sim) {
+void Ros1Bridge::start(BridgeHost& host) {
   if (started_) throw Error("ROS 1: the bridge is already started");
   if (g_node_in_use.exchange(true)) throw Error("ROS 1: only one ROS 1 bridge per process (roscpp runs one node per process)");
-  sim_ = &sim;
-  gate_ = std::make_unique<CommandGate>(sim, "ROS 1");
+  host_ = &host;
+  gate_ = std::make_unique<CommandGate>(host, "ROS 1");
   endpoint_ = resolve_ros1_endpoint(env("ROS_MASTER_URI"), env("ROS_HOSTNAME"), env("ROS_IP"));
   try {
     route_rosconsole_to_log();
@@ -172,7 +167,7 @@ void Ros1Bridge::start(Simulation& sim) {
     nh_->setCallbackQueue(&callbacks_);
 
     // every Bus topic goes out under its own name and type
-    for (const Topic& t : sim.bus().topics()) {
+    for (const Topic& t : host.bus().topics()) {
       Output o;
       o.name = t.name;
       o.latched = t.latched;
@@ -181,14 +176,14 @@ void Ros1Bridge::start(Simulation& sim) {
       outputs_.push_back(std::move(o));
     }
     // commands: each robot's cmd_vel and head/command, and joint_command when it has joints to command
-    for (int r = 0; r < static_cast<int>(sim.world().robots.size()); ++r) {
-      Input v{sim.topic_name(r, "cmd_vel"), r, Input::Kind::velocity, msg::find_type("geometry_msgs/Twist"), {}};
-      Input h{sim.topic_name(r, "head/command"), r, Input::Kind::head, msg::find_type("std_msgs/Float64MultiArray"), {}};
+    for (int r = 0; r < static_cast<int>(host.world().robots.size()); ++r) {
+      Input v{host.topic_name(r, "cmd_vel"), r, Input::Kind::velocity, msg::find_type("geometry_msgs/Twist"), {}};
+      Input h{host.topic_name(r, "head/command"), r, Input::Kind::head, msg::find_type("std_msgs/Float64MultiArray"), {}};
       RS_DEMAND(v.type && h.type, "the serialiser lacks geometry_msgs/Twist or std_msgs/Float64MultiArray");
       inputs_.push_back(std::move(v));
       inputs_.push_back(std::move(h));
-      if (has_commandable_joints(sim.world().robots[static_cast<std::size_t>(r)].spec)) {
-        Input j{sim.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
+      if (has_commandable_joints(host.world().robots[static_cast<std::size_t>(r)].spec)) {
+        Input j{host.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
         RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
         inputs_.push_back(std::move(j));
       }
@@ -203,17 +198,19 @@ void Ros1Bridge::start(Simulation& sim) {
     throw;
   }
 
-  // the simulation thread only copies into the queue, and only what someone listens to;
-  // serialising happens on the publisher thread. One Header.seq counter per topic counts every
-  // message the simulation produced.
+  // the simulation thread only queues the shared message (no copy) in the outbox, and only what
+  // someone listens to; serialising happens on the publisher thread. The outbox's sequence per
+  // topic counts every message the simulation produced (Header.seq).
   wanted_ = std::make_unique<std::atomic<bool>[]>(outputs_.size());
   for (std::size_t i = 0; i < outputs_.size(); ++i) wanted_[i] = outputs_[i].type && outputs_[i].latched;
-  seq_.assign(outputs_.size(), 0);
-  bus_handle_ = sim.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) {
-    const auto id = static_cast<std::size_t>(t.id);
-    if (id >= seq_.size()) return;  // Bus topics are fixed at set-up
-    const std::uint32_t seq = seq_[id]++;
-    if (wanted_[id].load(std::memory_order_relaxed)) queue_.push(Outgoing{t.id, seq, m});
+  bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) {
+    // a topic advertised after start has no ROS publisher: it is not bridged, so not even queued
+    if (static_cast<std::size_t>(t.id) >= outputs_.size()) return;
+    if (wanted_[static_cast<std::size_t>(t.id)].load(std::memory_order_relaxed)) {
+      outbox_.push(t.id, host_->time(), m, 0);
+    } else {
+      outbox_.skip(t.id);
+    }
   });
   publisher_ = std::thread([this] { publish_loop(); });
   spinner_ = std::thread([this] { spin_loop(); });
@@ -249,10 +246,10 @@ void Ros1Bridge::set_parameters() {
   if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
   // robot_state_publisher and RViz's RobotModel read a robot's URDF from the parameter server
   // (the same text is on the latched robot_description topic)
-  const Simulation& sim = *sim_;
-  for (int r = 0; r < static_cast<int>(sim.world().robots.size()); ++r) {
-    const std::string& description = sim.world().robots[static_cast<std::size_t>(r)].spec.description;
-    if (!description.empty()) ros::param::set(sim.topic_name(r, "robot_description"), description);
+  const BridgeHost& host = *host_;
+  for (int r = 0; r < static_cast<int>(host.world().robots.size()); ++r) {
+    const std::string& description = host.world().robots[static_cast<std::size_t>(r)].spec.description;
+    if (!description.empty()) ros::param::set(host.topic_name(r, "robot_description"), description);
   }
 }
 
@@ -293,19 +290,20 @@ bool Ros1Bridge::register_again() {
 
 void Ros1Bridge::publish_loop() {
   RawMessage raw;  // its buffer is reused from message to message
+  std::vector<OutboxItem> round;
   for (;;) {
-    std::optional<Outgoing> item = queue_.pop(std::chrono::milliseconds(100));
-    if (!item) {
-      if (queue_.closed()) return;  // closed and drained
+    round.clear();
+    if (!outbox_.take_round(round, std::chrono::milliseconds(100))) {
+      if (outbox_.drained()) return;
       continue;
     }
     // on stop, what is queued goes out up to a short deadline
     if (Clock::now().time_since_epoch().count() > drain_until_.load()) return;
-    publish(*item, raw);
+    for (const OutboxItem& item : round) publish(item, raw);
   }
 }
 
-void Ros1Bridge::publish(const Outgoing& item, RawMessage& raw) {
+void Ros1Bridge::publish(const OutboxItem& item, RawMessage& raw) {
   const msg::Message& message = *item.message;
   Output& o = outputs_[static_cast<std::size_t>(item.topic)];
   if (!o.type) return;
@@ -321,7 +319,7 @@ void Ros1Bridge::publish(const Outgoing& item, RawMessage& raw) {
   raw.type = o.type;
   raw.bytes.clear();
   try {
-    msg::to_ros1(message, raw.bytes, item.seq);
+    msg::to_ros1(message, raw.bytes, item.seq - 1);  // Header.seq counts from 0
     o.pub.publish(raw);
     ++sent_;
   } catch (const std::exception& e) {
@@ -449,7 +447,7 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
 void Ros1Bridge::stop() {
   if (!started_) return;
   // the Bus belongs to the simulation thread, which calls stop()
-  sim_->bus().unsubscribe(bus_handle_);
+  host_->bus().unsubscribe(bus_handle_);
   shut_down();
 }
 
@@ -457,7 +455,7 @@ void Ros1Bridge::shut_down() {
   if (!started_) return;
   started_ = false;
   drain_until_ = (Clock::now() + std::chrono::seconds(1)).time_since_epoch().count();
-  queue_.close();
+  outbox_.close();
   if (publisher_.joinable()) publisher_.join();
   stopping_ = true;
   if (spinner_.joinable()) spinner_.join();

@@ -24,7 +24,7 @@ namespace rescuesim {
 struct Ros1Options {
   std::string node_name = "rescuesim";
   bool use_sim_time = false;       ///< set the /use_sim_time parameter to true on start
-  std::size_t queue_size = 64;     ///< messages buffered per bridge before the oldest is dropped
+  std::size_t queue_size = 64;     ///< per topic: most messages buffered before the oldest of that topic is dropped (bridges/common/outbox.h)
   double master_timeout = 3.0;     ///< s to wait for the master on start() before giving up
   double master_check_period = 1.0;  ///< s between checks that the master is (still) there
 };

@@ -1,7 +1,8 @@
 #pragma once
 /// Commands arriving from ROS 2 as serialised bytes (XCDR1 with the encapsulation header),
-/// decoded and checked before anything reaches the simulation: malformed bytes, non-finite
-/// values and wrong lengths are refused with a reason a user can act on.
+/// decoded before anything reaches the host. Bytes that are not a message of the type are
+/// refused here with a reason a user can act on; the values themselves (finite, right length,
+/// known joints) are checked by the gate all bridges share (bridges/common/commands.h).
 
 #include <cstdint>
 #include <optional>
@@ -13,22 +14,18 @@
 
 namespace rescuesim::ros2 {
 
-/// A decoded command, or why it was refused.
+/// A decoded command, or why its bytes did not decode.
 template <class T>
-struct Checked {
+struct Decoded {
   std::optional<T> value;
-  std::string problem;     ///< empty when `value` is set
-  bool malformed = false;  ///< the bytes were not a message of the type (else: its values were refused)
+  std::string problem;  ///< empty when `value` is set ("malformed CDR: ...")
 };
 
-/// geometry_msgs/Twist bytes: every component must be finite.
-Checked<msg::Twist> check_twist(std::span<const std::uint8_t> cdr);
-
-/// std_msgs/Float64MultiArray bytes: exactly `joints` finite positions (rad).
-Checked<std::vector<double>> check_head_command(std::span<const std::uint8_t> cdr, std::size_t joints);
-
-/// sensor_msgs/JointState bytes (joint_command): decoded only; which names and values a robot
-/// takes is Simulation::command_joints's to check.
-Checked<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr);
+/// geometry_msgs/Twist bytes.
+Decoded<msg::Twist> decode_twist(std::span<const std::uint8_t> cdr);
+/// std_msgs/Float64MultiArray bytes (head/command): the data array.
+Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> cdr);
+/// sensor_msgs/JointState bytes (joint_command).
+Decoded<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr);
 
 }  // namespace rescuesim::ros2

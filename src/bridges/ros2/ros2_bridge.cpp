@@ -5,23 +5,27 @@
 // the simulation; the participant announces a node (rescuesim, namespace /) on
 // ros_discovery_info so `ros2 node list` sees it.
 //
-// Threads: the Bus callback (simulation thread) only copies messages into bounded queues, one
-// per topic (so a burst of /clock at 200 Hz never pushes out an image or /tf_static); a sender
-// thread serialises and writes, a pass over every topic at a time; a receiver thread waits on
-// the readers.
+// Threads: the Bus callback (simulation thread) only queues the shared message (no copy) in the
+// Outbox (bridges/common/outbox.h: one bounded queue per topic, so a burst of /clock at 200 Hz
+// never pushes out an image or /tf_static); a sender thread serialises and writes, a round of
+// at most one message per topic at a time; a receiver thread waits on the readers and hands
+// what they take to the shared command gate (bridges/common/commands.h).
 
 #include "bridges/ros2/ros2_bridge.h"
 
 #include <atomic>
 #include <thread>
 
+#include "bridges/common/commands.h"
+#include "bridges/common/outbox.h"
 #include "bridges/ros2/command_input.h"
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/ros2_conventions.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/throttle.h"
 #include "msgs/serialize.h"
-#include "sim/simulation.h"
+#include "sim/bridge_host.h"
 
 namespace rescuesim {
 
@@ -35,15 +39,15 @@ class Ros2Bridge final : public Bridge {
   ~Ros2Bridge() override { stop(); }
 
   std::string name() const override { return "ros2"; }
-  void start(Simulation& sim) override;
+  void start(BridgeHost& host) override;
   void stop() override;
   BridgeStats stats() const override {
     BridgeStats s;
     s.sent = sent_.load();
     s.dropped = failed_.load();
-    for (const auto& q : queues_) s.dropped += q->dropped();
-    s.received = received_.load();
-    s.rejected = rejected_.load();
+    s.dropped += outbox_.stats().dropped;
+    s.received = gate_ ? gate_->received() : 0;
+    s.rejected = gate_ ? gate_->rejected() : 0;
     return s;
   }
 
@@ -55,8 +59,6 @@ class Ros2Bridge final : public Bridge {
     int robot;
     Kind kind;
     std::string topic;  ///< ROS name, for warnings
-    std::unique_ptr<Throttle> malformed_warning = std::make_unique<Throttle>();
-    std::unique_ptr<Throttle> invalid_warning = std::make_unique<Throttle>();
   };
 
   void send_loop();
@@ -66,25 +68,26 @@ class Ros2Bridge final : public Bridge {
   void receive(Input& input, std::span<const std::uint8_t> bytes);
 
   Ros2Options options_;
-  Simulation* sim_ = nullptr;
+  BridgeHost* host_ = nullptr;
   std::unique_ptr<DdsParticipant> dds_;
   std::vector<int> writer_of_topic_;  ///< by Bus topic id; -1 when not bridged
   std::vector<std::string> writer_topic_;  ///< by writer index: ROS topic name, for warnings
   std::vector<Input> inputs_;
-  std::vector<std::unique_ptr<BoundedQueue<Bus::SharedMessage>>> queues_;  ///< shared with the Bus: never copied  ///< by writer index
+  Outbox outbox_;                            ///< per topic, sized from its rate (ros2::queue_capacity)
   std::vector<std::atomic<bool>> listened_;  ///< by writer index: has matched readers (or is latched)
   std::vector<bool> latched_;                ///< by writer index
-  BoundedQueue<char> doorbell_{1};  ///< rung after every push: wakes the sender
-  int subscription_ = -1;
+  SubscriptionId subscription_ = kNoSubscription;
   std::thread sender_, receiver_;
   std::atomic<bool> receiving_{false};
-  std::atomic<std::uint64_t> sent_{0}, failed_{0}, received_{0}, rejected_{0};
+  std::atomic<std::uint64_t> sent_{0}, failed_{0};
+  std::unique_ptr<CommandGate> gate_;  ///< checks, counts and warns about what the readers take
   Throttle write_warning_;
 };
 
-void Ros2Bridge::start(Simulation& sim) {
+void Ros2Bridge::start(BridgeHost& host) {
   if (dds_) throw Error("ROS 2 bridge: start() called twice");
-  sim_ = &sim;
+  host_ = &host;
+  gate_ = std::make_unique<CommandGate>(host, "ROS 2 bridge");
   const int domain = ros2::resolve_domain(options_.domain_id);
   dds_ = std::make_unique<DdsParticipant>(domain, ros2::participant_user_data());
   ros2::NodeEntities node;
@@ -92,7 +95,7 @@ void Ros2Bridge::start(Simulation& sim) {
   node.node_namespace = options_.node_namespace;
 
   // a writer per Bus topic, typed and named the ROS 2 way
-  const std::vector<Topic>& topics = sim.bus().topics();
+  const std::vector<Topic>& topics = host.bus().topics();
   writer_of_topic_.assign(topics.size(), -1);
   for (const Topic& t : topics) {
     const msg::TypeSupport* type = msg::find_type(t.type);
@@ -103,27 +106,27 @@ void Ros2Bridge::start(Simulation& sim) {
     const int w = dds_->create_writer(ros2::dds_topic_name(t.name), type->dds_name, ros2::writer_qos(t));
     writer_of_topic_[static_cast<std::size_t>(t.id)] = w;
     writer_topic_.push_back(t.name);
-    queues_.push_back(std::make_unique<BoundedQueue<Bus::SharedMessage>>(ros2::queue_capacity(t, options_.queue_size)));
+    outbox_.set_capacity(t.id, ros2::queue_capacity(t, options_.queue_size));
     latched_.push_back(t.latched);
     node.writers.push_back(dds_->writer_guid(w));
   }
 
   // command readers for every robot
-  for (std::size_t r = 0; r < sim.world().robots.size(); ++r) {
+  for (std::size_t r = 0; r < host.world().robots.size(); ++r) {
     const int robot = static_cast<int>(r);
-    const std::string cmd_vel = sim.topic_name(robot, "cmd_vel");
-    const std::string head = sim.topic_name(robot, "head/command");
+    const std::string cmd_vel = host.topic_name(robot, "cmd_vel");
+    const std::string head = host.topic_name(robot, "head/command");
     const int rv = dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos());
     inputs_.push_back({rv, robot, Input::Kind::velocity, cmd_vel});
     node.readers.push_back(dds_->reader_guid(rv));
-    if (!sim.world().robots[r].spec.head_joints.empty()) {
+    if (!host.world().robots[r].spec.head_joints.empty()) {
       const int rh = dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_",
                                          ros2::command_reader_qos());
       inputs_.push_back({rh, robot, Input::Kind::head, head});
       node.readers.push_back(dds_->reader_guid(rh));
     }
-    if (has_commandable_joints(sim.world().robots[r].spec)) {
-      const std::string joints = sim.topic_name(robot, "joint_command");
+    if (has_commandable_joints(host.world().robots[r].spec)) {
+      const std::string joints = host.topic_name(robot, "joint_command");
       const int rj = dds_->create_reader(ros2::dds_topic_name(joints), "sensor_msgs::msg::dds_::JointState_", ros2::command_reader_qos());
       inputs_.push_back({rj, robot, Input::Kind::joints, joints});
       node.readers.push_back(dds_->reader_guid(rj));
@@ -136,16 +139,16 @@ void Ros2Bridge::start(Simulation& sim) {
   std::string error;
   if (!dds_->write(discovery, info, &error)) throw Error("ROS 2 bridge: cannot publish ros_discovery_info: " + error);
 
-  // the simulation thread only copies into the queues, and only what someone listens to
-  listened_ = std::vector<std::atomic<bool>>(queues_.size());
+  // the simulation thread only queues the shared messages (no copy), and only what someone listens to
+  listened_ = std::vector<std::atomic<bool>>(writer_topic_.size());
   refresh_listened();
-  subscription_ = sim.bus().subscribe_shared("", [this](const Topic& topic, const Bus::SharedMessage& m) {
+  subscription_ = host.bus().subscribe_shared("", [this](const Topic& topic, const Bus::SharedMessage& m) {
     const std::size_t id = static_cast<std::size_t>(topic.id);
-    if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;  // advertised after start: not bridged
+    // a topic advertised after start has no DDS writer: it is not bridged, so not even queued
+    if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;
     const auto w = static_cast<std::size_t>(writer_of_topic_[id]);
     if (!listened_[w].load(std::memory_order_relaxed)) return;
-    queues_[w]->push(m);
-    doorbell_.push(0);
+    outbox_.push(topic.id, host_->time(), m, 0);
   });
   receiving_ = true;
   sender_ = std::thread([this] { send_loop(); });
@@ -157,13 +160,12 @@ void Ros2Bridge::start(Simulation& sim) {
 
 void Ros2Bridge::stop() {
   if (!dds_) return;
-  if (subscription_ >= 0) {
-    sim_->bus().unsubscribe(subscription_);
-    subscription_ = -1;
+  if (subscription_ != kNoSubscription) {
+    host_->bus().unsubscribe(subscription_);
+    subscription_ = kNoSubscription;
   }
   // the sender drains what is queued, then ends
-  for (auto& q : queues_) q->close();
-  doorbell_.close();
+  outbox_.close();
   if (sender_.joinable()) sender_.join();
   receiving_ = false;
   dds_->wake();
@@ -173,31 +175,25 @@ void Ros2Bridge::stop() {
 
 void Ros2Bridge::send_loop() {
   std::vector<std::uint8_t> buffer;
+  std::vector<OutboxItem> round;
   std::optional<std::chrono::steady_clock::time_point> closed_at;
   auto next_refresh = std::chrono::steady_clock::now();
   for (;;) {
-    doorbell_.pop(std::chrono::milliseconds(50));
+    round.clear();
+    const bool took = outbox_.take_round(round, std::chrono::milliseconds(50));
     if (std::chrono::steady_clock::now() >= next_refresh) {
       refresh_listened();
       next_refresh = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
     }
-    // passes of at most one message per topic, oldest first, until every queue is empty
-    for (bool any = true; any;) {
-      any = false;
-      for (std::size_t w = 0; w < queues_.size(); ++w) {
-        if (auto m = queues_[w]->pop(std::chrono::milliseconds(0))) {
-          send(static_cast<int>(w), **m, buffer);
-          any = true;
-        }
-      }
-      // stop() waits for what is queued, but not for ever
-      if (doorbell_.closed()) {
-        const auto now = std::chrono::steady_clock::now();
-        if (!closed_at) closed_at = now;
-        if (now - *closed_at > std::chrono::seconds(2)) return;
-      }
+    // a round is at most one message per topic, oldest first
+    for (const OutboxItem& item : round) send(writer_of_topic_[static_cast<std::size_t>(item.topic)], *item.message, buffer);
+    if (outbox_.drained()) return;
+    // stop() waits for what is queued, but not for ever
+    if (took && outbox_.closed()) {
+      const auto now = std::chrono::steady_clock::now();
+      if (!closed_at) closed_at = now;
+      if (now - *closed_at > std::chrono::seconds(2)) return;
     }
-    if (doorbell_.closed()) return;
   }
 }
 
@@ -235,40 +231,19 @@ void Ros2Bridge::receive_loop() {
 }
 
 void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
-  std::string problem;
-  bool malformed = false;
-  if (in.kind == Input::Kind::head) {
-    const auto joints = sim_->world().robots[static_cast<std::size_t>(in.robot)].spec.head_joints.size();
-    auto c = ros2::check_head_command(bytes, joints);
-    if (c.value && sim_->command_head(in.robot, *c.value)) {
-      ++received_;
-      return;
-    }
-    problem = c.value ? "refused by the simulation" : c.problem;
-    malformed = c.malformed;
-  } else if (in.kind == Input::Kind::joints) {
-    auto c = ros2::decode_joint_command(bytes);
-    std::string why;
-    if (c.value && sim_->command_joints(in.robot, *c.value, &why)) {
-      ++received_;
-      return;
-    }
-    problem = c.value ? why : c.problem;
-    malformed = c.malformed;
-  } else {
-    auto c = ros2::check_twist(bytes);
-    if (c.value && sim_->command_velocity(in.robot, *c.value)) {
-      ++received_;
-      return;
-    }
-    problem = c.value ? "refused by the simulation" : c.problem;
-    malformed = c.malformed;
-  }
-  ++rejected_;
-  // one warning every 2 s per topic and kind of trouble, so one bad sender cannot hide another
-  std::uint64_t held = 0;
-  if ((malformed ? in.malformed_warning : in.invalid_warning)->allow(&held)) {
-    log::warn("ROS 2 bridge: rejected a command on {}: {} ({} more like it since the last warning)", in.topic, problem, held);
+  // decoded here, checked, counted and warned about by the gate every bridge shares
+  const auto take = [&](auto decoded, auto apply) {
+    if (!decoded.value) return gate_->malformed(in.topic, decoded.problem);
+    apply(*decoded.value);
+  };
+  switch (in.kind) {
+    case Input::Kind::velocity: take(ros2::decode_twist(bytes), [&](const msg::Twist& t) { gate_->velocity(in.robot, in.topic, t); }); break;
+    case Input::Kind::head:
+      take(ros2::decode_head_command(bytes), [&](const std::vector<double>& p) { gate_->head(in.robot, in.topic, p); });
+      break;
+    case Input::Kind::joints:
+      take(ros2::decode_joint_command(bytes), [&](const msg::JointState& j) { gate_->joints(in.robot, in.topic, j); });
+      break;
   }
 }
 

@@ -235,12 +235,12 @@ TEST_F(FoxgloveServer, BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory) 
       {"advertise foreign topic", "does not take this topic"},
       {"advertise wrong schema", "does not match geometry_msgs/msg/Twist"},
       {"advertise bad encoding", "'protobuf' is not supported"},
-      {"nan twist", "linear.x is not finite"},
-      {"inf twist", "angular.z is not finite"},
+      {"nan twist", "linear.x is nan"},
+      {"inf twist", "angular.z is inf"},
       {"truncated cdr twist", "geometry_msgs/msg/Twist"},
       {"json twist not json", "not valid JSON"},
       {"json twist wrong type", "linear.x: expected a number"},
-      {"head wrong size", "expected 4 joint positions (rad), got 1"},
+      {"head wrong size", "1 positions, expected 4"},
       {"head non-number", "data[1]: expected a number"},
   };
   ASSERT_EQ(d["replies"].size(), expected.size()) << d["replies"];
@@ -305,7 +305,7 @@ TEST_F(FoxgloveServer, TopicsAdvertisedDuringARunReachConnectedClients) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   // ... then a new topic appears, and is published on until the client has one message
-  const int late = sim.bus().advertise("/late", "geometry_msgs/PoseStamped");
+  const TopicId late = sim.bus().advertise("/late", "geometry_msgs/PoseStamped");
   while (!done && std::chrono::steady_clock::now() < deadline) {
     msg::PoseStamped p;
     p.header = {sim.time(), "map"};

@@ -67,6 +67,14 @@ TEST_F(McapReaderBadInput, Ros1BagIsNamed) {
   EXPECT_NE(e.find("ROS 1 bag"), std::string::npos) << e;
 }
 
+TEST_F(McapReaderBadInput, MagicCutAfterItsFifthByte) {
+  // found by the mcap_reader fuzz target: the version byte was read past the end
+  const std::string text = "\x89MCAP";
+  const std::string e = error_of({text.begin(), text.end()}, "cut.mcap");
+  EXPECT_NE(e.find("cut.mcap"), std::string::npos) << e;
+  EXPECT_NE(e.find("not an MCAP file"), std::string::npos) << e;
+}
+
 TEST_F(McapReaderBadInput, EmptyFile) {
   const std::string e = error_of({}, "empty.mcap");
   EXPECT_NE(e.find("empty.mcap"), std::string::npos) << e;

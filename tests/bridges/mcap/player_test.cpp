@@ -41,14 +41,14 @@ TEST_F(Player, RebuildsTheSimulationWithTheRecordedTopics) {
   McapPlayer player(dir_ / "run.mcap", builtin_models());
   EXPECT_EQ(player.run().scenario.seed, 7u);
   EXPECT_EQ(player.run().world.robots.size(), 1u);
-  EXPECT_EQ(player.sim().time().ns, 0);
-  for (const auto& [id, c] : player.reader().channels()) EXPECT_GE(player.sim().bus().find(c.topic), 0) << c.topic;
-  EXPECT_TRUE(player.sim().bus().topics()[static_cast<std::size_t>(player.sim().bus().find("/tf_static"))].latched);
+  EXPECT_EQ(player.host().time().ns, 0);
+  for (const auto& [id, c] : player.reader().channels()) EXPECT_NE(player.host().bus().find(c.topic), kNoTopic) << c.topic;
+  EXPECT_TRUE(player.host().bus().topic(player.host().bus().find("/tf_static")).latched);
 }
 
 TEST_F(Player, PublishesEveryMessageInOrderWithTheClockFollowing) {
   McapPlayer player(dir_ / "run.mcap", builtin_models());
-  Simulation& sim = player.sim();
+  ReplayHost& sim = player.host();
   std::map<std::string, std::uint64_t> counts;
   std::vector<msg::LaserScan> scans;
   std::int64_t last = -1;
@@ -80,7 +80,7 @@ TEST_F(Player, StopsWhenAsked) {
   McapPlayer player(dir_ / "run.mcap", builtin_models());
   std::atomic<bool> stop{false};
   std::uint64_t n = 0;
-  player.sim().bus().subscribe("", [&](const Topic&, const msg::Message&) {
+  player.host().bus().subscribe("", [&](const Topic&, const msg::Message&) {
     if (++n == 100) stop = true;
   });
   const PlayResult r = player.play(1000.0, &stop);
@@ -93,11 +93,37 @@ TEST_F(Player, RecordingAReplayGivesTheSameMessages) {
   McapOptions o;
   o.path = dir_ / "replayed.mcap";
   McapRecorder recorder(o);
-  recorder.start(player.sim());
+  recorder.start(player.host());
   player.play(1000.0);
   recorder.stop();
   mcap::McapReader a(dir_ / "run.mcap"), b(dir_ / "replayed.mcap");
   EXPECT_EQ(testing::all_messages(a), testing::all_messages(b));
+}
+
+TEST_F(Player, TheReplayHostHasNoSimulationAndDiscardsCommands) {
+  // the player and its ReplayHost alone: a Bus, the recorded world and a clock, no physics
+  McapPlayer player(dir_ / "run.mcap", builtin_models());
+  BridgeHost& host = player.host();
+  EXPECT_EQ(host.time().ns, 0);
+  EXPECT_EQ(host.world().robots.size(), 1u);
+  EXPECT_EQ(host.topic_name(0, "cmd_vel"), "/cmd_vel");  // one robot: no namespace
+  EXPECT_EQ(host.frame_name(0, "base_link"), "base_link");
+  EXPECT_EQ(host.seed(), 7u);
+  // the state is the world's start: one record per rubble body and victim, none found
+  EXPECT_EQ(host.state().dynamics.size(), host.world().dynamics.size());
+  ASSERT_EQ(host.state().victims.size(), host.world().victims.size());
+  for (const VictimState& v : host.state().victims) EXPECT_EQ(v.first_seen.ns, -1);
+  // commands are taken (a bridge counts them received) and discarded: nothing is simulated
+  msg::Twist t;
+  t.linear.x() = 0.5;
+  EXPECT_TRUE(host.submit_velocity(0, t));
+  EXPECT_TRUE(host.submit_head(0, {0, 0, 0, 0}));
+  EXPECT_EQ(player.host().discarded(), 2u);
+  // the clock is the log time of the message being published
+  std::int64_t clock_at_last_scan = -1;
+  host.bus().subscribe("/scan", [&](const Topic&, const msg::Message&) { clock_at_last_scan = host.time().ns; });
+  player.play(1000.0);
+  EXPECT_EQ(clock_at_last_scan, 2'000'000'000);
 }
 
 TEST(PlayerBadInput, ForeignMcapIsNotARescuesimRecording) {

@@ -200,8 +200,8 @@ TEST(Ros2Interop, NanMalformedAndWrongLengthCommandsAreRefusedAndTheRobotStaysPu
   EXPECT_LT(std::abs(r["odom"]["dy"].get<double>()), 0.005);
   // warned (throttled), counted, and the run went on to its normal end
   EXPECT_NE(s.sim_err.find("rejected a command on /cmd_vel: linear.x is nan"), std::string::npos) << s.sim_err;
-  EXPECT_NE(s.sim_err.find("rejected a command on /cmd_vel: malformed CDR"), std::string::npos) << s.sim_err;
-  EXPECT_NE(s.sim_err.find("rejected a command on /head/command: data has 2 values, expected 4"), std::string::npos) << s.sim_err;
+  EXPECT_NE(s.sim_err.find("rejected a command on /cmd_vel: malformed message: malformed CDR"), std::string::npos) << s.sim_err;
+  EXPECT_NE(s.sim_err.find("rejected a command on /head/command: 2 positions, expected 4"), std::string::npos) << s.sim_err;
   EXPECT_NE(s.sim_out.find("0 commands received"), std::string::npos) << s.sim_out;
   const auto at = s.sim_out.find("commands received, ");
   ASSERT_NE(at, std::string::npos) << s.sim_out;

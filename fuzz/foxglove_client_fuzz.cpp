@@ -1,0 +1,49 @@
+/// libFuzzer target for what a Foxglove WebSocket client sends (foxglove.websocket.v1): the
+/// first input byte picks the frame kind, the rest is the frame.
+///   even: a text frame for parse_client_text (JSON: subscribe, advertise, ...);
+///   odd:  a binary frame for parse_client_binary, whose payload then goes through the command
+///         decoders (Twist, Float64MultiArray, JointState) in both client encodings, cdr and
+///         json, as the bridge does for a client channel.
+/// rescuesim::Error is the only failure these may report; an escaping nlohmann::json exception,
+/// a crash or a sanitizer finding is a bug.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "bridges/foxglove/protocol.h"
+#include "core/error.h"
+
+namespace {
+
+/// Runs `f`, swallowing the one exception the parsers are allowed to throw.
+template <typename F>
+void expect_only_errors(F&& f) {
+  try {
+    f();
+  } catch (const rescuesim::Error&) {
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace rescuesim::foxglove;
+  if (size == 0) return 0;
+  const std::span<const std::uint8_t> frame(data + 1, size - 1);
+  if (data[0] % 2 == 0) {
+    const std::string_view text(reinterpret_cast<const char*>(frame.data()), frame.size());
+    expect_only_errors([&] { parse_client_text(text); });
+    return 0;
+  }
+  expect_only_errors([&] {
+    const ClientMessage m = parse_client_binary(frame);
+    for (const std::string_view encoding : {"cdr", "json"}) {
+      expect_only_errors([&] { decode_twist(encoding, m.payload); });
+      expect_only_errors([&] { decode_multi_array(encoding, m.payload); });
+      expect_only_errors([&] { decode_joint_state(encoding, m.payload); });
+    }
+  });
+  return 0;
+}

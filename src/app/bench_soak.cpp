@@ -1,0 +1,382 @@
+#include "app/bench_soak.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "msgs/message_fields.h"
+#include "robots/rescue_robot.h"
+#include "session/session.h"
+#include "sim/bridge.h"
+#include "viz/canvas.h"
+#ifdef RESCUESIM_HAS_MCAP
+#include "bridges/mcap/mcap_bridge.h"
+#endif
+#ifdef RESCUESIM_HAS_FOXGLOVE
+#include "bridges/foxglove/foxglove_bridge.h"
+#endif
+#ifdef RESCUESIM_HAS_ROS2
+#include "bridges/ros2/dds_participant.h"
+#include "bridges/ros2/ros2_bridge.h"
+#include "bridges/ros2/ros2_conventions.h"
+#endif
+#ifdef RESCUESIM_HAS_ROS1
+#include "bridges/ros1/ros1_bridge.h"
+#endif
+
+namespace rescuesim::app {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+/// Counts NaN in every float and double field of a message (images and point clouds are bytes,
+/// so only their float fields are seen; ±inf is a valid range reading and not counted).
+struct NanCounter {
+  std::uint64_t nans = 0;
+  std::string first;  ///< "topic field" of the first NaN
+  const std::string* topic = nullptr;
+
+  void hit(msg::fields::Name n) {
+    if (nans++ == 0) first = *topic + " " + n.ros2;
+  }
+  template <class T>
+  void value(msg::fields::Name n, const T& x) {
+    if constexpr (std::is_floating_point_v<T>) {
+      if (std::isnan(x)) hit(n);
+    }
+  }
+  void time(msg::fields::Name, const SimTime&) {}
+  void header(msg::fields::Name, const msg::Header&) {}
+  template <class T, std::size_t N>
+  void array(msg::fields::Name n, const std::array<T, N>& a) {
+    for (const T& x : a) value(n, x);
+  }
+  template <class T>
+  void sequence(msg::fields::Name n, const std::vector<T>& s) {
+    if constexpr (std::is_floating_point_v<T>) {
+      for (const T& x : s) value(n, x);
+    }
+  }
+  template <class F>
+  void message(msg::fields::Name, const char*, F&& f) {
+    f(*this);
+  }
+  template <class E, class F>
+  void messages(msg::fields::Name, const char*, const std::vector<E>& s, F&& f) {
+    for (const E& e : s) f(*this, e);
+  }
+  void constant(const char*, const char*, const char*) {}
+};
+
+/// Resident memory now (MB), from /proc/self/statm.
+double resident_mb() {
+  std::ifstream statm("/proc/self/statm");
+  long pages_total = 0, pages_resident = 0;
+  statm >> pages_total >> pages_resident;
+  return static_cast<double>(pages_resident) * static_cast<double>(::sysconf(_SC_PAGESIZE)) / 1e6;
+}
+
+/// Peak resident memory of this process so far (MB, 10^6 bytes, as resident_mb).
+double peak_mb() {
+  rusage ru{};
+  ::getrusage(RUSAGE_SELF, &ru);
+  return static_cast<double>(ru.ru_maxrss) * 1024.0 / 1e6;  // ru_maxrss is in KiB
+}
+
+struct Sample {
+  double sim_s = 0, wall_s = 0, rtf = 0, resident_mb = 0, peak_mb = 0;
+  std::uint64_t messages = 0, nans = 0, recorded_bytes = 0;
+};
+
+/// Least-squares slope of y against x (0 with fewer than two points).
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  if (x.size() < 2) return 0;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  const double d = n * sxx - sx * sx;
+  return d > 0 ? (n * sxy - sx * sy) / d : 0;
+}
+
+/// Two stacked plots against sim time (h): resident and peak memory (MB), real-time factor.
+void plot(const std::vector<Sample>& samples, const std::filesystem::path& png) {
+  constexpr int kW = 900, kH = 600, kLeft = 70, kRight = 20, kTop = 30, kGap = 60;
+  const int panel_h = (kH - kTop - kGap - 40) / 2;
+  Canvas c(kW, kH);
+  const double t_max = std::max(samples.empty() ? 1.0 : samples.back().sim_s / 3600, 1e-6);
+  const auto panel = [&](int top, const char* title, const std::vector<std::pair<std::vector<double>, Rgb8>>& series) {
+    double y_max = 1e-9;
+    for (const auto& [ys, colour] : series) {
+      for (double y : ys) y_max = std::max(y_max, y);
+    }
+    y_max *= 1.1;
+    const int bottom = top + panel_h, right = kW - kRight;
+    c.line({double(kLeft), double(bottom)}, {double(right), double(bottom)}, {0, 0, 0});
+    c.line({double(kLeft), double(top)}, {double(kLeft), double(bottom)}, {0, 0, 0});
+    c.text(kLeft, top - 18, title, {0, 0, 0}, 2);
+    c.text(4, top, fmt::format("{:.0f}", y_max), {0, 0, 0});
+    c.text(4, bottom - 8, "0", {0, 0, 0});
+    c.text(right - 90, bottom + 6, fmt::format("{:.2f} h sim", t_max), {0, 0, 0});
+    for (const auto& [ys, colour] : series) {
+      std::vector<Vec2> pts;
+      for (std::size_t i = 0; i < ys.size(); ++i) {
+        pts.push_back({kLeft + (samples[i].sim_s / 3600 / t_max) * (right - kLeft), bottom - ys[i] / y_max * panel_h});
+      }
+      if (pts.size() > 1) c.polyline(pts, colour, 2.0);
+    }
+  };
+  std::vector<double> rss, peak, rtf;
+  for (const Sample& s : samples) {
+    rss.push_back(s.resident_mb);
+    peak.push_back(s.peak_mb);
+    rtf.push_back(s.rtf);
+  }
+  panel(kTop, "memory MB (blue resident, red peak)", {{rss, {40, 90, 200}}, {peak, {200, 50, 40}}});
+  panel(kTop + panel_h + kGap, "real-time factor per sample", {{rtf, {30, 140, 60}}});
+  c.write_png(png);
+}
+
+}  // namespace
+
+json bench_soak(const SoakOptions& o) {
+  namespace fs = std::filesystem;
+  fs::create_directories(o.out);
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  s.duration = o.hours * 3600;
+  s.realtime = false;
+  s.stop_when_all_found = false;
+  SessionOptions so;
+  so.cameras = o.cameras;
+  std::unique_ptr<Session> session;
+  json attached;
+  try {
+    session = std::make_unique<Session>(s, models, so);
+  } catch (const Error& e) {
+    if (!o.cameras) throw;
+    attached["cameras"] = std::string("off: ") + e.what();
+    so.cameras = false;
+    session = std::make_unique<Session>(s, models, so);
+  }
+  if (!attached.contains("cameras")) attached["cameras"] = so.cameras ? "on (" + session->render_device() + ")" : "off (--no-cameras)";
+  Simulation& sim = session->sim();
+
+  // every message checked for NaN, on the simulation thread as it is published
+  NanCounter nan;
+  std::uint64_t messages = 0;
+  const auto nan_check = sim.bus().subscribe("", [&](const Topic& t, const msg::Message& m) {
+    ++messages;
+    nan.topic = &t.name;
+    std::visit([&](const auto& x) { msg::fields::visit_fields(nan, x); }, m);
+  });
+
+  // the bridges, each with a local subscriber where one can be made here
+  std::vector<std::unique_ptr<Bridge>> bridges;
+  const auto try_start = [&](const char* name, std::unique_ptr<Bridge> b, const std::string& subscriber) {
+    try {
+      b->start(sim);
+      bridges.push_back(std::move(b));
+      attached[name] = subscriber;
+    } catch (const Error& e) {
+      attached[name] = std::string("skipped: ") + e.what();
+    }
+  };
+#ifdef RESCUESIM_HAS_MCAP
+  const fs::path recording = fs::temp_directory_path() / ("rescuesim-soak-" + std::to_string(::getpid()) + ".mcap");
+  std::unique_ptr<Bridge> recorder;
+  std::uint64_t recorded_bytes = 0, segments = 0, record_dropped = 0;
+  const auto start_recorder = [&] {
+    McapOptions mo;
+    mo.path = recording;
+    recorder = make_mcap_recorder(mo);
+    recorder->start(sim);
+    ++segments;
+  };
+  const auto stop_recorder = [&] {
+    recorder->stop();
+    const BridgeStats st = recorder->stats();
+    record_dropped += st.dropped;
+    std::error_code ec;
+    recorded_bytes += fs::file_size(recording, ec);
+    fs::remove(recording, ec);
+    recorder.reset();
+  };
+  start_recorder();
+#else
+  attached["mcap"] = "not built";
+#endif
+#ifdef RESCUESIM_HAS_FOXGLOVE
+  {
+    FoxgloveOptions fo;
+    fo.port = 0;
+    try_start("foxglove", make_foxglove_bridge(fo), "server started on a free port, no client connected (every channel advertised, none sent)");
+  }
+#else
+  attached["foxglove"] = "not built";
+#endif
+#ifdef RESCUESIM_HAS_ROS2
+  // a second DDS participant in this process reads /scan and /odom, so the bridge serialises and sends them
+  const int domain = 200 + static_cast<int>(::getpid() % 30);
+  Ros2Options ro;
+  ro.domain_id = domain;
+  std::unique_ptr<ros2::DdsParticipant> peer;
+  int scan_reader = -1, odom_reader = -1;
+  std::uint64_t ros2_received = 0;
+  try_start("ros2", make_ros2_bridge(ro), "");
+  if (attached["ros2"] == "") {
+    peer = std::make_unique<ros2::DdsParticipant>(domain, ros2::participant_user_data());
+    scan_reader = peer->create_reader("rt/scan", "sensor_msgs::msg::dds_::LaserScan_", {});
+    odom_reader = peer->create_reader("rt/odom", "nav_msgs::msg::dds_::Odometry_", {});
+    attached["ros2"] = "domain " + std::to_string(domain) + ", a Cyclone DDS reader in this process on rt/scan and rt/odom";
+  }
+  const auto take_ros2 = [&] {
+    if (!peer) return;
+    for (int r : {scan_reader, odom_reader}) peer->take(r, [&](std::span<const std::uint8_t>) { ++ros2_received; });
+  };
+#else
+  attached["ros2"] = "not built";
+  const auto take_ros2 = [] {};
+#endif
+#ifdef RESCUESIM_HAS_ROS1
+  if (std::getenv("ROS_MASTER_URI")) {
+    try_start("ros1", make_ros1_bridge({}), std::string("registered with ") + std::getenv("ROS_MASTER_URI") + " (no subscriber started)");
+  } else {
+    attached["ros1"] = "skipped: no ROS_MASTER_URI (start a roscore to attach it)";
+  }
+#else
+  attached["ros1"] = "not built";
+#endif
+
+  // samples every sim minute, taken between steps
+  std::vector<Sample> samples;
+  const auto t0 = Clock::now();
+  double next_sample = 0, next_segment = o.record_segment_seconds, last_wall = 0, last_sim = 0;
+  const auto sample = [&](double sim_s) {
+    Sample x;
+    x.sim_s = sim_s;
+    x.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    x.rtf = x.wall_s > last_wall ? (sim_s - last_sim) / (x.wall_s - last_wall) : 0;
+    x.resident_mb = resident_mb();
+    x.peak_mb = peak_mb();
+    x.messages = messages;
+    x.nans = nan.nans;
+#ifdef RESCUESIM_HAS_MCAP
+    x.recorded_bytes = recorded_bytes;
+#endif
+    last_wall = x.wall_s;
+    last_sim = sim_s;
+    samples.push_back(x);
+    std::fprintf(stderr, "soak: %7.1f min sim, %7.1f s wall, %5.1fx, resident %.0f MB, peak %.0f MB, %llu messages, %llu NaN\n", sim_s / 60,
+                 x.wall_s, x.rtf, x.resident_mb, x.peak_mb, static_cast<unsigned long long>(x.messages),
+                 static_cast<unsigned long long>(x.nans));
+  };
+  sample(0);
+  next_sample = o.sample_seconds;
+  const RunResult r = session->run(nullptr, [&](const RunResult& p) {
+    take_ros2();
+#ifdef RESCUESIM_HAS_MCAP
+    if (p.sim_time >= next_segment) {
+      stop_recorder();
+      start_recorder();
+      next_segment += o.record_segment_seconds;
+    }
+#endif
+    if (p.sim_time >= next_sample) {
+      sample(p.sim_time);
+      next_sample += o.sample_seconds;
+    }
+  });
+  sample(r.sim_time);
+  take_ros2();
+#ifdef RESCUESIM_HAS_MCAP
+  stop_recorder();
+  attached["mcap"] = "recorded to " + recording.string() + ", restarted every " + fmt::format("{:g}", o.record_segment_seconds) +
+                     " s of sim time (" + std::to_string(segments) + " files, " + fmt::format("{:.2f}", recorded_bytes / 1e9) +
+                     " GB written, " + std::to_string(record_dropped) + " messages dropped)";
+#endif
+  for (auto& b : bridges) b->stop();
+  sim.bus().unsubscribe(nan_check);
+#ifdef RESCUESIM_HAS_ROS2
+  if (peer) attached["ros2_received"] = ros2_received;
+#endif
+
+  // the curves and their summary
+  std::vector<double> hours, rss, rtf;
+  double rss_max = 0;
+  for (const Sample& x : samples) {
+    hours.push_back(x.sim_s / 3600);
+    rss.push_back(x.resident_mb);
+    rss_max = std::max(rss_max, x.resident_mb);
+  }
+  // the real-time factor of whole sample intervals (the first sample and a short last one excluded)
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].sim_s - samples[i - 1].sim_s >= 0.5 * o.sample_seconds) rtf.push_back(samples[i].rtf);
+  }
+  // the slope after the first tenth of the run, when caches and pools have filled
+  std::vector<double> late_h, late_rss;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (hours[i] >= 0.1 * hours.back()) {
+      late_h.push_back(hours[i]);
+      late_rss.push_back(rss[i]);
+    }
+  }
+  json j;
+  j["sim_hours"] = r.sim_time / 3600;
+  j["wall_seconds"] = std::chrono::duration<double>(Clock::now() - t0).count();
+  j["stop_reason"] = r.stop_reason;
+  j["attached"] = attached;
+  j["messages"] = messages;
+  j["memory_mb"] = {{"resident_first", rss.size() > 1 ? rss[1] : rss.front()},
+                    {"resident_last", rss.back()},
+                    {"resident_max", rss_max},
+                    {"peak", samples.back().peak_mb},
+                    {"slope_per_sim_hour", slope(hours, rss)},
+                    {"slope_per_sim_hour_after_first_tenth", slope(late_h, late_rss)}};
+  if (!rtf.empty()) {
+    double sum = 0;
+    for (double x : rtf) sum += x;
+    j["real_time_factor"] = {{"first", rtf.front()},
+                             {"last", rtf.back()},
+                             {"min", *std::min_element(rtf.begin(), rtf.end())},
+                             {"max", *std::max_element(rtf.begin(), rtf.end())},
+                             {"mean", sum / static_cast<double>(rtf.size())},
+                             {"overall", r.sim_time / std::max(1e-9, j["wall_seconds"].get<double>())}};
+  }
+  j["nan"] = {{"count", nan.nans}, {"first", nan.first}};
+  j["victims_found"] = r.victims_found;
+  j["trouble"] = r.trouble;
+
+  std::string csv = "sim_s,wall_s,rtf,resident_mb,peak_mb,messages,nans,recorded_bytes\n";
+  for (const Sample& x : samples) {
+    csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.1f},{:.1f},{},{},{}\n", x.sim_s, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.messages, x.nans,
+                       x.recorded_bytes);
+  }
+  write_file_atomic(o.out / "soak.csv", csv);
+  write_file_atomic(o.out / "soak.json", j.dump(2) + "\n");
+  plot(samples, o.out / "soak.png");
+  j["files"] = {(o.out / "soak.csv").string(), (o.out / "soak.json").string(), (o.out / "soak.png").string()};
+  return j;
+}
+
+}  // namespace rescuesim::app

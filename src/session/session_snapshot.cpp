@@ -1,0 +1,52 @@
+// Session::snapshot and restore: the simulation's State, plus what a run keeps beside it.
+
+#include <optional>
+
+#include "sensors/camera/render_camera_service.h"
+#include "session/session.h"
+#include "session/session_controllers.h"
+
+namespace rescuesim {
+
+/// The part of a run outside State.
+struct SessionExtras {
+  RenderCameraService::InFlight cameras;                    // frames sampled, not yet delivered
+  std::vector<std::optional<autonomy::Explorer>> explorers;  // per robot: its controller's memory
+  std::vector<TrajectoryPoint> trajectory;
+  SimTime next_record;
+  std::vector<msg::LaserScan> last_scans;
+  std::vector<std::uint8_t> visited_cells;
+  std::string stop_reason;
+};
+
+SessionSnapshot Session::snapshot() {
+  auto extras = std::make_shared<SessionExtras>();
+  if (cameras_) extras->cameras = cameras_->in_flight();
+  for (const auto& ex : controllers_->explorers) {
+    extras->explorers.push_back(ex ? std::optional<autonomy::Explorer>(*ex) : std::nullopt);
+  }
+  extras->trajectory = trajectory_;
+  extras->next_record = next_record_;
+  extras->last_scans = last_scans_;
+  extras->visited_cells = visited_cells_;
+  extras->stop_reason = stop_reason_;
+  return SessionSnapshot{sim_->snapshot(), std::move(extras)};
+}
+
+void Session::restore(const SessionSnapshot& snapshot) {
+  const SessionExtras& x = *snapshot.extras;
+  // frames in flight first: none of them may be delivered into the restored state
+  if (cameras_) cameras_->restore(x.cameras);
+  sim_->restore(snapshot.state);
+  // controllers are fed through the Bus by pointer: their objects stay, their memory goes back
+  for (std::size_t r = 0; r < controllers_->explorers.size() && r < x.explorers.size(); ++r) {
+    if (controllers_->explorers[r] && x.explorers[r]) *controllers_->explorers[r] = *x.explorers[r];
+  }
+  trajectory_ = x.trajectory;
+  next_record_ = x.next_record;
+  last_scans_ = x.last_scans;
+  visited_cells_ = x.visited_cells;
+  stop_reason_ = x.stop_reason;
+}
+
+}  // namespace rescuesim
