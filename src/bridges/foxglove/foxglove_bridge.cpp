@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <variant>
 
+#include "bridges/common/outbox.h"
 #include "bridges/foxglove/bridge_impl.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -19,21 +20,6 @@ namespace rescuesim {
 namespace foxglove {
 
 namespace {
-
-/// Bytes of a message copy, roughly (the big arrays; 256 for the rest).
-std::size_t approx_bytes(const msg::Message& m) {
-  return std::visit(
-      [](const auto& x) -> std::size_t {
-        if constexpr (requires { x.data.size(); }) {
-          return 256 + x.data.size() * sizeof(x.data[0]);
-        } else if constexpr (requires { x.ranges.size(); }) {
-          return 256 + 4 * (x.ranges.size() + x.intensities.size());
-        } else {
-          return 256;
-        }
-      },
-      m);
-}
 
 std::string mib(std::size_t bytes) {
   char s[32];
@@ -174,7 +160,7 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
   // only while the copies waiting for the serialiser stay within their byte budget
   const auto id = static_cast<std::size_t>(topic.id);
   if (!topic.latched && id < kMaxTopics && wanted_[id].load(std::memory_order_relaxed) <= 0) return;
-  const std::size_t bytes = approx_bytes(*m);
+  const std::size_t bytes = Outbox::approx_bytes(*m);  // the same estimate as the other bridges' budgets
   if (!topic.latched && queued_bytes_.load() + bytes > options_.bridge_queue_bytes) {
     ++over_budget_;
     return;
