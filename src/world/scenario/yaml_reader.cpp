@@ -196,7 +196,9 @@ void YamlNode::finish() const {
   std::string known;
   for (const auto& k : *read_) known += (known.empty() ? "" : ", ") + k;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    const std::string k = it->first.as<std::string>();
+    // a complex key ("? {a: 1}: ...") is legal YAML, but no scenario key is one
+    if (!it->first.IsScalar()) throw Error({*file_, it->first.Mark().line + 1, path_}, "a key must be a plain name, not a list or a map");
+    const std::string k = it->first.Scalar();
     if (!read_->count(k)) {
       throw Error({*file_, it->first.Mark().line + 1, child_path(k)}, "unknown key '" + k + "'" +
                                                                           (known.empty() ? "" : " (expected one of: " + known + ")"));

@@ -57,6 +57,13 @@ TEST(Scenario, UnknownKeyNamesTheKeyPathAndLine) {
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
 }
 
+TEST(Scenario, AComplexKeyIsAnErrorNotACrash) {
+  // "? key" makes a map the key (legal YAML; found by the scenario fuzz target)
+  const std::string e = error_of("name: x\nworld:\n? maze:\n    cols: 8\n");
+  EXPECT_NE(e.find("s.yaml:3"), std::string::npos) << e;
+  EXPECT_NE(e.find("plain name"), std::string::npos) << e;
+}
+
 TEST(Scenario, WrongTypeNamesTheKey) {
   const std::string e = error_of("world:\n  maze:\n    cols: eight\n");
   EXPECT_NE(e.find("world.maze.cols"), std::string::npos) << e;
