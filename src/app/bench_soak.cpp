@@ -21,7 +21,7 @@
 #include "msgs/message_fields.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
-#include "sim/bridge.h"
+#include "bus/bridge.h"
 #include "viz/canvas.h"
 #ifdef RESCUESIM_HAS_MCAP
 #include "bridges/mcap/mcap_bridge.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/bridge.h"
+#include "bus/bridge.h"
 
 namespace rescuesim {
 struct Scenario;

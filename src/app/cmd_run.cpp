@@ -19,7 +19,7 @@
 #include "session/run_mode.h"
 #include "session/scenario_load.h"
 #include "session/session.h"
-#include "sim/bridge.h"
+#include "bus/bridge.h"
 
 namespace rescuesim::app {
 

@@ -10,7 +10,7 @@
 #include "core/sim_time.h"
 #include "msgs/messages.h"
 #include "sensors/sensor_instance.h"
-#include "sensors/topic_id.h"
+#include "bus/topic_id.h"
 #include "world/state.h"
 #include "world/world.h"
 

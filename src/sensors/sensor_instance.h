@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/sim_time.h"
-#include "sensors/topic_id.h"
+#include "bus/topic_id.h"
 #include "world/world.h"
 
 namespace rescuesim {

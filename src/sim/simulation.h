@@ -21,8 +21,8 @@
 #include "sensors/camera_service.h"    // CameraService (its renderer: sensors/camera/render_camera_service.h)
 #include "sensors/sensor_instance.h"
 #include "sensors/victim_detector.h"
-#include "sim/bridge_host.h"
-#include "sim/bus.h"
+#include "bus/bridge_host.h"
+#include "bus/bus.h"
 #include "world/state.h"
 #include "world/world.h"
 

@@ -245,6 +245,47 @@ class Scenarios(unittest.TestCase):
         self.assertTrue(issubclass(rescuesim.Error, ValueError))
 
 
+# the OpenGL libraries a process has mapped, by file name (EGL, GLX, libGL, Mesa's drivers)
+GL_MAPS = """
+import sys, rescuesim
+def gl():
+    names = set()
+    for line in open("/proc/self/maps"):
+        name = line.split()[-1].rsplit("/", 1)[-1]
+        if name.startswith(("libEGL", "libGLX", "libGL.", "libgbm")) or name.endswith("_dri.so"):
+            names.add(name)
+    return sorted(names)
+env = rescuesim.Env(rescuesim.parse_scenario(sys.argv[1], "small.yaml"))
+env.reset(seed=3)
+for _ in range(5):
+    env.step((0.3, 0.0))
+print("without:", " ".join(gl()))
+try:
+    env = rescuesim.Env(rescuesim.parse_scenario(sys.argv[2], "cams.yaml"), cameras=True)
+    env.reset(seed=3)
+    env.step((0.0, 0.0))
+    print("with:", " ".join(gl()))
+except rescuesim.Error as e:
+    print("with: error", e)
+"""
+
+
+class NoOpenGLWithoutCameras(unittest.TestCase):
+    def test_opengl_is_loaded_only_when_cameras_are_asked_for(self):
+        # a fresh interpreter, so that no other test has loaded a renderer into it: stepping an
+        # environment without cameras maps no EGL or GL library (the module links libepoxy,
+        # which opens them on first use), so it runs where there is no OpenGL at all; with
+        # cameras they are loaded (the control: the check sees them when they are there)
+        import subprocess
+        cams = ENV_YAML + ("robots:\n  - name: robot\n    sensors:\n"
+                           "      color_camera: {width: 32, height: 24}\n")
+        out = subprocess.run([sys.executable, "-c", GL_MAPS, ENV_YAML, cams], capture_output=True, text=True, timeout=240)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        lines = dict(line.split(":", 1) for line in out.stdout.splitlines() if ":" in line)
+        self.assertEqual(lines["without"].strip(), "", out.stdout)
+        self.assertIn("libEGL", lines["with"], out.stdout)
+
+
 class Cameras(unittest.TestCase):
     def test_camera_images_as_arrays(self):
         text = ENV_YAML + ("robots:\n  - name: robot\n    sensors:\n"

@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "core/log.h"
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim {
 

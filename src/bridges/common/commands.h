@@ -17,7 +17,7 @@
 
 #include "core/throttle.h"
 #include "msgs/messages.h"
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim {
 

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "core/sim_time.h"
-#include "sim/bus.h"
+#include "bus/bus.h"
 
 namespace rescuesim {
 

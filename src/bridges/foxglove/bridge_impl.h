@@ -27,7 +27,7 @@
 #include "bridges/foxglove/ws_server.h"
 #include "core/bounded_queue.h"
 #include "core/throttle.h"
-#include "sim/bus.h"
+#include "bus/bus.h"
 
 namespace rescuesim {
 class BridgeHost;

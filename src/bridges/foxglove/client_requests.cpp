@@ -9,7 +9,7 @@
 #include "bridges/foxglove/bridge_impl.h"
 #include "core/error.h"
 #include "core/log.h"
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim::foxglove {
 

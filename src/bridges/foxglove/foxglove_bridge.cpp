@@ -13,7 +13,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "msgs/serialize.h"
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim {
 

@@ -11,7 +11,7 @@
 #include "core/log.h"
 #include "core/throttle.h"
 #include "msgs/serialize.h"
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim {
 

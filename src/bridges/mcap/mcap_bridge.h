@@ -19,7 +19,7 @@
 #include "bridges/mcap/compression.h"
 #include "bridges/mcap/mcap_records.h"
 #include "bridges/mcap/mcap_writer.h"
-#include "sim/bridge.h"
+#include "bus/bridge.h"
 
 namespace rescuesim {
 

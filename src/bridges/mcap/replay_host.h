@@ -7,7 +7,7 @@
 #include <atomic>
 #include <cstdint>
 
-#include "sim/bridge_host.h"
+#include "bus/bridge_host.h"
 
 namespace rescuesim {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "sim/bridge.h"
+#include "bus/bridge.h"
 
 namespace rescuesim {
 

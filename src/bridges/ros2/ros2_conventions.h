@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bridges/ros2/ros2_bridge.h"
-#include "sim/bus.h"
+#include "bus/bus.h"
 
 namespace rescuesim::ros2 {
 

@@ -16,7 +16,7 @@
 
 #include "core/sim_time.h"
 #include "msgs/messages.h"
-#include "sim/bus.h"
+#include "bus/bus.h"
 #include "world/state.h"
 #include "world/world.h"
 

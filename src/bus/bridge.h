@@ -1,6 +1,6 @@
 #pragma once
 /// Bridges: transports attached to a BridgeHost's Bus (ROS 1, ROS 2, Foxglove, MCAP; in
-/// src/bridges/<name>). The host is a running Simulation or a replay (sim/bridge_host.h). A
+/// src/bridges/<name>). The host is a running Simulation or a replay (bus/bridge_host.h). A
 /// bridge subscribes on the publishing thread (Bus::subscribe_shared), queues each message it
 /// wants, shared and uncopied, in bounded queues (bridges/common/outbox.h for ROS 1 and ROS 2;
 /// cheap, never blocks unless the bridge is lossless), and serialises and sends from its own

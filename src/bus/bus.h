@@ -18,8 +18,8 @@
 #include <variant>
 #include <vector>
 
+#include "bus/topic_id.h"  // TopicId, kNoTopic
 #include "msgs/messages.h"
-#include "sensors/topic_id.h"  // TopicId, kNoTopic
 
 namespace rescuesim {
 

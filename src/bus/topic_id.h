@@ -1,6 +1,6 @@
 #pragma once
 /// Topic ids, in a header of their own so that sensor code (SensorInstance, CameraService) can
-/// name the Bus topics it publishes on without including sim/bus.h: sensors sit below sim.
+/// name the Bus topics it publishes on without the Bus itself.
 
 namespace rescuesim {
 

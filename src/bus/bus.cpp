@@ -1,4 +1,4 @@
-#include "sim/bus.h"
+#include "bus/bus.h"
 
 #include <string>
 

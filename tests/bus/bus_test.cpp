@@ -1,7 +1,7 @@
 // The Bus: delivery order, latched replay, shared messages, typed ids and the lock that
 // refuses changes from inside a subscriber callback.
 
-#include "sim/bus.h"
+#include "bus/bus.h"
 
 #include <gtest/gtest.h>
 
