@@ -48,7 +48,7 @@ ASAN_JOBS ?= $(JOBS)
 # can name). Preloading the driver keeps it mapped to the end, so LeakSanitizer sees those roots.
 MESA_DRI ?= $(firstword $(wildcard /usr/lib/$(shell gcc -dumpmachine 2>/dev/null)/dri/swrast_dri.so /usr/lib/dri/swrast_dri.so))
 test-asan: deps
-	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRESCUESIM_SANITIZE=ON \
+	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRESCUESIM_SANITIZE=ON -DRESCUESIM_PCH=OFF \
 	  -DRESCUESIM_ROS1=OFF -DRESCUESIM_ROS2=OFF -DRESCUESIM_PYTHON=OFF -DRESCUESIM_BENCH=OFF \
 	  -DPython_EXECUTABLE=/usr/bin/python3 $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(ASAN_JOBS) --target $(addsuffix _tests,$(ASAN_SUITES))
