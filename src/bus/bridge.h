@@ -2,9 +2,10 @@
 /// Bridges: transports attached to a BridgeHost's Bus (ROS 1, ROS 2, Foxglove, MCAP; in
 /// src/bridges/<name>). The host is a running Simulation or a replay (bus/bridge_host.h). A
 /// bridge subscribes on the publishing thread (Bus::subscribe_shared), queues each message it
-/// wants, shared and uncopied, in bounded queues (bridges/common/outbox.h for ROS 1 and ROS 2;
-/// cheap, never blocks unless the bridge is lossless), and serialises and sends from its own
-/// thread. Commands it receives are checked by the gate the bridges share
+/// wants, shared and uncopied, in bounded queues (bridges/common/outbox.h for ROS 1, ROS 2
+/// and Foxglove; the MCAP recorder keeps one FIFO so that a recording's order is the publish
+/// order; cheap, never blocks unless the bridge is lossless), and serialises and sends from its
+/// own thread. Commands it receives are checked by the gate the bridges share
 /// (bridges/common/commands.h) and handed to the host's submit_velocity / submit_head /
 /// submit_joints, which queue them for the next step boundary.
 /// A slow network or subscriber therefore never slows the simulation: when a queue is full the

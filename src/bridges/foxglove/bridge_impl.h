@@ -1,18 +1,26 @@
 #pragma once
 /// Internal to the Foxglove bridge: its class and the state shared by its three threads, split
-/// over foxglove_bridge.cpp (start and stop, the simulation thread's copies, the serialiser
-/// thread that encodes and fans messages out) and client_requests.cpp (what clients ask for on
-/// the I/O thread: subscriptions, client channels, commands).
+/// over foxglove_bridge.cpp (start and stop, what the simulation thread hands over, the
+/// serialiser thread that encodes and fans messages out) and client_requests.cpp (what clients
+/// ask for on the I/O thread: subscriptions, client channels, commands).
+///
+/// Simulation thread -> serialiser thread: Bus messages go through the Outbox the ROS 1 and ROS 2
+/// bridges use (bridges/common/outbox.h: a bounded queue per topic, so a burst on one topic never
+/// pushes out an image or a latched message, and a byte budget over all of them); the scene is
+/// no Bus message: only its newest snapshot waits (`pending_scene_`), an older one is replaced.
 ///
 /// Locking: `mutex_` guards channels and clients; it may be held while queueing frames on the
-/// server (whose own locks are inner), never the other way round.
+/// server (whose own locks are inner), never the other way round. `scene_mutex_` and the
+/// outbox's lock are leaves.
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21,11 +29,11 @@
 #include <vector>
 
 #include "bridges/common/commands.h"
+#include "bridges/common/outbox.h"
 #include "bridges/foxglove/foxglove_bridge.h"
 #include "bridges/foxglove/protocol.h"
 #include "bridges/foxglove/scene.h"
 #include "bridges/foxglove/ws_server.h"
-#include "core/bounded_queue.h"
 #include "core/throttle.h"
 #include "bus/bus.h"
 
@@ -41,42 +49,10 @@ constexpr std::size_t kMaxTopics = 4096;
 constexpr std::uint32_t kSceneChannel = 1;
 constexpr std::uint32_t channel_of(TopicId topic) { return static_cast<std::uint32_t>(topic) + 2; }
 
-/// Holds a share of a byte budget while a message copy is alive (in the queue or being sent).
-class BudgetShare {
- public:
-  BudgetShare() = default;
-  BudgetShare(std::atomic<std::size_t>& used, std::size_t bytes) : used_(&used), bytes_(bytes) { used.fetch_add(bytes); }
-  BudgetShare(BudgetShare&& o) noexcept : used_(std::exchange(o.used_, nullptr)), bytes_(o.bytes_) {}
-  BudgetShare& operator=(BudgetShare&& o) noexcept {
-    if (this != &o) {
-      release();
-      used_ = std::exchange(o.used_, nullptr);
-      bytes_ = o.bytes_;
-    }
-    return *this;
-  }
-  BudgetShare(const BudgetShare&) = delete;
-  BudgetShare& operator=(const BudgetShare&) = delete;
-  ~BudgetShare() { release(); }
-
- private:
-  void release() {
-    if (used_) used_->fetch_sub(bytes_);
-    used_ = nullptr;
-  }
-  std::atomic<std::size_t>* used_ = nullptr;
-  std::size_t bytes_ = 0;
-};
-
-/// What the simulation thread hands to the serialiser thread.
-struct Outgoing {
-  enum class Kind { message, scene };
-  Kind kind = Kind::message;
-  TopicId topic = kNoTopic;
-  SimTime at;                    ///< sim time when it was published
-  Bus::SharedMessage message;    ///< Kind::message (shared with the Bus and other bridges, never copied)
-  BudgetShare budget;            ///< Kind::message: its bytes, counted against FoxgloveOptions::bridge_queue_bytes
-  SceneState scene;              ///< Kind::scene
+/// A scene snapshot waiting for the serialiser thread.
+struct PendingScene {
+  SimTime at;        ///< sim time when it was taken
+  SceneState scene;
 };
 
 /// A server channel with who subscribes to it.
@@ -108,13 +84,21 @@ struct ClientState {
 /// The bridge: a Bridge to the simulation, a ServerHandler to the WebSocket server.
 class FoxgloveBridge final : public Bridge, private ServerHandler {
  public:
-  explicit FoxgloveBridge(const FoxgloveOptions& options) : options_(options), queue_(std::max<std::size_t>(options.bridge_queue, 1)) {}
+  explicit FoxgloveBridge(const FoxgloveOptions& options)
+      : options_(options),
+        outbox_({.per_topic = std::max<std::size_t>(options.bridge_queue, 1), .byte_budget = options.bridge_queue_bytes, .lossless = false}) {}
   ~FoxgloveBridge() override { stop(); }
 
   std::string name() const override { return "foxglove"; }
   void start(BridgeHost& host) override;
   void stop() override;
   BridgeStats stats() const override;
+
+  /// For tests: returns once the serialiser thread is between rounds, and keeps it there (taking
+  /// nothing from the outbox, sending nothing) until resume_serialiser(), so what the simulation
+  /// thread pushes meanwhile stays queued under the outbox's policy. Call after start().
+  void pause_serialiser();
+  void resume_serialiser();
 
  private:
   // simulation thread
@@ -124,7 +108,9 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   SceneState scene_state() const;
   // serialiser thread
   void run();
-  void handle(Outgoing& item);
+  void handle(const OutboxItem& item);
+  void handle_scene(PendingScene& pending);
+  void wait_while_paused();
   void broadcast_time(std::int64_t ns);
   void deliver(const std::vector<std::pair<ClientId, std::uint32_t>>& subscribers, std::uint64_t stamp, const Payload& payload);
   void note_drops(ClientId client, std::size_t n);
@@ -158,11 +144,13 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   SimTime scene_period_;
   std::unique_ptr<std::atomic<int>[]> wanted_{new std::atomic<int>[kMaxTopics]()};  ///< subscriptions per Bus topic
   std::atomic<std::int64_t> latest_time_{-1};
-  std::atomic<std::size_t> queued_bytes_{0};     ///< message copies not yet sent
-  std::atomic<std::uint64_t> over_budget_{0};    ///< messages not copied: the budget was used up
+
+  // simulation thread -> serialiser thread
+  Outbox outbox_;                              ///< Bus messages (per topic bridge_queue, bridge_queue_bytes over all)
+  std::mutex scene_mutex_;
+  std::optional<PendingScene> pending_scene_;  ///< the newest scene snapshot not yet handled
 
   // serialiser thread
-  BoundedQueue<Outgoing> queue_;
   std::thread worker_;
   std::unique_ptr<SceneBuilder> scene_;
   SceneState last_scene_;  ///< what the scene's latched message shows
@@ -179,6 +167,12 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::unique_ptr<CommandGate> gate_;  ///< checks client commands, hands them to the host, warns (as ROS 1 and 2 do)
   Throttle client_log_{std::chrono::seconds(5)};
   Throttle error_log_{std::chrono::seconds(5)};
+
+  // pause_serialiser (tests)
+  std::atomic<bool> pause_requested_{false};
+  std::mutex pause_mutex_;
+  std::condition_variable pause_cv_;
+  bool paused_ = false;
 };
 
 }  // namespace rescuesim::foxglove

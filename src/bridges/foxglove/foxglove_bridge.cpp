@@ -1,6 +1,7 @@
-// The Foxglove bridge's data path: start and stop, the copies the simulation thread makes of
-// what clients subscribed to, and the serialiser thread that encodes each message once and
-// queues it for every subscriber (see bridge_impl.h for the threads and their locks).
+// The Foxglove bridge's data path: start and stop, what the simulation thread queues (the shared
+// Bus messages clients subscribed to, in the Outbox; the newest scene snapshot), and the
+// serialiser thread that encodes each message once and queues it for every subscriber (see
+// bridge_impl.h for the threads and their locks).
 
 #include "bridges/foxglove/foxglove_bridge.h"
 
@@ -101,7 +102,9 @@ void FoxgloveBridge::stop() {
   if (!started_ || stopped_) return;
   stopped_ = true;
   host_->bus().unsubscribe(bus_handle_);
-  queue_.close();
+  // the serialiser sends what is queued (and the pending scene), then ends
+  resume_serialiser();
+  outbox_.close();
   if (worker_.joinable()) worker_.join();
   server_->shutdown(std::chrono::milliseconds(500));
 }
@@ -113,7 +116,7 @@ BridgeStats FoxgloveBridge::stats() const {
     s.sent = c.sent;
     s.dropped = c.dropped;
   }
-  s.dropped += queue_.dropped() + over_budget_;
+  s.dropped += outbox_.stats().dropped;
   s.received = received_;
   s.rejected = rejected_;
   return s;
@@ -135,14 +138,13 @@ SceneState FoxgloveBridge::scene_state() const {
 void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
   const SimTime now = host_->time();
   if (topic.id == clock_topic_) latest_time_.store(now.ns, std::memory_order_relaxed);
-  // moving parts of the scene, at a low rate
+  // moving parts of the scene, at a low rate; only the newest snapshot matters, so one the
+  // serialiser has not taken yet is replaced
   if (scene_ && now >= next_scene_) {
     next_scene_ = now + scene_period_;
-    Outgoing o;
-    o.kind = Outgoing::Kind::scene;
-    o.at = now;
-    o.scene = scene_state();
-    queue_.push(std::move(o));
+    PendingScene pending{now, scene_state()};
+    std::lock_guard lock(scene_mutex_);
+    pending_scene_ = std::move(pending);
   }
   // topics advertised after start become new channels, announced to every client at once
   // (rare, so the simulation thread takes the lock itself rather than risk a dropped item)
@@ -156,22 +158,14 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
       for (const auto& [id, c] : clients_) server_->send_control(id, text);
     }
   }
-  // only what some client wants (and latched topics, for later subscribers) is copied, and
-  // only while the copies waiting for the serialiser stay within their byte budget
+  // only what some client wants (and latched topics, for later subscribers) is queued, shared
+  // and uncopied, in the outbox: per topic at most bridge_queue messages (a burst pushes out
+  // older messages of its own topic only), bridge_queue_bytes over all topics. Foxglove uses no
+  // sequence numbers, so a topic nobody wants is not counted either (as in ROS 2). Latched
+  // messages count no bytes: the budget never refuses them (their own topic's bound still holds).
   const auto id = static_cast<std::size_t>(topic.id);
   if (!topic.latched && id < kMaxTopics && wanted_[id].load(std::memory_order_relaxed) <= 0) return;
-  const std::size_t bytes = Outbox::approx_bytes(*m);  // the same estimate as the other bridges' budgets
-  if (!topic.latched && queued_bytes_.load() + bytes > options_.bridge_queue_bytes) {
-    ++over_budget_;
-    return;
-  }
-  Outgoing o;
-  o.kind = Outgoing::Kind::message;
-  o.topic = topic.id;
-  o.at = now;
-  o.message = m;
-  o.budget = BudgetShare(queued_bytes_, bytes);
-  queue_.push(std::move(o));
+  outbox_.push(topic.id, now, m, topic.latched ? 0 : Outbox::approx_bytes(*m));
 }
 
 // ---- serialiser thread ----
@@ -179,8 +173,22 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
 void FoxgloveBridge::run() {
   std::int64_t last_time = -1;
   auto last_time_sent = std::chrono::steady_clock::now();
+  std::vector<OutboxItem> round;
+  const auto guarded = [this](auto&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      std::uint64_t held = 0;
+      if (error_log_.allow(&held)) log::error("foxglove: {} (and {} more)", e.what(), held);
+    }
+  };
   for (;;) {
-    std::optional<Outgoing> item = queue_.pop(std::chrono::milliseconds(5));
+    wait_while_paused();
+    // at most one message per topic, oldest first
+    round.clear();
+    outbox_.take_round(round, std::chrono::milliseconds(5));
+    // closed and nothing left after this round: handle it (and the pending scene), then end
+    const bool done = outbox_.drained();
     // sim time at most every 5 ms of wall time (each client keeps only the latest)
     const std::int64_t t = latest_time_.load(std::memory_order_relaxed);
     const auto wall = std::chrono::steady_clock::now();
@@ -189,17 +197,39 @@ void FoxgloveBridge::run() {
       last_time = t;
       last_time_sent = wall;
     }
-    if (!item) {
-      if (queue_.closed()) break;
-      continue;
+    for (const OutboxItem& item : round) guarded([&] { handle(item); });
+    std::optional<PendingScene> scene;
+    {
+      std::lock_guard lock(scene_mutex_);
+      scene.swap(pending_scene_);
     }
-    try {
-      handle(*item);
-    } catch (const std::exception& e) {
-      std::uint64_t held = 0;
-      if (error_log_.allow(&held)) log::error("foxglove: {} (and {} more)", e.what(), held);
-    }
+    if (scene) guarded([&] { handle_scene(*scene); });
+    if (done) break;
   }
+}
+
+void FoxgloveBridge::wait_while_paused() {
+  if (!pause_requested_.load()) return;
+  std::unique_lock lock(pause_mutex_);
+  paused_ = true;
+  pause_cv_.notify_all();
+  pause_cv_.wait(lock, [this] { return !pause_requested_.load(); });
+  paused_ = false;
+}
+
+void FoxgloveBridge::pause_serialiser() {
+  if (!started_ || stopped_) return;
+  std::unique_lock lock(pause_mutex_);
+  pause_requested_ = true;
+  pause_cv_.wait(lock, [this] { return paused_; });
+}
+
+void FoxgloveBridge::resume_serialiser() {
+  {
+    std::lock_guard lock(pause_mutex_);
+    pause_requested_ = false;
+  }
+  pause_cv_.notify_all();
 }
 
 void FoxgloveBridge::broadcast_time(std::int64_t ns) {
@@ -212,28 +242,25 @@ void FoxgloveBridge::broadcast_time(std::int64_t ns) {
   for (ClientId id : ids) server_->send_time(id, frame);
 }
 
-void FoxgloveBridge::handle(Outgoing& item) {
-  switch (item.kind) {
-    case Outgoing::Kind::scene: {
-      if (same_scene(item.scene, last_scene_)) return;  // nothing moved
-      last_scene_ = std::move(item.scene);
-      const std::string moving = scene_->moving(item.at, last_scene_);
-      const std::string full = scene_->full(item.at, last_scene_);
-      const Payload full_payload = std::make_shared<const std::vector<std::uint8_t>>(full.begin(), full.end());
-      const Payload moving_payload = std::make_shared<const std::vector<std::uint8_t>>(moving.begin(), moving.end());
-      std::vector<std::pair<ClientId, std::uint32_t>> subs;
-      {
-        std::lock_guard lock(mutex_);
-        ChannelState& c = channels_.at(kSceneChannel);
-        c.last = full_payload;
-        c.last_stamp = static_cast<std::uint64_t>(item.at.ns);
-        subs.assign(c.subscribers.begin(), c.subscribers.end());
-      }
-      deliver(subs, static_cast<std::uint64_t>(item.at.ns), moving_payload);
-      return;
-    }
-    case Outgoing::Kind::message: break;
+void FoxgloveBridge::handle_scene(PendingScene& pending) {
+  if (same_scene(pending.scene, last_scene_)) return;  // nothing moved
+  last_scene_ = std::move(pending.scene);
+  const std::string moving = scene_->moving(pending.at, last_scene_);
+  const std::string full = scene_->full(pending.at, last_scene_);
+  const Payload full_payload = std::make_shared<const std::vector<std::uint8_t>>(full.begin(), full.end());
+  const Payload moving_payload = std::make_shared<const std::vector<std::uint8_t>>(moving.begin(), moving.end());
+  std::vector<std::pair<ClientId, std::uint32_t>> subs;
+  {
+    std::lock_guard lock(mutex_);
+    ChannelState& c = channels_.at(kSceneChannel);
+    c.last = full_payload;
+    c.last_stamp = static_cast<std::uint64_t>(pending.at.ns);
+    subs.assign(c.subscribers.begin(), c.subscribers.end());
   }
+  deliver(subs, static_cast<std::uint64_t>(pending.at.ns), moving_payload);
+}
+
+void FoxgloveBridge::handle(const OutboxItem& item) {
   const std::uint32_t channel = channel_of(item.topic);
   {
     std::lock_guard lock(mutex_);

@@ -7,9 +7,15 @@
 /// `/cmd_vel`, `/head/command` and `/joint_command` (cdr or json) to drive the robots. See
 /// docs/foxglove.md.
 ///
-/// Slow clients never slow the simulation or grow memory without bound: each client has a
-/// byte- and count-bounded send queue that drops its oldest data first (counted, and reported
-/// to that client with a `status` warning).
+/// Neither a slow bridge nor slow clients slow the simulation or grow memory without bound. The
+/// simulation thread queues the messages some client subscribed to (and latched ones) for the
+/// serialiser thread in the Outbox the ROS 1 and ROS 2 bridges use (bridges/common/outbox.h):
+/// `bridge_queue` messages per topic, so a burst on one topic only pushes out older messages of
+/// that topic, never an image or a latched message waiting on another, and `bridge_queue_bytes`
+/// over all topics (latched messages are not refused by it). Of the scene only the newest
+/// snapshot waits. Each client then has a byte- and count-bounded send queue that drops its
+/// oldest data first (reported to that client with a `status` warning). Both kinds of drop are
+/// counted in BridgeStats::dropped.
 
 #include <cstddef>
 #include <cstdint>
@@ -30,8 +36,8 @@ struct FoxgloveOptions {
   std::size_t max_client_frame = 1 << 20;   ///< bytes: larger client messages are discarded with a status error
   std::size_t client_queue_bytes = 8 << 20; ///< bytes of data queued per client before the oldest is dropped
   std::size_t client_queue_messages = 512;  ///< data messages queued per client before the oldest is dropped
-  std::size_t bridge_queue = 256;           ///< messages between the simulation and the serialiser thread
-  std::size_t bridge_queue_bytes = 32 << 20;  ///< bytes of message copies waiting for the serialiser thread
+  std::size_t bridge_queue = 64;            ///< per topic: messages waiting for the serialiser thread before the topic's oldest is dropped (as ROS 1/2 queue_size)
+  std::size_t bridge_queue_bytes = 32 << 20;  ///< bytes (Outbox::approx_bytes) waiting for the serialiser thread over all topics; 0: no budget
 };
 
 /// The bridge; throws rescuesim::Error on start() when the port cannot be bound.
