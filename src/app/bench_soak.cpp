@@ -1,5 +1,6 @@
 #include "app/bench_soak.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -7,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -16,12 +18,12 @@
 
 #include <fmt/format.h>
 
+#include "bus/bridge.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "msgs/message_fields.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
-#include "bus/bridge.h"
 #include "viz/canvas.h"
 #ifdef RESCUESIM_HAS_MCAP
 #include "bridges/mcap/mcap_bridge.h"
@@ -92,6 +94,19 @@ double resident_mb() {
   return static_cast<double>(pages_resident) * static_cast<double>(::sysconf(_SC_PAGESIZE)) / 1e6;
 }
 
+/// Bytes the allocator has handed out and not had back (MB): glibc's mallinfo2, small blocks
+/// plus mmapped ones. Resident memory also counts pages the allocator keeps after a free (its
+/// per-thread arenas rarely shrink), so a step in resident memory with a flat heap is a high
+/// water mark (a queue that filled once), while a heap that climbs is a leak.
+double heap_mb() {
+  const struct mallinfo2 m = ::mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / 1e6;
+}
+
+/// Set by SIGINT/SIGTERM: the soak stops at the next step and still writes its files.
+std::atomic<bool> g_soak_stop{false};
+extern "C" void on_soak_signal(int) { g_soak_stop = true; }
+
 /// Peak resident memory of this process so far (MB, 10^6 bytes, as resident_mb).
 double peak_mb() {
   rusage ru{};
@@ -100,7 +115,7 @@ double peak_mb() {
 }
 
 struct Sample {
-  double sim_s = 0, wall_s = 0, rtf = 0, resident_mb = 0, peak_mb = 0;
+  double sim_s = 0, wall_s = 0, rtf = 0, resident_mb = 0, peak_mb = 0, heap_mb = 0;
   std::uint64_t messages = 0, nans = 0, recorded_bytes = 0;
 };
 
@@ -146,13 +161,15 @@ void plot(const std::vector<Sample>& samples, const std::filesystem::path& png) 
       if (pts.size() > 1) c.polyline(pts, colour, 2.0);
     }
   };
-  std::vector<double> rss, peak, rtf;
+  std::vector<double> rss, peak, heap, rtf;
   for (const Sample& s : samples) {
     rss.push_back(s.resident_mb);
     peak.push_back(s.peak_mb);
+    heap.push_back(s.heap_mb);
     rtf.push_back(s.rtf);
   }
-  panel(kTop, "memory MB (blue resident, red peak)", {{rss, {40, 90, 200}}, {peak, {200, 50, 40}}});
+  panel(kTop, "memory MB (blue resident, red peak, black heap in use)",
+        {{rss, {40, 90, 200}}, {peak, {200, 50, 40}}, {heap, {0, 0, 0}}});
   panel(kTop + panel_h + kGap, "real-time factor per sample", {{rtf, {30, 140, 60}}});
   c.write_png(png);
 }
@@ -279,6 +296,7 @@ json bench_soak(const SoakOptions& o) {
     x.rtf = x.wall_s > last_wall ? (sim_s - last_sim) / (x.wall_s - last_wall) : 0;
     x.resident_mb = resident_mb();
     x.peak_mb = peak_mb();
+    x.heap_mb = heap_mb();
     x.messages = messages;
     x.nans = nan.nans;
 #ifdef RESCUESIM_HAS_MCAP
@@ -287,13 +305,17 @@ json bench_soak(const SoakOptions& o) {
     last_wall = x.wall_s;
     last_sim = sim_s;
     samples.push_back(x);
-    std::fprintf(stderr, "soak: %7.1f min sim, %7.1f s wall, %5.1fx, resident %.0f MB, peak %.0f MB, %llu messages, %llu NaN\n", sim_s / 60,
-                 x.wall_s, x.rtf, x.resident_mb, x.peak_mb, static_cast<unsigned long long>(x.messages),
+    std::fprintf(stderr, "soak: %7.1f min sim, %7.1f s wall, %5.1fx, resident %.0f MB, peak %.0f MB, heap %.0f MB, %llu messages, %llu NaN\n",
+                 sim_s / 60, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.heap_mb, static_cast<unsigned long long>(x.messages),
                  static_cast<unsigned long long>(x.nans));
   };
   sample(0);
   next_sample = o.sample_seconds;
-  const RunResult r = session->run(nullptr, [&](const RunResult& p) {
+  // Ctrl-C (or a SIGTERM) ends the soak early; what was sampled is still written
+  g_soak_stop = false;
+  std::signal(SIGINT, on_soak_signal);
+  std::signal(SIGTERM, on_soak_signal);
+  const RunResult r = session->run(&g_soak_stop, [&](const RunResult& p) {
     take_ros2();
 #ifdef RESCUESIM_HAS_MCAP
     if (p.sim_time >= next_segment) {
@@ -307,6 +329,8 @@ json bench_soak(const SoakOptions& o) {
       next_sample += o.sample_seconds;
     }
   });
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   sample(r.sim_time);
   take_ros2();
 #ifdef RESCUESIM_HAS_MCAP
@@ -322,23 +346,26 @@ json bench_soak(const SoakOptions& o) {
 #endif
 
   // the curves and their summary
-  std::vector<double> hours, rss, rtf;
-  double rss_max = 0;
+  std::vector<double> hours, rss, heap, rtf;
+  double rss_max = 0, heap_max = 0;
   for (const Sample& x : samples) {
     hours.push_back(x.sim_s / 3600);
     rss.push_back(x.resident_mb);
+    heap.push_back(x.heap_mb);
     rss_max = std::max(rss_max, x.resident_mb);
+    heap_max = std::max(heap_max, x.heap_mb);
   }
   // the real-time factor of whole sample intervals (the first sample and a short last one excluded)
   for (std::size_t i = 1; i < samples.size(); ++i) {
     if (samples[i].sim_s - samples[i - 1].sim_s >= 0.5 * o.sample_seconds) rtf.push_back(samples[i].rtf);
   }
   // the slope after the first tenth of the run, when caches and pools have filled
-  std::vector<double> late_h, late_rss;
+  std::vector<double> late_h, late_rss, late_heap;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (hours[i] >= 0.1 * hours.back()) {
       late_h.push_back(hours[i]);
       late_rss.push_back(rss[i]);
+      late_heap.push_back(heap[i]);
     }
   }
   json j;
@@ -352,7 +379,11 @@ json bench_soak(const SoakOptions& o) {
                     {"resident_max", rss_max},
                     {"peak", samples.back().peak_mb},
                     {"slope_per_sim_hour", slope(hours, rss)},
-                    {"slope_per_sim_hour_after_first_tenth", slope(late_h, late_rss)}};
+                    {"slope_per_sim_hour_after_first_tenth", slope(late_h, late_rss)},
+                    {"heap_first", heap.size() > 1 ? heap[1] : heap.front()},
+                    {"heap_last", heap.back()},
+                    {"heap_max", heap_max},
+                    {"heap_slope_per_sim_hour_after_first_tenth", slope(late_h, late_heap)}};
   if (!rtf.empty()) {
     double sum = 0;
     for (double x : rtf) sum += x;
@@ -367,10 +398,10 @@ json bench_soak(const SoakOptions& o) {
   j["victims_found"] = r.victims_found;
   j["trouble"] = r.trouble;
 
-  std::string csv = "sim_s,wall_s,rtf,resident_mb,peak_mb,messages,nans,recorded_bytes\n";
+  std::string csv = "sim_s,wall_s,rtf,resident_mb,peak_mb,heap_mb,messages,nans,recorded_bytes\n";
   for (const Sample& x : samples) {
-    csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.1f},{:.1f},{},{},{}\n", x.sim_s, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.messages, x.nans,
-                       x.recorded_bytes);
+    csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.1f},{:.1f},{:.1f},{},{},{}\n", x.sim_s, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.heap_mb,
+                       x.messages, x.nans, x.recorded_bytes);
   }
   write_file_atomic(o.out / "soak.csv", csv);
   write_file_atomic(o.out / "soak.json", j.dump(2) + "\n");

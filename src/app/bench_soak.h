@@ -21,11 +21,12 @@ struct SoakOptions {
 };
 
 /// Runs the soak (see the file comment), writes soak.csv (one row per sample: sim time, wall
-/// time, real-time factor of the interval, resident and peak memory, messages, NaNs, bytes
-/// recorded), soak.json (the returned summary) and soak.png (memory and real-time factor
+/// time, real-time factor of the interval, resident and peak memory, heap in use, messages,
+/// NaNs, bytes recorded), soak.json (the returned summary) and soak.png (memory and real-time factor
 /// against sim time) into `out`, and returns the summary: which bridges were attached and to
 /// what, the memory curve (first, last, max, least-squares slope per sim hour), the real-time
 /// factor curve (first, last, min, mean) and the NaN count with the first NaN's topic and field.
+/// SIGINT or SIGTERM ends the run early; the files are still written (stop_reason says so).
 nlohmann::ordered_json bench_soak(const SoakOptions& options);
 
 }  // namespace rescuesim::app

@@ -390,7 +390,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_flag("--soak", o->soak,
                 "only a soak run: the default scenario for --soak-hours of sim time with cameras and every bridge built "
                 "attached, memory and real-time factor every sim minute, every message checked for NaN; writes soak.csv, "
-                "soak.json and soak.png into --out (a folder, default runs/soak)");
+                "soak.json and soak.png into --out (a folder, default runs/soak); Ctrl-C stops early and still writes them");
   cmd->add_option("--soak-hours", o->soak_hours, "sim hours of the soak run")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
   add_bench_probe_command(app, action);
