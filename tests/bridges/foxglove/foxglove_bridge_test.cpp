@@ -56,13 +56,7 @@ BridgeLine bridge_line(const std::string& out) {
   return b;
 }
 
-class FoxgloveServer : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const std::string why = testing::node_missing();
-    if (!why.empty()) GTEST_SKIP() << why;
-  }
-};
+class FoxgloveServer : public testing::NodeClientTest {};
 
 TEST_F(FoxgloveServer, ClientDecodesTopicsAndDrivesTheRobot) {
   const auto dir = testing::temp_dir("fox-stream");

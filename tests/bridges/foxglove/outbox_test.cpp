@@ -138,13 +138,7 @@ std::multiset<double> bursts(const json& client) {
   return s;
 }
 
-class FoxgloveOutbox : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const std::string why = testing::node_missing();
-    if (!why.empty()) GTEST_SKIP() << why;
-  }
-};
+class FoxgloveOutbox : public testing::NodeClientTest {};
 
 TEST_F(FoxgloveOutbox, ABurstOnOneTopicPushesOutOnlyItsOwnOlderMessagesNeverAnImage) {
   Rig rig;

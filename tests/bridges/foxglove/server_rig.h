@@ -8,6 +8,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -68,6 +70,15 @@ inline std::string node_missing() {
   if (!ready()) return "the npm test clients are missing in " + js.string() + " (run scripts/install-test-js.sh " + js.string() + ")";
   return "";
 }
+
+/// A test that needs node and the npm clients: skipped, saying why, where they are missing.
+class NodeClientTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string why = node_missing();
+    if (!why.empty()) GTEST_SKIP() << why;
+  }
+};
 
 /// Runs a node script from tests/bridges/foxglove with the pinned modules.
 inline CommandResult node_script(const std::string& script, const std::string& args) {
