@@ -94,33 +94,16 @@ double resident_mb() {
   return static_cast<double>(pages_resident) * static_cast<double>(::sysconf(_SC_PAGESIZE)) / 1e6;
 }
 
-/// Bytes the allocator has handed out and not had back (MB), over all its arenas: glibc's
-/// malloc_info totals (memory taken from the system, less the free chunks it holds, plus the
-/// mmapped blocks). mallinfo2 would do, but it counts the main arena only, and each thread that
-/// allocates gets an arena of its own (up to 8 per core). Resident memory also counts pages the
-/// arenas keep after a free (they rarely shrink), so a step in resident memory with a flat heap
-/// is a high-water mark, while a heap that climbs is a leak. 0 when the totals cannot be read.
+/// Bytes the allocator has handed out and not had back (MB): glibc's mallinfo2, small blocks
+/// plus mmapped ones, summed over all its arenas (checked on glibc 2.36 with a block kept by
+/// another thread; older manuals say the main arena only). Resident memory also counts pages the
+/// arenas keep after a free: each thread that allocates gets an arena of its own (up to 8 per
+/// core) and arenas rarely shrink, so a step in resident memory with a flat heap is a high-water
+/// mark (the soak's recorder thread, restarted every segment, fills one arena after another),
+/// while a heap that climbs is a leak.
 double heap_mb() {
-  char* text = nullptr;
-  std::size_t size = 0;
-  FILE* f = ::open_memstream(&text, &size);
-  if (!f) return 0;
-  ::malloc_info(0, f);
-  std::fclose(f);
-  const std::string xml(text ? text : "", size);
-  std::free(text);
-  // the totals over all arenas follow the last per-arena <heap> element
-  const std::size_t totals = xml.rfind("</heap>");
-  const auto value = [&](const std::string& tag) -> double {
-    const std::size_t at = xml.find(tag, totals == std::string::npos ? 0 : totals);
-    if (at == std::string::npos) return -1;
-    const std::size_t q = xml.find("size=\"", at);
-    return q == std::string::npos ? -1 : std::strtod(xml.c_str() + q + 6, nullptr);
-  };
-  const double fast = value("<total type=\"fast\""), rest = value("<total type=\"rest\""), mmapped = value("<total type=\"mmap\""),
-               system = value("<system type=\"current\"");
-  if (fast < 0 || rest < 0 || mmapped < 0 || system < 0) return 0;
-  return (system - fast - rest + mmapped) / 1e6;
+  const struct mallinfo2 m = ::mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / 1e6;
 }
 
 /// Set by SIGINT/SIGTERM: the soak stops at the next step and still writes its files.
