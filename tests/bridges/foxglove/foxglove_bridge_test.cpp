@@ -274,13 +274,7 @@ TEST_F(FoxgloveServer, BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory) 
 TEST_F(FoxgloveServer, TopicsAdvertisedDuringARunReachConnectedClients) {
   // the bridge in this process, on a simulation this test steps (this thread is the
   // simulation thread): a topic that appears mid-run is advertised to the connected client
-  WorldSpec spec;
-  spec.floor_min = {-3, -3};
-  spec.floor_max = {3, 3};
-  spec.materials = default_materials();
-  spec.walls.push_back({{-3, 3}, {3, 3}, 0.1, 1.0, "wall", {}});
-  spec.robots.push_back(RobotPlacement{});
-  Simulation sim(compile_world(spec, builtin_models()));
+  Simulation sim(testing::one_wall_room());
   FoxgloveOptions options;
   options.port = free_local_port();
   ASSERT_GT(options.port, 0);

@@ -50,15 +50,7 @@ struct Rig {
   Simulation sim;
   TopicId burst, probe, big, big2;
 
-  static World room() {
-    WorldSpec spec;
-    spec.floor_min = {-3, -3};
-    spec.floor_max = {3, 3};
-    spec.materials = default_materials();
-    spec.walls.push_back({{-3, 3}, {3, 3}, 0.1, 1.0, "wall", {}});
-    spec.robots.push_back(RobotPlacement{});
-    return compile_world(spec, builtin_models());
-  }
+  static World room() { return testing::one_wall_room(); }
   Rig()
       : sim(room()),
         burst(sim.bus().advertise("/burst", "geometry_msgs/PoseStamped")),

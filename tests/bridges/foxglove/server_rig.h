@@ -20,7 +20,10 @@
 #include <vector>
 
 #include "core/local_ports.h"
+#include "robots/rescue_robot.h"
 #include "support/command.h"
+#include "world/world.h"
+#include "world/world_spec.h"
 
 namespace rescuesim::testing {
 
@@ -69,6 +72,18 @@ inline std::string node_missing() {
   }
   if (!ready()) return "the npm test clients are missing in " + js.string() + " (run scripts/install-test-js.sh " + js.string() + ")";
   return "";
+}
+
+/// A 6 m x 6 m floor with one wall and the built-in robot, compiled: for tests that run the
+/// bridge in-process on a Simulation they step themselves.
+inline World one_wall_room() {
+  WorldSpec spec;
+  spec.floor_min = {-3, -3};
+  spec.floor_max = {3, 3};
+  spec.materials = default_materials();
+  spec.walls.push_back({{-3, 3}, {3, 3}, 0.1, 1.0, "wall", {}});
+  spec.robots.push_back(RobotPlacement{});
+  return compile_world(spec, builtin_models());
 }
 
 /// A test that needs node and the npm clients: skipped, saying why, where they are missing.
