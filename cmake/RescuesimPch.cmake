@@ -12,6 +12,13 @@
 # the PCH would hide still fails there).
 
 option(RESCUESIM_PCH "Precompile heavy third-party headers (Eigen, spdlog, GoogleTest)" ON)
+# The fuzz build instruments our libraries target by target (fuzz/CMakeLists.txt adds
+# -fsanitize=fuzzer-no-link,address to each), so one shared PCH compiled without those flags
+# would not load in them: clang refuses a PCH whose sanitizer features differ from the TU's.
+if(RESCUESIM_FUZZ AND RESCUESIM_PCH)
+  message(STATUS "RESCUESIM_FUZZ=ON: precompiled headers off (the fuzz flags are per target)")
+  set(RESCUESIM_PCH OFF CACHE BOOL "Precompile heavy third-party headers (Eigen, spdlog, GoogleTest)" FORCE)
+endif()
 
 set(RESCUESIM_PCH_HEADERS
   <algorithm> <array> <atomic> <chrono> <cmath> <cstdint> <cstdio> <cstring> <filesystem>
