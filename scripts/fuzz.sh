@@ -8,6 +8,7 @@
 #   svg_path         the SVG attribute parsers (path, transform, paint, length)
 #   svg_world        whole SVG world documents (load_svg_world_from_string)
 #   urdf             the URDF importer
+#   sdf_world        the SDF importer (whole worlds and models, through sdformat)
 #   scenario         scenario YAML (parse_scenario)
 #   cdr              the CDR (ROS 2) message decoder, with a round trip
 #   ros1             the ROS 1 message decoder, with a round trip
@@ -19,7 +20,7 @@
 # fuzz/crashes/<target>/ and replayed before it runs. Exit code 2 for bad arguments.
 set -euo pipefail
 
-targets=(svg_path svg_world urdf scenario cdr ros1 mcap_reader foxglove_client batch_record)
+targets=(svg_path svg_world urdf sdf_world scenario cdr ros1 mcap_reader foxglove_client batch_record)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$root/build-fuzz
 jobs=${FUZZ_BUILD_JOBS:-$(nproc 2>/dev/null || echo 2)}

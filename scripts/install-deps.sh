@@ -15,6 +15,8 @@ packages=(
   libbullet-dev libbullet-extras-dev libembree-dev libtbb-dev
   # robots of one's own: URDF (urdfdom) and their meshes (assimp)
   liburdfdom-dev libassimp-dev
+  # Gazebo worlds and models: SDF (sdformat 12, SDF <= 1.9)
+  libsdformat-dev
   # rendering: headless EGL on Mesa, a window, GUI panels
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libepoxy-dev
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth x11-apps netpbm

@@ -1,38 +1,16 @@
 #include "app/bench_urdf.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 
+#include "app/bench_figures.h"
 #include "robots/rescue_robot.h"
 #include "world/mesh/mesh.h"
 #include "world/urdf/urdf_import.h"
 
 namespace rescuesim::app {
 
-namespace {
-
 using json = nlohmann::ordered_json;
-using Clock = std::chrono::steady_clock;
-
-/// Median wall seconds of `repeats` calls.
-template <class F>
-double median_seconds(int repeats, F&& f) {
-  std::vector<double> t;
-  for (int i = 0; i < repeats; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-json ratio_figure(double value, const char* unit, double baseline, const char* baseline_is) {
-  return {{"value", value}, {"unit", unit}, {"baseline", baseline}, {"baseline_is", baseline_is}, {"ratio", baseline > 0 ? value / baseline : 0.0}};
-}
-
-}  // namespace
 
 json bench_urdf(const std::filesystem::path& scenario_file, double sim_seconds, const RunChild& run_child) {
   if (!std::filesystem::exists(scenario_file)) {

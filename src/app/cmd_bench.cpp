@@ -16,6 +16,7 @@
 #include "app/bench_reset.h"
 #include "app/bench_ros.h"
 #include "app/bench_soak.h"
+#include "app/bench_sdf.h"
 #include "app/bench_urdf.h"
 #include "app/commands.h"
 #include "core/atomic_file.h"
@@ -51,6 +52,9 @@ struct BenchOptions {
   bool ros_only = false;        ///< only the ROS figures
   std::string urdf_scenario = "worlds/turtlebot3_maze.yaml";  ///< the URDF figures' scenario
   bool urdf_only = false;       ///< only the URDF figures
+  std::string sdf_world = "worlds/rescue_yard.sdf";  ///< the SDF figures' world
+  std::vector<std::string> sdf_resource_paths = {"worlds/models"};
+  bool sdf_only = false;        ///< only the SDF figures
   bool reset_only = false;      ///< only the reset figure (bench_reset.h)
   BenchRosOptions ros_options;
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
@@ -290,6 +294,14 @@ int run_bench(const BenchOptions& o) {
     if (!o.out.empty()) write_file_atomic(o.out, text);
     return kExitOk;
   }
+  const std::vector<std::filesystem::path> sdf_paths(o.sdf_resource_paths.begin(), o.sdf_resource_paths.end());
+  if (o.sdf_only) {
+    report["sdf"] = bench_sdf(o.sdf_world, sdf_paths, o.seconds);
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   std::fprintf(stderr, "bench: physics ...\n");
   report["physics"] = bench_physics(world, o.physics_steps);
   std::fprintf(stderr, "bench: lidar rays ...\n");
@@ -334,6 +346,7 @@ int run_bench(const BenchOptions& o) {
   report["default_scenario_cameras_shipped"] = d2;
   report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
                               [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
+  report["sdf"] = bench_sdf(o.sdf_world, sdf_paths, o.seconds);
   report["mcap_recording"] = bench_recording(def, models);
   if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
   report["reset"] = bench_reset(def, models);
@@ -370,7 +383,10 @@ void add_bench_command(CLI::App& app, Action& action) {
       "with the reason (docs/ros.md).\n"
       "URDF (urdf; docs/robots.md): reading the --urdf-scenario's robot with its meshes beside loading\n"
       "the mesh files alone; convex hull of its largest mesh (64 vertices) beside the exact hull, and\n"
-      "its convex decomposition; the robot's real-time factor beside the built-in robot in the same maze.");
+      "its convex decomposition; the robot's real-time factor beside the built-in robot in the same maze.\n"
+      "SDF (sdf; docs/worlds.md): reading --sdf-world beside loading its mesh files alone; lidar rays/s\n"
+      "through a room of walls and pillars as one 100k-triangle static mesh beside the same room from\n"
+      "box primitives.");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
@@ -380,6 +396,10 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost)");
   cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
   cmd->add_flag("--urdf-only", o->urdf_only, "measure only the URDF figures");
+  cmd->add_flag("--sdf-only", o->sdf_only, "measure only the SDF figures");
+  cmd->add_option("--sdf-world", o->sdf_world, "SDF world for the SDF load figure")->capture_default_str();
+  cmd->add_option("--sdf-resource-path", o->sdf_resource_paths, "where the SDF world's model:// URIs are looked for first")
+      ->capture_default_str();
   cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
   cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
       ->capture_default_str();

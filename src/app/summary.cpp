@@ -27,6 +27,18 @@ std::string world_summary(const WorldSpec& w) {
   s += buf;
   std::snprintf(buf, sizeof buf, "  rubble        %zu\n", w.rubble.size());
   s += buf;
+  if (!w.solids.empty() || !w.bodies.empty()) {
+    std::size_t meshes = 0, triangles = 0;
+    for (const auto& so : w.solids) {
+      if (so.geometry.type != Geometry::Type::mesh) continue;
+      ++meshes;
+      triangles += so.geometry.mesh.triangles.size();
+    }
+    std::snprintf(buf, sizeof buf, "  model solids  %zu (%zu exact meshes, %zu triangles)\n", w.solids.size(), meshes, triangles);
+    s += buf;
+    std::snprintf(buf, sizeof buf, "  model bodies  %zu\n", w.bodies.size());
+    s += buf;
+  }
   std::snprintf(buf, sizeof buf, "  robot starts  %zu\n", w.robots.size());
   s += buf;
   for (const auto& r : w.robots) {

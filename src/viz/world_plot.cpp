@@ -13,6 +13,15 @@ namespace rescuesim {
 
 namespace {
 
+/// The footprint of a 3-D shape on the floor: the convex hull of its vertices seen from above.
+Polygon2 footprint(const Geometry& g, const Pose3& X_WS) {
+  const bool has_mesh = g.type == Geometry::Type::mesh || g.type == Geometry::Type::convex;
+  const TriangleMesh m = has_mesh ? TriangleMesh{} : mesh_of(g, 16);
+  std::vector<Vec2> points;
+  for (const Vec3& v : has_mesh ? g.mesh.vertices : m.vertices) points.push_back((X_WS * v).head<2>());
+  return convex_hull(std::move(points));
+}
+
 // colours of the SVG convention (docs/worlds.md), in the matplotlib "tab10" shades
 constexpr Rgb8 kPage{255, 255, 255};
 constexpr Rgb8 kFloor{250, 250, 250};
@@ -225,8 +234,12 @@ void draw_map(Canvas& canvas, const PlotFrame& f, const WorldSpec& world, bool g
     canvas.fill_polygon(to_px(f, r.outline), kRaised);
   }
 
-  // solid obstacles, then walls; walls thinner than a pixel still show as hairlines
+  // solid obstacles (drawn and from model files), then walls; walls thinner than a pixel still
+  // show as hairlines. A model file's solid shows as the convex hull of its footprint.
   for (const auto& b : world.blocks) canvas.fill_polygon(to_px(f, b.outline), kBlock);
+  for (const auto& so : world.solids) {
+    if (so.victim.empty()) canvas.fill_polygon(to_px(f, footprint(so.geometry, so.X_WS)), kBlock);
+  }
   for (const auto& w : world.walls) {
     if (w.thickness * ppm >= 1.0) {
       canvas.fill_polygon(to_px(f, WorldSpec::wall_outline(w)), kWall);
@@ -243,6 +256,8 @@ void draw_map(Canvas& canvas, const PlotFrame& f, const WorldSpec& world, bool g
       canvas.fill_polygon(to_px(f, rectangle(r.pose, r.size.x(), r.size.y())), kRubble);
     }
   }
+
+  for (const auto& b : world.bodies) canvas.fill_polygon(to_px(f, footprint(b.geometry, b.X_WB)), kRubble);
 
   // victims: the footprint, with a white dot near the head end (yaw points feet to head)
   // when the footprint is wide enough to hold one

@@ -57,6 +57,16 @@ std::vector<fs::path> ResourceResolver::package_candidates(const std::string& pa
   return out;
 }
 
+std::vector<fs::path> ResourceResolver::model_candidates(const std::string& name) const {
+  std::vector<fs::path> out = package_candidates(name);
+  if (use_environment_) {
+    for (const char* var : {"GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GAZEBO_MODEL_PATH"}) {
+      for (const auto& root : env_list(var)) out.push_back(root / name);
+    }
+  }
+  return out;
+}
+
 fs::path ResourceResolver::resolve(const std::string& uri, const SourceRef& where) const {
   const fs::path base = where.file.empty() ? fs::current_path() : fs::path(where.file).parent_path();
   auto fail = [&](const std::string& why) -> fs::path { throw Error(where, "cannot find '" + uri + "': " + why); };
@@ -70,12 +80,7 @@ fs::path ResourceResolver::resolve(const std::string& uri, const SourceRef& wher
     const std::string package = rest.substr(0, slash);
     const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
     if (package.empty()) return fail("no package name after " + prefix);
-    std::vector<fs::path> roots = package_candidates(package);
-    if (prefix == "model://" && use_environment_) {
-      for (const char* var : {"GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GAZEBO_MODEL_PATH"}) {
-        for (const auto& root : env_list(var)) roots.push_back(root / package);
-      }
-    }
+    const std::vector<fs::path> roots = prefix == "model://" ? model_candidates(package) : package_candidates(package);
     std::vector<fs::path> tried;
     for (const auto& root : roots) {
       const fs::path candidate = inside.empty() ? root : root / inside;

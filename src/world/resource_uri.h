@@ -29,6 +29,11 @@ class ResourceResolver {
   /// The folders a `package://<pkg>/...` URI is looked for in, in order (for messages and docs).
   std::vector<std::filesystem::path> package_candidates(const std::string& package) const;
 
+  /// The folders a `model://<name>` URI is looked for in, in order: package_candidates, then
+  /// <dir>/<name> for each folder of GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH and
+  /// GAZEBO_MODEL_PATH (when the environment is used).
+  std::vector<std::filesystem::path> model_candidates(const std::string& name) const;
+
   const std::vector<std::filesystem::path>& search_paths() const { return search_; }
 
  private:

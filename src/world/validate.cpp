@@ -48,11 +48,15 @@ class Validator {
     for (std::size_t i = 0; i < w_.rubble.size(); ++i) check_rubble(w_.rubble[i], i);
     for (std::size_t i = 0; i < w_.victims.size(); ++i) check_victim(w_.victims[i], i);
     for (std::size_t i = 0; i < w_.lights.size(); ++i) check_light(w_.lights[i], i);
+    for (std::size_t i = 0; i < w_.solids.size(); ++i) check_solid(w_.solids[i], i);
+    for (std::size_t i = 0; i < w_.bodies.size(); ++i) check_body(w_.bodies[i], i);
     check_robots();
-    if (w_.walls.empty() && w_.blocks.empty() && w_.raised_areas.empty() && w_.rubble.empty() && w_.victims.empty()) {
+    if (w_.walls.empty() && w_.blocks.empty() && w_.raised_areas.empty() && w_.rubble.empty() && w_.victims.empty() &&
+        w_.solids.empty() && w_.bodies.empty()) {
       d_.error({w_.source_file, 0, ""},
-               "the world is empty: no walls, obstacles, raised areas, rubble or victims (expected at least one; "
-               "in an SVG, walls are black, raised areas red, victims blue)");
+               "the world is empty: no walls, obstacles, raised areas, rubble, victims or model geometry (expected at least one; "
+               "in an SVG, walls are black, raised areas red, victims blue; in an SDF, a model with a <collision> other "
+               "than the ground plane)");
     }
     return d_;
   }
@@ -223,6 +227,41 @@ class Validator {
     const std::string solid = solid_at(v.pose.position());
     if (!solid.empty()) d_.error(where, "victim lies inside " + solid);
     check_extent(bounds(WorldSpec::victim_outline(v)), where);
+  }
+
+  /// A 3-D shape: finite, positive and not absurdly large.
+  void check_geometry(const Geometry& g, const Pose3& X, const SourceRef& where) {
+    if (!finite(X.p) || !std::isfinite(X.q.norm())) {
+      d_.error(where, "pose is not a finite number");
+      return;
+    }
+    if (!finite(g.size) || g.size.minCoeff() < 0 || (g.type != Geometry::Type::mesh && g.size.minCoeff() <= 0)) {
+      d_.error(where, "size " + num(g.size.x()) + " x " + num(g.size.y()) + " x " + num(g.size.z()) + " m is not positive");
+    } else if (g.size.maxCoeff() > o_.max_extent) {
+      d_.error(where, "size " + num(g.size.maxCoeff()) + " m exceeds the limit of " + num(o_.max_extent) + " m (check the scale)");
+    }
+    if ((g.type == Geometry::Type::mesh || g.type == Geometry::Type::convex) && g.mesh.triangles.empty()) {
+      d_.error(where, "mesh has no triangles");
+    }
+  }
+
+  void check_solid(const SolidSpec& so, std::size_t i) {
+    const SourceRef where = ref(so.source, "solid '" + so.name + "' (" + std::to_string(i) + ")");
+    check_geometry(so.geometry, so.X_WS, where);
+    check_material_ref(so.material, where);
+    if (!so.victim.empty()) {
+      bool found = false;
+      for (const auto& v : w_.victims) found = found || v.name == so.victim;
+      if (!found) d_.error(where, "names victim '" + so.victim + "', which the world does not have");
+    }
+  }
+
+  void check_body(const BodySpec& b, std::size_t i) {
+    const SourceRef where = ref(b.source, "body '" + b.name + "' (" + std::to_string(i) + ")");
+    check_geometry(b.geometry, b.X_WB, where);
+    check_material_ref(b.material, where);
+    if (!(b.mass > 0) || !std::isfinite(b.mass)) d_.error(where, "mass " + num(b.mass) + " kg is not positive");
+    if (!finite(b.inertia) || b.inertia.minCoeff() <= 0) d_.error(where, "inertia has a moment that is not positive");
   }
 
   void check_light(const LightSpec& l, std::size_t i) {

@@ -168,6 +168,12 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     victim.posture = v.posture;
     victim.skin_temperature = v.skin_temperature;
     victim.clothes_temperature = v.clothes_temperature;
+    if (!v.figure) {
+      // the body is the model file's solids that name this victim (added with the solids below)
+      victim.centre = Vec3(v.pose.x, v.pose.y, 0);
+      w.victims.push_back(std::move(victim));
+      continue;
+    }
     Vec3 centre = Vec3::Zero();
     const auto parts = victim_body(v);
     for (std::size_t k = 0; k < parts.size(); ++k) {
@@ -179,6 +185,40 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     }
     victim.centre = centre / static_cast<double>(parts.size());
     w.victims.push_back(std::move(victim));
+  }
+  // 3-D solids from model files: fixed obstacles, or the bodies of victims that name them
+  for (const SolidSpec& so : spec.solids) {
+    StaticObject o{so.name, ObjectKind::obstacle, so.geometry, so.X_WS, w.material_index(so.material), so.temperature, -1};
+    if (!so.victim.empty()) {
+      const auto it = std::find_if(w.victims.begin(), w.victims.end(), [&](const Victim& v) { return v.name == so.victim; });
+      if (it == w.victims.end()) throw Error(so.source, "solid '" + so.name + "' names victim '" + so.victim + "', which the world does not have");
+      const auto vi = static_cast<std::size_t>(it - w.victims.begin());
+      o.kind = ObjectKind::victim;
+      o.victim = static_cast<int>(vi);
+      if (o.temperature <= 0) o.temperature = spec.victims[vi].skin_temperature;
+      it->parts.push_back(static_cast<int>(w.statics.size()));
+    }
+    w.statics.push_back(std::move(o));
+  }
+  for (Victim& v : w.victims) {
+    // a model's victim: its centre is the middle of its parts' bounding box
+    if (v.parts.empty() || spec.victims[static_cast<std::size_t>(&v - w.victims.data())].figure) continue;
+    Eigen::AlignedBox3d box;
+    for (int i : v.parts) {
+      const StaticObject& o = w.statics[static_cast<std::size_t>(i)];
+      for (const Vec3& p : mesh_of(o.geometry, 8).vertices) box.extend(o.X_WO * p);
+    }
+    v.centre = box.center();
+  }
+  for (const BodySpec& b : spec.bodies) {
+    DynamicObject d;
+    d.name = b.name;
+    d.geometry = b.geometry;
+    d.X_WO = b.X_WB;
+    d.mass = b.mass;
+    d.inertia = b.inertia;
+    d.material = w.material_index(b.material);
+    w.dynamics.push_back(std::move(d));
   }
   for (const auto& placement : spec.robots) {
     const auto it = models.find(placement.model);
@@ -200,7 +240,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
         for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_BL[l] * (shape.X_LG * v)).z());
       }
     }
-    r.X_W_start = Pose3::from_pose2(placement.start, -lowest + 0.002);
+    r.X_W_start = Pose3::from_pose2(placement.start, placement.height - lowest + 0.002);
     w.robots.push_back(std::move(r));
   }
   add_robot_materials(w);

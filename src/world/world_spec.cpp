@@ -60,6 +60,16 @@ Box2 WorldSpec::content_bounds() const {
   for (const auto& r : rubble) b.extend(r.pose.position());
   for (const auto& v : victims) b.extend(bounds(victim_outline(v)));
   for (const auto& r : robots) b.extend(r.start.position());
+  // 3-D solids and bodies: the footprint of every vertex (a mesh's, or the shape's triangles)
+  const auto extend_3d = [&b](const Geometry& g, const Pose3& X) {
+    const TriangleMesh m = g.type == Geometry::Type::mesh || g.type == Geometry::Type::convex ? g.mesh : mesh_of(g, 8);
+    for (const Vec3& v : m.vertices) {
+      const Vec3 p = X * v;
+      b.extend(Vec2(p.x(), p.y()));
+    }
+  };
+  for (const auto& s : solids) extend_3d(s.geometry, s.X_WS);
+  for (const auto& d : bodies) extend_3d(d.geometry, d.X_WB);
   return b;
 }
 

@@ -2,7 +2,8 @@
 /// WorldSpec: the world as a user authors it (from SVG, the maze generator or YAML). Plain
 /// data with no behaviour and no physics or graphics types; `validate()` checks it and the
 /// simulation compiles it into a World. Frames: world x east, y north, z up (REP-103), metres;
-/// the floor is the plane z = 0.
+/// the floor is the plane z = 0. Drawn worlds are 2.5-D (outlines extruded from the floor);
+/// worlds from model files (SDF) add solids and bodies of any shape at any 3-D pose.
 
 #include <cstdint>
 #include <map>
@@ -12,6 +13,7 @@
 #include "core/error.h"
 #include "core/polygon.h"
 #include "core/pose.h"
+#include "world/geometry.h"
 
 namespace rescuesim {
 
@@ -77,15 +79,46 @@ struct VictimSpec {
   double width = 0.45;                ///< shoulder width (m)
   double skin_temperature = 307.15;   ///< exposed skin surface (K)
   double clothes_temperature = 301.15;  ///< clothed body surface (K)
+  /// true: the body is rescuesim's human figure built at `pose`; false: the body is the
+  /// WorldSpec::solids whose `victim` names this victim (an SDF model named victim*).
+  bool figure = true;
+  SourceRef source;
+};
+
+/// A fixed solid at any 3-D pose: one collision shape of a model read from a model file (an
+/// SDF <collision>; its link's <visual> gives the colour). It collides, is seen by the ray
+/// sensors and is drawn. Meshes stay triangle meshes, so physics (a BVH) and the ray sensors
+/// (the same triangles) see the exact surface.
+struct SolidSpec {
+  std::string name;                  ///< "model::link::collision"
+  Geometry geometry;                 ///< in the solid's frame
+  Pose3 X_WS;                        ///< solid frame in the world
+  std::string material = "obstacle";
+  double temperature = -1;           ///< K; < 0: the material's
+  std::string victim;                ///< name of the victim this solid is the body of, or ""
+  SourceRef source;
+};
+
+/// A loose rigid body of one shape from a model file (a non-static SDF link without joints).
+struct BodySpec {
+  std::string name;                  ///< "model::link"
+  Geometry geometry;                 ///< collision shape in the body frame
+  Pose3 X_WB;                        ///< body frame in the world: origin at the centre of mass, axes the principal axes
+  double mass = 1.0;                 ///< kg
+  Vec3 inertia{0.01, 0.01, 0.01};    ///< principal moments (kg m^2)
+  std::string material = "rubble";
   SourceRef source;
 };
 
 /// A light source for rendering.
 struct LightSpec {
-  enum class Type { directional, point };
+  enum class Type { directional, point, spot };
   Type type = Type::directional;
-  Vec3 position{0, 0, 3};     ///< point lights (m)
-  Vec3 direction{-0.3, -0.2, -1.0};  ///< directional lights: direction the light travels
+  std::string name;           ///< as the source named it ("" for generated lights)
+  Vec3 position{0, 0, 3};     ///< point and spot lights (m)
+  Vec3 direction{-0.3, -0.2, -1.0};  ///< directional and spot lights: direction the light travels
+  double range = 0;           ///< point and spot: distance where the light ends (m); 0 = unlimited
+  double spot_angle = 0;      ///< spot: half-angle of the outer cone (rad)
   Vec3 color{1, 1, 1};
   double intensity = 1.0;
   bool casts_shadows = true;
@@ -96,6 +129,9 @@ struct RobotPlacement {
   std::string name = "robot";
   std::string model = "rescue_robot";
   Pose2 start;
+  /// Height of the start above the floor (m), for starts on raised ground (a model file's
+  /// pose); the robot is lowered until its wheels touch z = height.
+  double height = 0;
   SourceRef source;
 };
 
@@ -109,6 +145,7 @@ struct WorldSpec {
   std::string floor_material = "floor";
   double ambient_temperature = 293.15;  ///< K: air and surfaces without their own temperature
   double gravity = 9.81;            ///< m/s^2, pointing down -z
+  double physics_dt = 0;            ///< s: the file's physics step (an SDF <max_step_size>); 0 = the scenario's
 
   std::vector<MaterialSpec> materials;  ///< in declaration order; names unique
   std::vector<WallSpec> walls;
@@ -118,6 +155,8 @@ struct WorldSpec {
   std::vector<VictimSpec> victims;
   std::vector<LightSpec> lights;
   std::vector<RobotPlacement> robots;
+  std::vector<SolidSpec> solids;    ///< fixed 3-D solids (from SDF)
+  std::vector<BodySpec> bodies;     ///< loose rigid bodies (from SDF)
   std::map<std::string, std::string> metadata;  ///< generator parameters and the like
 
   /// The material with this name, or nullptr.

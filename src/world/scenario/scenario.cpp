@@ -12,6 +12,8 @@ extern const char* const kDefaultScenarioYaml;
 
 namespace {
 
+constexpr double kDeg = M_PI / 180.0;
+
 MazeOptions read_maze(const YamlNode& m, std::uint64_t run_seed) {
   MazeOptions o;
   o.cols = static_cast<int>(m.integer("cols", o.cols, 1, 500));
@@ -50,6 +52,55 @@ void read_svg_defaults(const YamlNode& d, SvgLoadOptions& o) {
   d.finish();
 }
 
+/// world.include: models placed by the scenario, each a URI or {uri, name, pose: {x, y, z,
+/// roll, pitch, yaw}} (m and degrees, like a robot's start).
+std::vector<SdfInclude> read_includes(const YamlNode& w, const std::string& file) {
+  std::vector<SdfInclude> out;
+  if (!w.has("include")) return out;
+  if (!w.has_sequence("include")) throw Error(w.where("include"), "expected a list of model URIs or {uri, name, pose} maps");
+  const auto items = w.sequence("include");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const YamlNode& n = items[i];
+    SdfInclude inc;
+    inc.source = n.where();
+    if (inc.source.file.empty()) inc.source.file = file;
+    if (!n.is_map()) {
+      inc.uri = n.scalar();
+    } else {
+      inc.uri = n.string("uri", "");
+      inc.name = n.string("name", "");
+      if (n.has("pose")) {
+        const YamlNode p = n.map("pose");
+        inc.pose = Pose3::from_rpy(Vec3(p.required_number("x"), p.required_number("y"), p.number("z", 0)),
+                                   p.number("roll", 0, -360, 360) * kDeg, p.number("pitch", 0, -360, 360) * kDeg,
+                                   p.number("yaw", 0, -360, 360) * kDeg);
+        inc.has_pose = true;
+        p.finish();
+      }
+      n.finish();
+    }
+    if (inc.uri.empty()) throw Error(n.where(), "an include needs a model URI (model://name, a model folder or an .sdf file)");
+    out.push_back(std::move(inc));
+  }
+  return out;
+}
+
+/// Adds what a scenario's SDF models bring (solids, bodies, their victims and robot starts,
+/// materials) to a drawn or generated world, and grows the floor to cover them.
+void add_models(WorldSpec& w, const WorldSpec& models) {
+  for (const auto& m : models.materials) {
+    if (!w.find_material(m.name)) w.set_material(m);
+  }
+  w.solids.insert(w.solids.end(), models.solids.begin(), models.solids.end());
+  w.bodies.insert(w.bodies.end(), models.bodies.begin(), models.bodies.end());
+  w.victims.insert(w.victims.end(), models.victims.begin(), models.victims.end());
+  w.robots.insert(w.robots.end(), models.robots.begin(), models.robots.end());
+  Box2 b{w.floor_min, w.floor_max};
+  b.extend(models.content_bounds());
+  w.floor_min = b.min;
+  w.floor_max = b.max;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& file, const ModelMap& models) {
@@ -70,6 +121,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   s.render_latency = render.number("latency", s.render_latency, -1, 10);
   render.finish();
   const YamlNode physics = root.map("physics");
+  const bool dt_given = physics.has("dt");
   s.physics_dt = physics.number("dt", s.physics_dt, 1e-4, 0.05);
   s.solver_iterations = static_cast<int>(physics.integer("solver_iterations", s.solver_iterations, 1, 1000));
   physics.finish();
@@ -78,21 +130,34 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   s.svg_options.units_per_metre = w.number("svg_scale", s.svg_options.units_per_metre, 1e-6, 1e9);
   s.svg_options.ambient_temperature = w.number("ambient_temperature", s.svg_options.ambient_temperature, 1, 2000);
   read_svg_defaults(w.map("defaults"), s.svg_options);
-  const bool has_svg = w.has("svg"), has_maze = w.has("maze");
-  if (has_svg && has_maze) throw Error(w.where("svg"), "give either world.svg or world.maze, not both");
+  const bool has_svg = w.has("svg"), has_maze = w.has("maze"), has_sdf = w.has("sdf");
+  if (int(has_svg) + int(has_maze) + int(has_sdf) > 1) {
+    throw Error(w.where(has_svg ? "svg" : "maze"), "give one of world.svg, world.maze or world.sdf, not several");
+  }
+  const bool on_disk = !file.empty() && file != "<built-in>";
+  const auto beside_scenario = [&](std::filesystem::path p) {
+    if (p.is_relative() && on_disk) p = std::filesystem::path(file).parent_path() / p;
+    return p;
+  };
   if (has_svg) {
-    std::filesystem::path p = w.string("svg", "");
-    if (p.is_relative() && !file.empty() && file != "<built-in>") p = std::filesystem::path(file).parent_path() / p;
-    s.svg = p;
+    s.svg = beside_scenario(w.string("svg", ""));
+  } else if (has_sdf) {
+    s.sdf = beside_scenario(w.string("sdf", ""));
   } else {
     s.maze = read_maze(w.map("maze"), s.seed);
   }
+  for (const auto& p : root.strings("resource_paths", {})) s.resource_paths.push_back(beside_scenario(p));
+  s.includes = read_includes(w, on_disk ? file : "");
   w.finish();
-  const bool on_disk = !file.empty() && file != "<built-in>";
-  for (const auto& p : root.strings("resource_paths", {})) {
-    std::filesystem::path dir = p;
-    if (dir.is_relative() && on_disk) dir = std::filesystem::path(file).parent_path() / dir;
-    s.resource_paths.push_back(dir);
+  if (s.sdf || !s.includes.empty()) {
+    // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
+    SdfOptions o;
+    o.resolver = ResourceResolver(s.resource_paths);
+    auto models = std::make_shared<SdfWorld>(s.sdf ? load_sdf_world(*s.sdf, o) : SdfWorld{});
+    add_sdf_includes(s.includes, o, *models);
+    // an SDF world's <max_step_size> is the step unless the scenario gives physics.dt
+    if (s.sdf && !dt_given && models->spec.physics_dt >= 1e-4 && models->spec.physics_dt <= 0.05) s.physics_dt = models->spec.physics_dt;
+    s.models = std::move(models);
   }
   RobotReadContext context{on_disk ? file : "", s.resource_paths};
   const auto robots = root.sequence("robots");
@@ -116,13 +181,23 @@ std::string default_scenario_text() { return kDefaultScenarioYaml; }
 
 WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
   WorldSpec w;
-  if (scenario.svg) {
-    SvgLoadResult r = load_svg_world(*scenario.svg, scenario.svg_options);
-    if (diagnostics) diagnostics->append(r.diagnostics);
-    w = std::move(r.world);
+  if (scenario.sdf) {
+    // the SDF world (with any includes) was read with the scenario
+    w = scenario.models->spec;
+    if (diagnostics) diagnostics->append(scenario.models->diagnostics);
   } else {
-    const MazeOptions opts = scenario.maze ? *scenario.maze : MazeOptions{};
-    w = maze_to_world(generate_maze(opts));
+    if (scenario.svg) {
+      SvgLoadResult r = load_svg_world(*scenario.svg, scenario.svg_options);
+      if (diagnostics) diagnostics->append(r.diagnostics);
+      w = std::move(r.world);
+    } else {
+      const MazeOptions opts = scenario.maze ? *scenario.maze : MazeOptions{};
+      w = maze_to_world(generate_maze(opts));
+    }
+    if (scenario.models) {
+      add_models(w, scenario.models->spec);
+      if (diagnostics) diagnostics->append(scenario.models->diagnostics);
+    }
   }
   w.ambient_temperature = scenario.svg_options.ambient_temperature;
   // the scenario's robots take the world's starts in order, unless they bring their own
@@ -138,6 +213,7 @@ WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
         p.source = {scenario.source_file, 0, "robots[" + std::to_string(i) + "].start"};
       } else if (i < w.robots.size()) {
         p.start = w.robots[i].start;
+        p.height = w.robots[i].height;
         p.source = w.robots[i].source;
       } else {
         throw Error({scenario.source_file, 0, "robots[" + std::to_string(i) + "]"},
@@ -151,24 +227,40 @@ WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
   return w;
 }
 
+namespace {
+
+/// The built-in models plus the robots an SDF world or include describes.
+ModelMap with_sdf_robots(const Scenario& scenario, const ModelMap& models) {
+  ModelMap all = models;
+  if (scenario.models) {
+    for (const auto& [name, spec] : scenario.models->robots) all.emplace(name, spec);
+  }
+  return all;
+}
+
+}  // namespace
+
 std::vector<RobotConfig> robot_configs(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models) {
   if (!scenario.robots.empty()) return scenario.robots;
+  const ModelMap all = with_sdf_robots(scenario, models);
   std::vector<RobotConfig> out;
   for (const auto& p : spec.robots) {
     RobotConfig c;
     c.name = p.name;
     c.model = p.model;
-    const auto it = models.find(p.model);
-    if (it == models.end()) throw Error(p.source, "unknown robot model '" + p.model + "'");
+    const auto it = all.find(p.model);
+    if (it == all.end()) throw Error(p.source, "unknown robot model '" + p.model + "'");
     c.spec = it->second;
+    // a robot from the SDF world is driven from outside unless the scenario says otherwise
+    if (scenario.models && scenario.models->robots.count(p.model)) c.controller = "none";
     out.push_back(std::move(c));
   }
   return out;
 }
 
 World compile_scenario(const Scenario& scenario, const WorldSpec& spec, const ModelMap& models) {
-  // robots described by their own files (URDF) are models of this scenario only
-  ModelMap all = models;
+  // robots described by their own files (URDF, SDF) are models of this scenario only
+  ModelMap all = with_sdf_robots(scenario, models);
   for (const auto& c : scenario.robots) all.emplace(c.model, c.spec);
   World world = compile_world(spec, all);
   const auto configs = robot_configs(scenario, spec, all);

@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "world/maze/maze.h"
 #include "world/robot_spec.h"
+#include "world/sdf/sdf_import.h"
 #include "world/svg/svg_world.h"
 #include "world/world.h"
 #include "world/world_spec.h"
@@ -27,6 +29,7 @@ struct RobotConfig {
   std::string controller = "explorer";  ///< explorer, wall_follower, none (driven from outside, e.g. ROS)
   RobotSpec spec;                   ///< the model with this scenario's sensor and head settings applied
   std::string urdf;                 ///< the URDF file it came from (resolved), "" for built-in models
+  std::string sdf;                  ///< the SDF file it came from (resolved), "" otherwise
   Diagnostics diagnostics;          ///< warnings from importing its description
 };
 
@@ -47,6 +50,11 @@ struct Scenario {
   /// The world comes from exactly one of these.
   std::optional<std::filesystem::path> svg;  ///< resolved against the scenario file's folder
   std::optional<MazeOptions> maze;
+  std::optional<std::filesystem::path> sdf;  ///< an SDF world, resolved like svg
+  /// Models placed into the world (world.include), and an SDF world's own content: read when the
+  /// scenario is parsed (so that `check` reports their errors), added to the world by build_world.
+  std::vector<SdfInclude> includes;
+  std::shared_ptr<const SdfWorld> models;    ///< null when the scenario has neither sdf nor include
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
 
   /// Folders where package:// URIs are looked for first (relative entries are taken from the

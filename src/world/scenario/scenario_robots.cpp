@@ -1,4 +1,5 @@
 #include "world/scenario/scenario_robots.h"
+#include "world/sdf/sdf_import.h"
 
 #include <cmath>
 
@@ -176,6 +177,20 @@ RobotSpec read_urdf_robot(const YamlNode& node, const RobotReadContext& context,
   return u.spec;
 }
 
+/// `sdf:`: a robot from an SDF <model> (a model:// URI, a model folder or an .sdf file).
+RobotSpec read_sdf_robot(const YamlNode& node, const RobotReadContext& context, RobotConfig& c) {
+  SdfOptions o;
+  o.resolver = ResourceResolver(context.resource_paths);
+  const std::string mode = node.choice("collision", "auto", {"auto", "hull", "decompose"});
+  o.collision = mode == "hull" ? CollisionMode::hull : mode == "decompose" ? CollisionMode::decompose : CollisionMode::automatic;
+  o.hull_vertices = static_cast<int>(node.integer("hull_vertices", o.hull_vertices, 4, 4096));
+  const std::string uri = node.string("sdf", "");
+  SdfRobot r = load_sdf_robot(uri, o, {context.file, node.where("sdf").line, node.path() + ".sdf"});
+  c.sdf = r.spec.source_file;
+  c.diagnostics = r.diagnostics;
+  return r.spec;
+}
+
 }  // namespace
 
 RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, const RobotReadContext& context) {
@@ -184,10 +199,14 @@ RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, 
   if (c.name.empty() || c.name.find_first_of("/ ") != std::string::npos) {
     throw Error(node.where("name"), "robot name '" + c.name + "' must be non-empty without '/' or spaces (it names topics)");
   }
-  if (node.has("urdf")) {
-    if (node.has("model")) throw Error(node.where("model"), "give either model (a built-in robot) or urdf (your own), not both");
-    c.spec = read_urdf_robot(node, context, c);
-    c.model = "urdf:" + c.spec.model + ":" + c.name;
+  if (node.has("urdf") && node.has("sdf")) throw Error(node.where("sdf"), "give either urdf or sdf, not both");
+  if (node.has("urdf") || node.has("sdf")) {
+    const char* kind = node.has("urdf") ? "urdf" : "sdf";
+    if (node.has("model")) {
+      throw Error(node.where("model"), std::string("give either model (a built-in robot) or ") + kind + " (your own), not both");
+    }
+    c.spec = node.has("urdf") ? read_urdf_robot(node, context, c) : read_sdf_robot(node, context, c);
+    c.model = std::string(kind) + ":" + c.spec.model + ":" + c.name;
     c.spec.model = c.model;
   } else {
     c.model = node.string("model", c.model);

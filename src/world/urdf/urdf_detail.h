@@ -52,6 +52,10 @@ XmlIndex check_structure(const tinyxml2::XMLElement* robot, const std::string& f
 /// Reads <gazebo> extensions: the drive plugin, sensors, and warnings for what is ignored.
 void read_gazebo(const tinyxml2::XMLElement* robot, const XmlIndex& index, UrdfRobot& out);
 
+/// Reads one <sensor> element mounted on `link` (a URDF <gazebo> block's, or an SDF link's: the
+/// same XML) into out.spec.sensors; unknown types and plugins are warnings in out.diagnostics.
+void read_sensor(const tinyxml2::XMLElement* sensor, const std::string& link, const XmlIndex& index, UrdfRobot& out);
+
 /// Parses "x y z" (or `n` numbers) from an attribute or text; throws naming the element.
 std::vector<double> numbers_of(const char* text, std::size_t n, const XmlIndex& index, const tinyxml2::XMLElement* e,
                                const std::string& what);

@@ -125,7 +125,8 @@ Pose3 pose_of(const XMLElement* e, const XmlIndex& index) {
   return Pose3::from_rpy(Vec3(v[0], v[1], v[2]), v[3], v[4], v[5]);
 }
 
-/// One <sensor> under <gazebo reference="link">.
+}  // namespace
+
 void read_sensor(const XMLElement* sensor, const std::string& link, const XmlIndex& index, UrdfRobot& out) {
   const std::string type = sensor->Attribute("type") ? sensor->Attribute("type") : "";
   const std::string name = sensor->Attribute("name") ? sensor->Attribute("name") : link + "_" + type;
@@ -211,6 +212,8 @@ void read_sensor(const XMLElement* sensor, const std::string& link, const XmlInd
   }
   out.spec.sensors.push_back(s);
 }
+
+namespace {
 
 /// A link's contact friction from Gazebo's <mu1> and <mu2>: its collision shapes get a material
 /// of their own with mu1 as the friction (Bullet's is isotropic), and a differing mu2 becomes an

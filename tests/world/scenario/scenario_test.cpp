@@ -82,7 +82,8 @@ TEST(Scenario, StartCellOutsideTheGrid) {
 }
 
 TEST(Scenario, SvgAndMazeTogetherIsAnError) {
-  EXPECT_NE(error_of("world:\n  svg: a.svg\n  maze: {cols: 3}\n").find("not both"), std::string::npos);
+  EXPECT_NE(error_of("world:\n  svg: a.svg\n  maze: {cols: 3}\n").find("give one of world.svg, world.maze or world.sdf"), std::string::npos);
+  EXPECT_NE(error_of("world:\n  sdf: a.sdf\n  maze: {cols: 3}\n").find("not several"), std::string::npos);
 }
 
 TEST(Scenario, SyntaxErrorHasALine) {
