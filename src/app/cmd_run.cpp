@@ -30,7 +30,8 @@ extern "C" void on_sigint(int) { g_interrupted.store(true); }
 
 struct RunCommand {
   std::string scenario;
-  std::string world_svg;
+  std::string world;
+  std::vector<std::string> resource_paths;
   std::string out;
   std::optional<std::uint64_t> seed;
   std::optional<double> duration;
@@ -62,7 +63,8 @@ int run(const RunCommand& c) {
   // the scenario with the command line's overrides, then the run mode (session/run_mode.h)
   const ModelMap models = builtin_models();
   Scenario s = load_scenario_with_overrides(
-      c.scenario, models, {.seed = c.seed, .duration = c.duration, .rate = c.rate, .world_svg = c.world_svg, .render_quality = c.quality});
+      c.scenario, models, {.seed = c.seed, .duration = c.duration, .rate = c.rate, .world = c.world,
+                  .resource_paths = c.resource_paths, .render_quality = c.quality});
   const RunMode mode = resolve_run_mode({.scenario_realtime = s.realtime,
                                          .realtime = c.realtime,
                                          .lockstep = c.bridges.lockstep,
@@ -149,7 +151,8 @@ void add_run_command(CLI::App& app, Action& action) {
       "Examples:\n"
       "  rescuesim run\n"
       "  rescuesim run worlds/arena.yaml --seed 3\n"
-      "  rescuesim run --world worlds/office.svg --duration 60 --out runs/office\n\n"
+      "  rescuesim run --world worlds/office.svg --duration 60 --out runs/office\n"
+      "  rescuesim run --world worlds/rescue_yard.sdf --resource-path worlds/models   a Gazebo world (docs/worlds.md)\n\n"
       "As a ROS simulator (docs/ros.md): --ros1 and/or --ros2 run in realtime until Ctrl-C, with\n"
       "the built-in controllers off, so ROS nodes drive the robot through /cmd_vel:\n"
       "  roscore &  rescuesim run --ros1 --use-sim-time\n"
@@ -164,7 +167,12 @@ void add_run_command(CLI::App& app, Action& action) {
       "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed\n"
       "  rescuesim recover runs/default.mcap.part        a killed recording, indexed again up to its last chunk");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
-  cmd->add_option("--world", c->world_svg, "use this SVG world instead of the scenario's");
+  cmd->add_option("--world", c->world, "use this world instead of the scenario's: an SVG drawing, or an SDF world (.sdf, .world)");
+  cmd->add_option("--resource-path", c->resource_paths,
+                  "a folder where package:// and model:// URIs are looked for first (repeatable; then the scenario's resource_paths, "
+                  "then ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and, for model://, GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, "
+                  "GAZEBO_MODEL_PATH)")
+      ->allow_extra_args(false);
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
   cmd->add_option("--duration", c->duration, "sim time in seconds")->check(CLI::PositiveNumber);
   cmd->add_option("--sync", c->sync,

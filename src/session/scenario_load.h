@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "world/scenario/scenario.h"
 
@@ -18,7 +19,11 @@ struct ScenarioOverrides {
   std::optional<std::uint64_t> seed;      ///< run seed; also the generated maze's seed
   std::optional<double> duration;         ///< s of sim time
   std::optional<double> rate;             ///< realtime pace: sim seconds per wall second
-  std::string world_svg;                  ///< non-empty: this SVG world instead of the scenario's (a maze is dropped)
+  /// non-empty: this world (an SVG drawing, or an SDF world: .sdf, .world) instead of the
+  /// scenario's, which is dropped with its includes
+  std::string world;
+  /// folders searched first for package:// and model:// URIs, before the scenario's own
+  std::vector<std::string> resource_paths;
   std::string render_quality;             ///< non-empty: low, medium or high
 };
 

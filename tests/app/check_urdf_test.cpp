@@ -10,17 +10,11 @@
 namespace rescuesim {
 namespace {
 
+using testing::quoted;
 using testing::rescuesim;
 using testing::temp_dir;
 using testing::write_text;
 
-/// A path quoted for the shell.
-std::string quoted(const std::filesystem::path& p) {
-  std::string out = "'";
-  out += p.string();
-  out += "'";
-  return out;
-}
 
 TEST(CheckUrdf, TurtleBot3BurgerIsDescribed) {
   const auto robots = std::filesystem::path(RESCUESIM_SOURCE_DIR) / "worlds" / "robots";

@@ -52,11 +52,44 @@ TEST(ScenarioLoad, ReseedCanKeepTheMaze) {
 
 TEST(ScenarioLoad, SvgWorldReplacesTheMaze) {
   ScenarioOverrides o;
-  o.world_svg = "office.svg";
+  o.world = "office.svg";
   const Scenario s = load_scenario_with_overrides("", builtin_models(), o);
   EXPECT_FALSE(s.maze.has_value());
   ASSERT_TRUE(s.svg.has_value());
   EXPECT_EQ(s.svg->string(), "office.svg");
+}
+
+TEST(ScenarioLoad, SdfWorldReplacesTheMazeWithItsModelsAndStep) {
+  // worlds/rescue_yard.sdf: 14 solids, 3 crates, 2 victims, one robot_start, a 5 ms step;
+  // model://rescue_ramp and model://crate come from the --resource-path folder
+  const std::string worlds = std::string(RESCUESIM_SOURCE_DIR) + "/worlds";
+  ScenarioOverrides o;
+  o.world = worlds + "/rescue_yard.sdf";
+  o.resource_paths = {worlds + "/models"};
+  const Scenario s = load_scenario_with_overrides("", builtin_models(), o);
+  EXPECT_FALSE(s.maze.has_value());
+  EXPECT_FALSE(s.svg.has_value());
+  ASSERT_TRUE(s.sdf.has_value());
+  ASSERT_NE(s.models, nullptr);
+  EXPECT_EQ(s.models->spec.solids.size(), 14u);
+  EXPECT_EQ(s.models->spec.bodies.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.physics_dt, 0.005);
+  // the default scenario's robot takes the world's robot_start
+  const WorldSpec w = build_world(s);
+  ASSERT_EQ(w.robots.size(), 1u);
+  EXPECT_DOUBLE_EQ(w.robots[0].start.x, 5.0);
+  EXPECT_DOUBLE_EQ(w.robots[0].start.y, 5.0);
+  EXPECT_EQ(w.victims.size(), 2u);
+  // without the resource path, model://rescue_ramp is nowhere: an Error naming the URI
+  ScenarioOverrides no_path;
+  no_path.world = o.world;
+  try {
+    load_scenario_with_overrides("", builtin_models(), no_path);
+    FAIL() << "model://rescue_ramp was found without its folder";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("model://rescue_ramp"), std::string::npos) << e.what();
+    EXPECT_NE(e.where().file.find("rescue_yard.sdf"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ScenarioLoad, FromAFileAndABadFileNamed) {

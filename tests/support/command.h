@@ -38,6 +38,14 @@ inline void write_text(const std::filesystem::path& p, const std::string& text) 
   std::ofstream(p, std::ios::binary) << text;
 }
 
+/// A path in single quotes, for a command line (the paths tests make hold no quotes).
+inline std::string quoted(const std::filesystem::path& p) {
+  std::string out = "'";
+  out += p.string();
+  out += "'";
+  return out;
+}
+
 /// Runs `command` through the shell (arguments must already be quoted), in `cwd` if given.
 inline CommandResult run_command(const std::string& command, const std::filesystem::path& cwd = {}) {
   static int counter = 0;

@@ -149,16 +149,9 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   for (const auto& p : root.strings("resource_paths", {})) s.resource_paths.push_back(beside_scenario(p));
   s.includes = read_includes(w, on_disk ? file : "");
   w.finish();
-  if (s.sdf || !s.includes.empty()) {
-    // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
-    SdfOptions o;
-    o.resolver = ResourceResolver(s.resource_paths);
-    auto models = std::make_shared<SdfWorld>(s.sdf ? load_sdf_world(*s.sdf, o) : SdfWorld{});
-    add_sdf_includes(s.includes, o, *models);
-    // an SDF world's <max_step_size> is the step unless the scenario gives physics.dt
-    if (s.sdf && !dt_given && models->spec.physics_dt >= 1e-4 && models->spec.physics_dt <= 0.05) s.physics_dt = models->spec.physics_dt;
-    s.models = std::move(models);
-  }
+  s.physics_dt_given = dt_given;
+  // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
+  load_scenario_models(s);
   RobotReadContext context{on_disk ? file : "", s.resource_paths};
   const auto robots = root.sequence("robots");
   for (std::size_t i = 0; i < robots.size(); ++i) {
@@ -169,6 +162,19 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   }
   root.finish();
   return s;
+}
+
+void load_scenario_models(Scenario& s) {
+  s.models.reset();
+  if (!s.sdf && s.includes.empty()) return;
+  SdfOptions o;
+  o.resolver = ResourceResolver(s.resource_paths);
+  auto models = std::make_shared<SdfWorld>(s.sdf ? load_sdf_world(*s.sdf, o) : SdfWorld{});
+  add_sdf_includes(s.includes, o, *models);
+  // an SDF world's <max_step_size> is the step unless the scenario gives physics.dt
+  const double dt = models->spec.physics_dt;
+  if (s.sdf && !s.physics_dt_given && dt >= 1e-4 && dt <= 0.05) s.physics_dt = dt;
+  s.models = std::move(models);
 }
 
 Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models) {

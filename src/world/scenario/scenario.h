@@ -42,6 +42,7 @@ struct Scenario {
   bool realtime = false;            ///< paced to the wall clock (else lockstep, as fast as possible)
   double rate = 1.0;                ///< realtime pace: sim seconds per wall second
   double physics_dt = 0.005;        ///< s
+  bool physics_dt_given = false;    ///< physics.dt was in the file (else an SDF world's step may set it)
   int solver_iterations = 10;
   bool stop_when_all_found = false; ///< end the run once every victim has been seen
   std::string render_quality = "low";  ///< camera images: low, medium or high (see docs/rendering.md)
@@ -72,6 +73,11 @@ using ModelMap = std::map<std::string, RobotSpec>;
 /// are the robot models it may use. Throws Error naming the key path for unknown keys, wrong
 /// types and impossible values (fov 0, negative range, rate 0, ...).
 Scenario parse_scenario(const std::string& yaml_text, const std::string& file, const ModelMap& models);
+
+/// Reads the scenario's SDF world and includes (with its resource_paths) into `s.models`, or
+/// clears it when there are none; takes the SDF's physics step unless physics_dt_given. Called
+/// by parse_scenario, and again by whoever changes the world or the includes afterwards.
+void load_scenario_models(Scenario& s);
 
 /// Reads a scenario file.
 Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models);
