@@ -22,6 +22,7 @@ namespace rescuesim::sdf_detail {
 struct Parsed {
   sdf::Root root;
   std::string declared_version;  ///< the <sdf version> the file declares
+  double seconds = 0;            ///< spent in sdformat's parser (its includes too)
 };
 
 /// Parses SDF text (`file` names it and anchors relative URIs); model:// resolves through the

@@ -344,6 +344,7 @@ SdfWorld parse_sdf_world(const std::string& text, const std::string& file, const
   Parsed parsed;
   parse_sdf(text, file, options, parsed, out.diagnostics);
   out.sdf_version = parsed.declared_version;
+  out.parse_seconds = parsed.seconds;
   Reader reader{options, file, out.diagnostics, out.meshes, {}};
   WorldReader world(out, reader);
   if (parsed.root.WorldCount() > 0) {
@@ -376,6 +377,7 @@ void add_sdf_includes(const std::vector<SdfInclude>& includes, const SdfOptions&
     const std::filesystem::path file = resolve_model_uri(inc.uri, options, inc.source);
     Parsed parsed;
     parse_sdf(read_text(file), file.string(), options, parsed, report.diagnostics);
+    report.parse_seconds += parsed.seconds;
     const sdf::Model* m = parsed.root.Model();
     if (!m) throw Error(inc.source, "'" + inc.uri + "' (" + file.string() + ") holds no <model> to include");
     reader.file = file.string();

@@ -4,6 +4,7 @@
 #include <tinyxml2.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -258,7 +259,9 @@ void parse_sdf(const std::string& text, const std::string& file, const SdfOption
   const fs::path base = fs::absolute(fs::path(file)).parent_path();
   sdf::ParserConfig config;
   config.SetFindCallback([misses, base, &options](const std::string& uri) { return find_for_sdformat(uri, base, options, *misses); });
+  const auto t0 = std::chrono::steady_clock::now();
   const sdf::Errors errors = out.root.LoadSdfString(text, config);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!errors.empty()) throw_errors(errors, file, out.declared_version, *misses);
   if (minor > 9) diagnostics.warn(at_top, "declares SDF " + out.declared_version + "; read as 1.9 (sdformat 12 reads SDF up to 1.9)");
 }
