@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "sensors/lidar.h"
 #include "sim/simulation.h"
 #include "world/scenario/scenario.h"
 #include "world/sdf/sdf_import.h"
@@ -133,6 +134,37 @@ Simulation simulation_of(const Scenario& s) {
   SimOptions o;
   o.physics.dt = s.physics_dt;
   return Simulation(compile_scenario(s, build_world(s), {}), o);
+}
+
+TEST(SdfWorld, TheRobotsLidarReadsTheMeshRampAtTheRangeItsGeometrySays) {
+  // the skid steer's gpu_lidar (no <noise>: exact ranges), level, about 0.2 m up: its beams
+  // toward +x meet the slope where the slope is as high as the lidar, x = 2 + h / 0.15
+  Simulation sim = simulation_of(course_scenario(0.5));
+  msg::LaserScan scan;
+  int scans = 0;
+  sim.bus().subscribe("/scan", [&](const Topic&, const msg::Message& m) {
+    scan = std::get<msg::LaserScan>(m);
+    ++scans;
+  });
+  sim.step_until(SimTime::from_seconds(0.55));
+  ASSERT_GT(scans, 0);
+  ASSERT_EQ(scan.ranges.size(), 360u);
+  const SensorSpec& lidar = *sim.world().robots[0].spec.find_sensor("lidar");
+  EXPECT_EQ(lidar.lidar.noise.stddev, 0.0);
+  const Pose3 X_WS = sensor_pose_in_world(sim.world(), sim.state(), 0, lidar);
+  ASSERT_LT(X_WS.p.z(), kRampHeight) << "the lidar must be below the ramp's top to see its slope";
+  const double x_hit = kRampStart + X_WS.p.z() / kSlope;
+  int checked = 0;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const double angle = scan.angle_min + static_cast<double>(i) * scan.angle_increment + X_WS.yaw();
+    // beams within 5 degrees of +x, whose hit lies on the slope's width
+    if (std::abs(angle) > 5 * M_PI / 180) continue;
+    const double range = (x_hit - X_WS.p.x()) / std::cos(angle);
+    if (std::abs(X_WS.p.y() + range * std::sin(angle)) > kRampHalfWidth - 0.05) continue;
+    EXPECT_NEAR(scan.ranges[i], range, 0.01) << "beam " << i << " at " << angle << " rad";
+    ++checked;
+  }
+  EXPECT_GE(checked, 9);
 }
 
 TEST(SdfWorld, SkidSteerFromItsSdfDrivesAtTheCommandedSpeed) {

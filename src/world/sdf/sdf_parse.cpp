@@ -1,6 +1,7 @@
 // Parsing SDF with sdformat 12: model:// look-up (the resolver's folders, Gazebo's variables,
 // then the built-in sun and ground_plane), model.config, version checks, and sdformat's errors
 // turned into rescuesim Errors that name the file, the line and the element.
+#include <sdf/Console.hh>
 #include <tinyxml2.h>
 #include <unistd.h>
 
@@ -255,6 +256,11 @@ void parse_sdf(const std::string& text, const std::string& file, const SdfOption
     throw Error(at_top, "declares SDF " + out.declared_version + "; sdformat 12 reads SDF up to 1.9");
   }
 
+  // sdformat prints its errors and warnings to the terminal too (in colour); they reach the user
+  // once, as the Error or warnings made here from the same messages. It still logs to
+  // ~/.sdformat/sdformat.log, as it does for Gazebo.
+  static std::once_flag quiet;
+  std::call_once(quiet, [] { sdf::Console::Instance()->SetQuiet(true); });
   auto misses = std::make_shared<Misses>();
   const fs::path base = fs::absolute(fs::path(file)).parent_path();
   sdf::ParserConfig config;
