@@ -40,6 +40,15 @@ TEST(CheckSdf, RescueYardIsDescribedModelByModel) {
   EXPECT_NE(r.out.find("physics step 0.005"), std::string::npos) << r.out;
 }
 
+TEST(CheckSdf, ADrawnWorldTakesModelsPlacedByTheScenario) {
+  // worlds/arena_models.yaml: the SVG arena (13 walls, 5 rubble) plus two model://crate includes
+  const auto r = rescuesim("check " + quoted(kWorlds / "arena_models.yaml"));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("walls         13"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rubble        5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("model bodies  2"), std::string::npos) << r.out;
+}
+
 TEST(CheckSdf, EveryKindOfBadSdfExitsTwoNamingTheFile) {
   const auto dir = temp_dir("check-sdf");
   fs::create_directories(dir / "junk_model" / "meshes");
