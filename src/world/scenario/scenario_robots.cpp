@@ -162,13 +162,19 @@ void read_drive(const YamlNode& d, RobotSpec& spec) {
   d.finish();
 }
 
+/// The collision settings a `urdf:` or `sdf:` robot entry may give, into its importer's options.
+template <class Options>
+void read_collision_settings(const YamlNode& node, Options& o) {
+  const std::string mode = node.choice("collision", "auto", {"auto", "hull", "decompose"});
+  o.collision = mode == "hull" ? CollisionMode::hull : mode == "decompose" ? CollisionMode::decompose : CollisionMode::automatic;
+  o.hull_vertices = static_cast<int>(node.integer("hull_vertices", o.hull_vertices, 4, 4096));
+}
+
 /// `urdf:`: the robot's own description, with its collision settings.
 RobotSpec read_urdf_robot(const YamlNode& node, const RobotReadContext& context, RobotConfig& c) {
   UrdfOptions o;
   o.resolver = ResourceResolver(context.resource_paths);
-  const std::string mode = node.choice("collision", "auto", {"auto", "hull", "decompose"});
-  o.collision = mode == "hull" ? CollisionMode::hull : mode == "decompose" ? CollisionMode::decompose : CollisionMode::automatic;
-  o.hull_vertices = static_cast<int>(node.integer("hull_vertices", o.hull_vertices, 4, 4096));
+  read_collision_settings(node, o);
   const std::string uri = node.string("urdf", "");
   const std::filesystem::path file = o.resolver.resolve(uri, {context.file, node.where("urdf").line, node.path() + ".urdf"});
   UrdfRobot u = load_urdf(file, o);
@@ -181,9 +187,7 @@ RobotSpec read_urdf_robot(const YamlNode& node, const RobotReadContext& context,
 RobotSpec read_sdf_robot(const YamlNode& node, const RobotReadContext& context, RobotConfig& c) {
   SdfOptions o;
   o.resolver = ResourceResolver(context.resource_paths);
-  const std::string mode = node.choice("collision", "auto", {"auto", "hull", "decompose"});
-  o.collision = mode == "hull" ? CollisionMode::hull : mode == "decompose" ? CollisionMode::decompose : CollisionMode::automatic;
-  o.hull_vertices = static_cast<int>(node.integer("hull_vertices", o.hull_vertices, 4, 4096));
+  read_collision_settings(node, o);
   const std::string uri = node.string("sdf", "");
   SdfRobot r = load_sdf_robot(uri, o, {context.file, node.where("sdf").line, node.path() + ".sdf"});
   c.sdf = r.spec.source_file;
