@@ -125,8 +125,11 @@ bool check_sdf(const std::string& file, const CheckOptions& o) {
                 m.is_static ? "static, " : "", m.links, m.joints, m.collisions, m.visuals);
   }
   for (const auto& m : w.meshes) {
-    std::printf("  mesh  %s (%s::%s): %s, %d triangles%s\n", m.uri.c_str(), m.model.c_str(), m.link.c_str(),
-                m.collision ? "collision" : "visual", m.triangles, m.collision ? (m.exact ? ", exact triangle mesh" : ", convex") : "");
+    std::string texture;
+    if (!m.texture.empty()) texture = "; texture " + m.texture + (m.texture_drawn ? " (drawn)" : " (not drawn: missing, or on a convex shape)");
+    std::printf("  mesh  %s (%s::%s): %s, %d triangles%s%s\n", m.uri.c_str(), m.model.c_str(), m.link.c_str(),
+                m.collision ? "collision" : "visual", m.triangles, m.collision ? (m.exact ? ", exact triangle mesh" : ", convex") : "",
+                texture.c_str());
   }
   for (const auto& l : w.spec.lights) {
     std::printf("  light %-20s %s\n", l.name.c_str(), light_type_name(l.type));

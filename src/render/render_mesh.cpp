@@ -104,11 +104,14 @@ RenderMesh sphere_mesh(double r) {
   return m;
 }
 
-/// Flat-shaded copy of a triangle mesh; texture coordinates project each face on the plane of
-/// the two axes its normal is least aligned with.
-RenderMesh flat_mesh(const TriangleMesh& t) {
+/// Flat-shaded copy of a triangle mesh; texture coordinates are the image's (`image`, when it
+/// has one per triangle), else they project each face on the plane of the two axes its normal
+/// is least aligned with.
+RenderMesh flat_mesh(const TriangleMesh& t, const SurfaceImage* image = nullptr) {
   RenderMesh m;
-  for (const auto& tri : t.triangles) {
+  const bool image_uvs = image && image->corner_uvs.size() == t.triangles.size();
+  for (std::size_t f = 0; f < t.triangles.size(); ++f) {
+    const auto& tri = t.triangles[f];
     const Vec3& a = t.vertices[static_cast<std::size_t>(tri[0])];
     const Vec3& b = t.vertices[static_cast<std::size_t>(tri[1])];
     const Vec3& c = t.vertices[static_cast<std::size_t>(tri[2])];
@@ -120,7 +123,10 @@ RenderMesh flat_mesh(const TriangleMesh& t) {
     const int iu = axis == 0 ? 1 : 0, iv = axis == 2 ? 1 : 2;
     std::uint32_t k[3];
     const Vec3* ps[3] = {&a, &b, &c};
-    for (int i = 0; i < 3; ++i) k[i] = add_vertex(m, *ps[i], n, (*ps[i])[iu], (*ps[i])[iv]);
+    for (int i = 0; i < 3; ++i) {
+      const Vec2 uv = image_uvs ? image->corner_uvs[f][static_cast<std::size_t>(i)] : Vec2((*ps[i])[iu], (*ps[i])[iv]);
+      k[i] = add_vertex(m, *ps[i], n, uv.x(), uv.y());
+    }
     add_triangle(m, k[0], k[1], k[2]);
   }
   return m;
@@ -133,8 +139,8 @@ RenderMesh render_mesh_of(const Geometry& g) {
     case Geometry::Type::box: return box_mesh(g.size);
     case Geometry::Type::cylinder: return cylinder_mesh(0.5 * g.size.x(), g.size.z());
     case Geometry::Type::sphere: return sphere_mesh(0.5 * g.size.x());
-    case Geometry::Type::convex:
-    case Geometry::Type::mesh: return flat_mesh(mesh_of(g));
+    case Geometry::Type::convex: return flat_mesh(mesh_of(g));
+    case Geometry::Type::mesh: return flat_mesh(g.mesh, g.image.get());
   }
   return {};
 }

@@ -52,6 +52,21 @@ int link_material(RenderScene& s, const std::string& name, double ambient) {
   return static_cast<int>(s.materials.size()) - 1;
 }
 
+/// The material `m` with an image drawn on it: a copy of it named after both, added once. The
+/// image replaces the albedo (Gazebo multiplies a texture by the diffuse colour, which files
+/// that carry a texture leave white).
+int image_material(RenderScene& s, int m, const std::string& image) {
+  const std::string name = s.materials[static_cast<std::size_t>(m)].name + " + " + image;
+  if (const int i = find_material(s, name); i >= 0) return i;
+  RenderMaterial r = s.materials[static_cast<std::size_t>(m)];
+  r.name = name;
+  r.image = image;
+  r.albedo = Vec3::Ones();
+  r.texture = TextureKind::none;
+  s.materials.push_back(std::move(r));
+  return static_cast<int>(s.materials.size()) - 1;
+}
+
 int add_mesh(RenderScene& s, const Geometry& g) {
   s.meshes.push_back(render_mesh_of(g));
   return static_cast<int>(s.meshes.size()) - 1;
@@ -83,7 +98,7 @@ RenderScene build_render_scene(const World& world) {
     item.source = RenderItem::Source::static_object;
     item.index = static_cast<int>(i);
     item.mesh = add_mesh(s, o.geometry);
-    item.material = o.material;
+    item.material = o.geometry.image ? image_material(s, o.material, o.geometry.image->file) : o.material;
     item.temperature = world.temperature_of(o);
     item.X_WI = o.X_WO;
     item.casts_shadows = o.kind != ObjectKind::floor;

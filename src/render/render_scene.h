@@ -35,6 +35,9 @@ struct RenderMaterial {
   Vec3 albedo{0.2, 0.2, 0.2};       ///< linear reflectance per channel (from MaterialSpec::color, sRGB)
   double roughness = 0.8;           ///< 0 mirror-like .. 1 matte
   TextureKind texture = TextureKind::none;
+  /// an image drawn instead of the albedo (a mesh file's texture), at the mesh's own texture
+  /// coordinates (0..1, v up) rather than metric ones; "" for none
+  std::string image;
   double temperature = 293.15;      ///< K: the material's own, or the ambient temperature
   double emissivity = 0.95;         ///< in (0, 1]
 };
@@ -90,7 +93,8 @@ void update_render_scene(RenderScene& scene, const State& state);
 double srgb_to_linear(double c);
 
 /// The render mesh of a geometry in its own frame (boxes, cylinders and spheres with smooth or
-/// per-face normals and metric texture coordinates; convex and mesh shapes flat-shaded).
+/// per-face normals and metric texture coordinates; convex and mesh shapes flat-shaded, a mesh
+/// with an image at that image's texture coordinates).
 RenderMesh render_mesh_of(const Geometry& g);
 
 }  // namespace rescuesim

@@ -3,6 +3,8 @@
 /// and rendering (triangle meshes). All in the object's own frame, metres.
 
 #include <array>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "core/pose.h"
@@ -15,6 +17,13 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;
 };
 
+/// An image on a triangle mesh, for the cameras (physics and the ray sensors ignore it): the
+/// texture a mesh file names, with the texture coordinates of each triangle's corners.
+struct SurfaceImage {
+  std::string file;                                ///< the image file (PNG, JPEG, BMP, TGA), absolute
+  std::vector<std::array<Vec2, 3>> corner_uvs;     ///< per triangle of the mesh: (u, v) of its corners, v up
+};
+
 /// A collision and visual shape.
 struct Geometry {
   enum class Type { box, cylinder, sphere, convex, mesh };
@@ -24,6 +33,8 @@ struct Geometry {
   Vec3 size{1, 1, 1};
   /// convex: hull points; mesh: triangles (both also carry a mesh for rendering)
   TriangleMesh mesh;
+  /// mesh only: an image drawn on it (null: the material's colour). Shared: copies are cheap.
+  std::shared_ptr<const SurfaceImage> image;
 
   static Geometry box(const Vec3& full_extents);
   static Geometry cylinder(double radius, double length);

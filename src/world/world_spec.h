@@ -129,10 +129,10 @@ struct RobotPlacement {
   std::string name = "robot";
   std::string model = "rescue_robot";
   Pose2 start;
+  SourceRef source;
   /// Height of the start above the floor (m), for starts on raised ground (a model file's
   /// pose); the robot is lowered until its wheels touch z = height.
   double height = 0;
-  SourceRef source;
 };
 
 /// The authored world.

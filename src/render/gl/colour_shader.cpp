@@ -174,8 +174,9 @@ const char* const kColorFragment = R"(
 layout(location = 0) out vec4 o_color;
 const int kMaxMaterials = 64;
 uniform vec4 u_material[kMaxMaterials];  // linear albedo, roughness
-uniform float u_layer[kMaxMaterials];    // pattern layer (TextureKind)
-uniform sampler2DArray u_patterns;       // albedo multipliers / 2, repeating every u_period
+uniform float u_layer[kMaxMaterials];    // pattern layer (TextureKind), or an image's (from kImageLayer on)
+uniform sampler2DArray u_patterns;       // albedo multipliers / 2, repeating every u_period; then images' albedo / 2
+const float kImageLayer = 6.0;           // the first image layer (after the TextureKind patterns)
 uniform float u_period;                  // m
 flat in int v_material;
 in vec2 v_uv;
@@ -223,7 +224,9 @@ float contact(float height, float upright) { return mix(1.0, mix(0.6, 1.0, smoot
 
 void main() {
   int m = clamp(v_material, 0, kMaxMaterials - 1);
-  vec3 albedo = u_material[m].rgb * 2.0 * texture(u_patterns, vec3(v_uv / u_period, u_layer[m])).rgb;
+  // patterns repeat in metres along the surface; an image spans its mesh's texture coordinates
+  vec2 st = u_layer[m] >= kImageLayer ? v_uv : v_uv / u_period;
+  vec3 albedo = u_material[m].rgb * 2.0 * texture(u_patterns, vec3(st, u_layer[m])).rgb;
 #if PER_PIXEL
   vec3 n = normalize(v_normal);
   vec3 to_eye = normalize(u_eye - v_world);

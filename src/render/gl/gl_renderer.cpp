@@ -14,8 +14,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <stb_image.h>
 
 #include "core/error.h"
 #include "render/gl/egl_context.h"
@@ -35,7 +40,8 @@ constexpr double kAoRadius = 0.35;     ///< SSAO sampling radius (m)
 constexpr double kAoBlurSigma = 1.5;   ///< px
 constexpr int kPatternSize = 512;      ///< texels across a pattern layer
 constexpr float kPatternPeriod = 2.0f; ///< m covered by a pattern layer (3.9 mm texels)
-constexpr int kPatternLayers = 6;      ///< one per TextureKind
+constexpr int kPatternLayers = 6;      ///< one per TextureKind; mesh images follow them (kImageLayer in the shader)
+constexpr int kMaxImages = 16;         ///< mesh images per scene (each a 512 x 512 layer, 1.4 MB with mipmaps)
 
 // lighting beside the scene's lights: ambient from the sky and the ground, a weak fill light
 // from the side opposite the sun (all linear)
@@ -93,8 +99,11 @@ class GlRenderer final : public Renderer {
 
   /// The colour program of the current quality.
   const Program& color() const { return color_[static_cast<int>(quality())]; }
-  /// Bakes the surface patterns into patterns_.
+  /// Bakes the surface patterns into patterns_, then the scene's images after them.
   void bake_patterns();
+  /// Decodes an image file and writes it, resampled to a layer, into layer `layer` of patterns_;
+  /// false (and a warning) when the file cannot be decoded.
+  bool upload_image(const std::string& file, int layer);
   /// Compiles the three colour programs for `lights` lights (0..kMaxLights).
   void build_color_programs(int lights);
 
@@ -104,6 +113,7 @@ class GlRenderer final : public Renderer {
   std::map<int, Program> blur_;  ///< blur programs by radius (px), made on first use
   GLint color_model_[3] = {-1, -1, -1}, depth_model_ = -1, thermal_model_ = -1;
   Texture patterns_;
+  std::vector<std::string> images_;  ///< image files of the scene, in layer order after the patterns
   int light_count_ = -1;  ///< lights the colour programs were compiled for
   VertexArray empty_vao_;
   GpuScene scene_;
@@ -162,7 +172,7 @@ void GlRenderer::bake_patterns() {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
   patterns_ = Texture(id);
-  glTextureStorage3D(id, levels, GL_RGBA8, kPatternSize, kPatternSize, kPatternLayers);
+  glTextureStorage3D(id, levels, GL_RGBA8, kPatternSize, kPatternSize, kPatternLayers + static_cast<int>(images_.size()));
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);  // bilinear in one level: trilinear costs a CPU rasteriser 15 %
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -180,8 +190,47 @@ void GlRenderer::bake_patterns() {
     glNamedFramebufferTextureLayer(fbo.id(), GL_COLOR_ATTACHMENT0, id, 0, layer);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
-  glGenerateTextureMipmap(id);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  for (std::size_t i = 0; i < images_.size(); ++i) upload_image(images_[i], kPatternLayers + static_cast<int>(i));
+  glGenerateTextureMipmap(id);
+}
+
+bool GlRenderer::upload_image(const std::string& file, int layer) {
+  // stb_image (Debian's libstb) decodes PNG, JPEG, BMP and TGA into 8-bit RGB, rows top-down
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> pixels(stbi_load(file.c_str(), &w, &h, &channels, 3), stbi_image_free);
+  if (!pixels || w <= 0 || h <= 0) {
+    spdlog::warn("cannot decode the texture image {} ({}): the mesh is drawn white", file, stbi_failure_reason());
+    return false;
+  }
+  // resampled (bilinear) to the layer's size; layer row 0 is t = 0, the image's bottom row, as
+  // OBJ and COLLADA texture coordinates have v up; texels are linear albedo / 2, as the patterns'
+  std::vector<std::uint8_t> texels(static_cast<std::size_t>(4 * kPatternSize * kPatternSize));
+  float linear[256];
+  for (int i = 0; i < 256; ++i) linear[i] = static_cast<float>(srgb_to_linear(i / 255.0));
+  const auto at = [&](int x, int y, int c) {
+    return linear[pixels.get()[3 * (static_cast<std::size_t>(std::clamp(y, 0, h - 1)) * static_cast<std::size_t>(w) +
+                                    static_cast<std::size_t>(std::clamp(x, 0, w - 1))) + static_cast<std::size_t>(c)]];
+  };
+  for (int row = 0; row < kPatternSize; ++row) {
+    const float fy = (1.0f - (row + 0.5f) / kPatternSize) * static_cast<float>(h) - 0.5f;
+    const int y0 = static_cast<int>(std::floor(fy));
+    const float ty = fy - static_cast<float>(y0);
+    for (int col = 0; col < kPatternSize; ++col) {
+      const float fx = (col + 0.5f) / kPatternSize * static_cast<float>(w) - 0.5f;
+      const int x0 = static_cast<int>(std::floor(fx));
+      const float tx = fx - static_cast<float>(x0);
+      std::uint8_t* out = &texels[4 * (static_cast<std::size_t>(row) * kPatternSize + static_cast<std::size_t>(col))];
+      for (int c = 0; c < 3; ++c) {
+        const float top = at(x0, y0, c) * (1 - tx) + at(x0 + 1, y0, c) * tx;
+        const float bottom = at(x0, y0 + 1, c) * (1 - tx) + at(x0 + 1, y0 + 1, c) * tx;
+        out[c] = static_cast<std::uint8_t>(std::lround(std::clamp(0.5f * (top * (1 - ty) + bottom * ty), 0.0f, 1.0f) * 255.0f));
+      }
+      out[3] = 255;
+    }
+  }
+  glTextureSubImage3D(patterns_.id(), 0, 0, 0, layer, kPatternSize, kPatternSize, 1, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+  return true;
 }
 
 void GlRenderer::configure_shadows(Quality q) {
@@ -223,13 +272,23 @@ void GlRenderer::do_load(const RenderScene& scene) {
   }
   scene_.upload(scene);
 
-  // materials: linear albedo and roughness, texture kind
+  // materials: linear albedo and roughness, texture kind or image layer (the first kMaxImages
+  // images; materials with more are drawn in their pattern)
   std::vector<float> material(4 * kMaxMaterials, 0.0f), layer(kMaxMaterials, 0.0f);
+  std::vector<std::string> images;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const RenderMaterial& m = scene.materials[i];
     for (int c = 0; c < 3; ++c) material[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(m.albedo[c]);
     material[4 * i + 3] = static_cast<float>(m.roughness);
     layer[i] = static_cast<float>(m.texture);
+    if (m.image.empty()) continue;
+    auto it = std::find(images.begin(), images.end(), m.image);
+    if (it == images.end() && images.size() < static_cast<std::size_t>(kMaxImages)) it = images.insert(images.end(), m.image);
+    if (it != images.end()) layer[i] = static_cast<float>(kPatternLayers + (it - images.begin()));
+  }
+  if (images != images_) {
+    images_ = std::move(images);
+    patterns_ = Texture();  // baked again, with these images, on the next colour image
   }
 
   // lights: the first kMaxLights; the first shadow-casting directional one gets the shadow map

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct LoadedMesh {
   TriangleMesh mesh;
   std::optional<Vec3> color;                ///< diffuse colour of the first material that has one (sRGB, 0..1)
   std::string format;                       ///< "stl", "collada", "obj", "gltf"
+  std::string texture;                      ///< the diffuse texture the file names ("" for none), as written
+  /// that texture, found beside the mesh file, with every triangle's texture coordinates; null
+  /// when the file names none, it is missing, embedded, or the mesh has no texture coordinates
+  std::shared_ptr<const SurfaceImage> image;
 };
 
 /// Loads a mesh file. `named_by` is the file and element that referred to it (a URDF's

@@ -85,14 +85,17 @@ TriangleSoup scene_triangles(const aiScene& scene, const Eigen::Matrix4d& X_root
         soup.vertices.push_back(R * Vec3(p.x, p.y, p.z) + t);
       }
       // its triangles; a mirroring transform turns the winding, so swap it back
+      const aiVector3D* uv = mesh.mTextureCoords[0];
+      if (uv == nullptr) soup.all_uvs = false;
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];
         if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
-        const unsigned a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
+        unsigned a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
         if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices) continue;
-        std::array<int, 3> tri{base + static_cast<int>(a), base + static_cast<int>(b), base + static_cast<int>(c)};
-        if (mirrored) std::swap(tri[1], tri[2]);
-        soup.triangles.push_back(tri);
+        if (mirrored) std::swap(b, c);
+        soup.triangles.push_back({base + static_cast<int>(a), base + static_cast<int>(b), base + static_cast<int>(c)});
+        const auto corner = [&](unsigned i) { return uv ? Vec2(uv[i].x, uv[i].y) : Vec2(0, 0); };
+        soup.corner_uvs.push_back({corner(a), corner(b), corner(c)});
       }
     });
   });
@@ -116,6 +119,24 @@ std::optional<Vec3> first_diffuse_color(const aiScene& scene, bool last_material
       rgb = rgb.cwiseMax(0.0).cwiseMin(1.0);
       if (linear_color) rgb = rgb.unaryExpr([](double c) { return linear_to_srgb(c); });
       found = rgb;
+    });
+  });
+  return found;
+}
+
+std::string first_diffuse_texture(const aiScene& scene) {
+  std::string found;
+  walk_nodes(scene, Eigen::Matrix4d::Identity(), [&](const aiNode& node, const Eigen::Matrix4d&) {
+    for_node_meshes(scene, node, [&](const aiMesh& mesh) {
+      if (!found.empty() || mesh.mMaterialIndex >= scene.mNumMaterials || scene.mMaterials[mesh.mMaterialIndex] == nullptr) return;
+      const aiMaterial& material = *scene.mMaterials[mesh.mMaterialIndex];
+      for (const aiTextureType type : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR}) {
+        aiString path;
+        if (material.GetTextureCount(type) == 0 || material.GetTexture(type, 0, &path) != AI_SUCCESS) continue;
+        // "*0": a texture embedded in a glTF/GLB, not a file
+        if (path.length > 0 && path.C_Str()[0] != '*') found = path.C_Str();
+        return;
+      }
     });
   });
   return found;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "world/geometry.h"
@@ -21,6 +22,8 @@ std::uint64_t count_triangles(const aiScene& scene);
 struct TriangleSoup {
   std::vector<Vec3> vertices;
   std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<Vec2, 3>> corner_uvs;  ///< per triangle: its corners' first texture coordinates ((0, 0) without)
+  bool all_uvs = true;                          ///< every mesh had texture coordinates
 };
 
 /// Every triangle of every node, mapped through the node transforms (root first) and then
@@ -34,5 +37,9 @@ TriangleSoup scene_triangles(const aiScene& scene, const Eigen::Matrix4d& X_root
 /// .mtl) and, when `last_material_is_default` (assimp's glTF 2 reader), the last one. With
 /// `linear_color` (glTF's baseColorFactor) the colour is converted to sRGB.
 std::optional<Vec3> first_diffuse_color(const aiScene& scene, bool last_material_is_default, bool linear_color);
+
+/// The file name of the first diffuse (or glTF base colour) texture, in node order, as the file
+/// writes it (relative to the mesh file, usually); "" when there is none or it is embedded.
+std::string first_diffuse_texture(const aiScene& scene);
 
 }  // namespace rescuesim::mesh_detail

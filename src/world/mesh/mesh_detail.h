@@ -11,8 +11,10 @@ namespace rescuesim::mesh_detail {
 
 /// Merges vertices with exactly equal coordinates, drops triangles that then repeat a vertex and
 /// vertices no triangle uses. Vertices keep the order of their first use; triangle order and
-/// winding are kept. Deterministic.
-TriangleMesh weld(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
+/// winding are kept. Deterministic. `kept`, when given, receives for each output triangle the
+/// index of the input triangle it came from.
+TriangleMesh weld(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                  std::vector<int>* kept = nullptr);
 
 /// A coarser mesh and where each original vertex went.
 struct ClusteredMesh {

@@ -149,10 +149,29 @@ LoadedMesh load_mesh(const std::filesystem::path& file, const MeshLoadOptions& o
   // one vertex per position, so the mesh is closed where the file meant it to be
   LoadedMesh out;
   out.format = format;
-  out.mesh = mesh_detail::weld(soup.vertices, soup.triangles);
+  std::vector<int> kept;
+  out.mesh = mesh_detail::weld(soup.vertices, soup.triangles, &kept);
   if (out.mesh.triangles.empty()) ctx.fail("has no triangles with three distinct corners");
   const bool gltf2 = importer_name.find("glTF2") != std::string::npos;
   out.color = mesh_detail::first_diffuse_color(*scene, gltf2, format == "gltf");
+  // the texture it names, beside the file (COLLADA may write file:// URIs); the image is only
+  // found here, decoded by whoever draws it
+  out.texture = mesh_detail::first_diffuse_texture(*scene);
+  if (!out.texture.empty() && soup.all_uvs) {
+    std::string name = out.texture;
+    if (name.rfind("file://", 0) == 0) name = name.substr(7);
+    std::replace(name.begin(), name.end(), '\\', '/');  // Windows-made files
+    std::filesystem::path image = name;
+    if (image.is_relative()) image = file.parent_path() / image;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(image, ec)) {
+      auto surface = std::make_shared<SurfaceImage>();
+      surface->file = std::filesystem::absolute(image).lexically_normal().string();
+      surface->corner_uvs.reserve(kept.size());
+      for (int t : kept) surface->corner_uvs.push_back(soup.corner_uvs[static_cast<std::size_t>(t)]);
+      out.image = std::move(surface);
+    }
+  }
   return out;
 }
 

@@ -5,7 +5,7 @@
 
 namespace rescuesim::mesh_detail {
 
-TriangleMesh weld(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+TriangleMesh weld(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, std::vector<int>* kept) {
   const std::size_t n = vertices.size();
 
   // sort vertex indices by coordinates; equal coordinates end up side by side, lowest index first
@@ -33,9 +33,12 @@ TriangleMesh weld(const std::vector<Vec3>& vertices, const std::vector<std::arra
   TriangleMesh out;
   std::vector<int> new_index(n, -1);
   out.triangles.reserve(triangles.size());
-  for (const auto& t : triangles) {
+  if (kept) kept->clear();
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
     std::array<int, 3> r{representative[t[0]], representative[t[1]], representative[t[2]]};
     if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2]) continue;
+    if (kept) kept->push_back(static_cast<int>(i));
     for (int& v : r) {
       int& slot = new_index[v];
       if (slot < 0) {

@@ -123,13 +123,16 @@ Shape mesh(const sdf::Mesh& m, MeshUse use, const ShapeOwner& owner, Reader& r) 
                             num(options.max_extent) + " m)");
   }
 
+  // a texture is drawn on an exact mesh (a static model's); convex pieces have no texture coordinates
   SdfMeshReport report{owner.model, owner.link, m.Uri(), file.string(), owner.collision, use == MeshUse::exact,
-                       static_cast<int>(loaded.mesh.triangles.size())};
+                       static_cast<int>(loaded.mesh.triangles.size()), loaded.texture, loaded.image && use == MeshUse::exact};
   r.meshes.push_back(report);
   Shape out;
   out.mesh_color = loaded.color;
   if (use == MeshUse::exact) {
-    out.pieces.push_back({Geometry::triangles(loaded.mesh), Pose3{}});
+    Geometry g = Geometry::triangles(loaded.mesh);
+    g.image = loaded.image;
+    out.pieces.push_back({std::move(g), Pose3{}});
     return out;
   }
   try {

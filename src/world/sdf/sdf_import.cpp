@@ -137,7 +137,7 @@ class WorldReader {
     const std::string own = name.substr(name.rfind("::") == std::string::npos ? 0 : name.rfind("::") + 2);
     if (starts_with(own, "robot_start")) {
       rep.becomes = "robot start";
-      out_.spec.robots.push_back({start_name(own), "rescue_robot", X_WM.to_pose2(), X_WM.p.z(), at});
+      out_.spec.robots.push_back({start_name(own), "rescue_robot", X_WM.to_pose2(), at, X_WM.p.z()});
     } else if (starts_with(own, "victim")) {
       rep.becomes = "victim";
       victim(m, name, X_WM, at);
@@ -313,7 +313,7 @@ class WorldReader {
     const sdf::Link& root = *m.LinkByName(spec.links.front().name);
     const Pose3 X_WR = X_WM * resolve(root.SemanticPose(), "__model__", r_.at(root.Element()));
     out_.robots[name] = std::move(spec);
-    out_.spec.robots.push_back({name, name, X_WR.to_pose2(), X_WR.p.z(), at});
+    out_.spec.robots.push_back({name, name, X_WR.to_pose2(), at, X_WR.p.z()});
   }
 
   SdfWorld& out_;

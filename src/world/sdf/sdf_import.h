@@ -49,6 +49,8 @@ struct SdfMeshReport {
   bool collision = false;                    ///< from a <collision> (true) or a <visual> (false)
   bool exact = false;                        ///< kept as a triangle mesh (static), else a convex hull
   int triangles = 0;
+  std::string texture;                       ///< the diffuse texture the mesh file names, "" for none
+  bool texture_drawn = false;                ///< found beside it and drawn by the cameras (exact meshes only)
 };
 
 /// An SDF world with everything learnt while reading it.

@@ -382,7 +382,7 @@ SdfRobot from_urdf(const std::filesystem::path& file, const SdfOptions& options)
   SdfRobot out;
   out.spec = std::move(u.spec);
   out.diagnostics = std::move(u.diagnostics);
-  for (const auto& m : u.meshes) out.meshes.push_back({out.spec.model, m.link, m.uri, m.file, m.collision, false, m.triangles});
+  for (const auto& m : u.meshes) out.meshes.push_back({out.spec.model, m.link, m.uri, m.file, m.collision, false, m.triangles, "", false});
   out.drive_source = u.drive_source;
   out.load_seconds = u.load_seconds + u.hull_seconds;
   return out;

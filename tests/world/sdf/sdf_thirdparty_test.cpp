@@ -428,6 +428,16 @@ TEST(SdfThirdPartyRamp, StaticModelFileKeepsTheColladaMeshExact) {
   EXPECT_TRUE(w.meshes[0].exact);
   EXPECT_TRUE(w.meshes[0].collision);
   EXPECT_EQ(report_named(w, "nist_simple_ramp_120")->becomes, "static geometry");
+  // its COLLADA names ../materials/textures/plywood256x256.png: found beside the model and drawn
+  // on the exact mesh, with texture coordinates for every one of its 12 triangles
+  EXPECT_EQ(w.meshes[0].texture, "../materials/textures/plywood256x256.png");
+  EXPECT_TRUE(w.meshes[0].texture_drawn);
+  ASSERT_NE(s.geometry.image, nullptr);
+  EXPECT_TRUE(s.geometry.image->file.ends_with("nist_simple_ramp_120/materials/textures/plywood256x256.png")) << s.geometry.image->file;
+  EXPECT_EQ(s.geometry.image->corner_uvs.size(), 12u);
+  for (const auto& corners : s.geometry.image->corner_uvs) {
+    for (const Vec2& uv : corners) EXPECT_TRUE(uv.allFinite());
+  }
 }
 
 TEST(SdfThirdPartyRamp, IncludedByUriAtAPose) {
