@@ -118,6 +118,38 @@ class Env:
         reward, terminated, truncated = self._core.step(linear, angular)
         return self._observations(), reward, terminated, truncated, self._core.info()
 
+    # -- missions (a scenario with a ``mission:`` block; docs/missions.md) --------------------
+
+    def report(self, x, y, z=0.0):
+        """Reports a victim at (x, y, z) m in the map frame (the world frame) to the referee.
+
+        -> dict(id, outcome, victim, distance, score_change, score, reports_left, message);
+        outcome is accepted, duplicate, false, repeat, out_of_contact, limit_reached,
+        rate_limited, time_over or invalid. RuntimeError without a mission."""
+        return self._core.report(float(x), float(y), float(z))
+
+    def send(self, to, data):
+        """Queues a datagram (bytes) to a robot's or base's name, or "*" for every neighbour;
+        delivered at the next link update if a radio route exists. -> (accepted, reason)"""
+        return self._core.send(str(to), bytes(data))
+
+    def inbox(self):
+        """Takes the datagrams delivered to this robot: [dict(from, data, hops, sent, delivered)]."""
+        return self._core.inbox()
+
+    def comms_status(self):
+        """This robot's radio at the last link update: dict(in_contact, hops_to_base,
+        neighbours [(id, rssi_dbm, margin_db)], bytes_sent, bytes_received, bytes_dropped, relays_left)."""
+        return self._core.comms_status()
+
+    def drop_relay(self):
+        """Drops a relay where the robot stands. -> (ok, relay id or the reason it could not)"""
+        return self._core.drop_relay()
+
+    def mission_score(self):
+        """The referee's score so far (dict), or None when the scenario has no mission."""
+        return self._core.mission_score()
+
     def close(self):
         """Frees the simulation (the observation views stay valid but stop changing)."""
         self._core = None

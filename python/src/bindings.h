@@ -9,6 +9,8 @@ namespace rescuesim::python {
 void bind_scenarios(pybind11::module_& m);
 /// EnvOptions, EnvCore, VecEnvCore (module.cpp).
 void bind_environments(pybind11::module_& m);
+/// EnvCore's mission calls: report, send, inbox, comms_status, drop_relay, mission_score (bind_mission.cpp).
+void add_mission_methods(pybind11::class_<class EnvCore>& cls);
 /// TrialOptions, run_trial, ResultsFile, merge_results, ... (bind_batch.cpp).
 void bind_batch(pybind11::module_& m);
 

@@ -112,6 +112,8 @@ class EnvCore {
   /// How many times the simulation was built: once per seed change, not per reset.
   int builds() const { return builds_; }
   EpisodeInfo info() const;
+  /// Index of the robot the actions drive (and that reports in a mission).
+  int robot_index() const { return robot_; }
   /// The simulation of the current episode (null before the first reset()).
   Session* session() const { return session_.get(); }
 

@@ -77,7 +77,8 @@ void bind_environments(py::module_& m) {
       .def_readwrite("time_penalty", &EnvOptions::time_penalty)
       .def_readwrite("observations", &EnvOptions::observations);
 
-  py::class_<EnvCore>(m, "EnvCore", "One simulation stepped a control period at a time (use rescuesim.Env).")
+  py::class_<EnvCore> env(m, "EnvCore", "One simulation stepped a control period at a time (use rescuesim.Env).");
+  env
       .def(py::init([](const BatchScenario& s, const EnvOptions& o) { return std::make_unique<EnvCore>(s.scenario, builtin_models(), o); }),
            py::arg("scenario"), py::arg("options"))
       .def("fields", [](const EnvCore& e) { return field_list(e.fields()); }, "[(key, dtype, shape)] of the observations")
@@ -117,6 +118,7 @@ void bind_environments(py::module_& m) {
             return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           },
           py::arg("n"), py::arg("linear"), py::arg("angular"), "n steps looped in C++; returns the wall seconds they took");
+  add_mission_methods(env);
 
   py::class_<VecEnvCore>(m, "VecEnvCore", "K independent simulations stepped together (use rescuesim.VectorEnv).")
       .def(py::init([](const BatchScenario& s, const EnvOptions& o, int count, int threads) {

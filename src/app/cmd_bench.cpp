@@ -16,6 +16,7 @@
 #include "app/bench_reset.h"
 #include "app/bench_ros.h"
 #include "app/bench_soak.h"
+#include "app/bench_mission.h"
 #include "app/bench_sdf.h"
 #include "app/bench_urdf.h"
 #include "app/commands.h"
@@ -55,6 +56,8 @@ struct BenchOptions {
   std::string sdf_world = "worlds/rescue_yard.sdf";  ///< the SDF figures' world
   std::vector<std::string> sdf_resource_paths = {"worlds/models"};
   bool sdf_only = false;        ///< only the SDF figures
+  std::string mission_scenario = "worlds/team.yaml";  ///< the mission figures' scenario
+  bool mission_only = false;    ///< only the mission figures
   bool reset_only = false;      ///< only the reset figure (bench_reset.h)
   BenchRosOptions ros_options;
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
@@ -207,6 +210,10 @@ json run_child(const Scenario& scenario, const ModelMap& models, bool cameras, [
     const RunResult r = session.run();
     out = {{"sim_time_s", r.sim_time}, {"wall_time_s", r.wall_time}, {"real_time_factor", r.real_time_factor},
            {"victims_found", r.victims_found}, {"collisions", r.collisions}};
+    if (r.mission) {
+      out["mission"] = {{"score", r.mission->score}, {"victims_reported", r.mission->victims_found}, {"victims", r.mission->victims},
+                        {"false_reports", r.mission->counts[ReportOutcome::false_report]}};
+    }
 #ifdef RESCUESIM_HAS_MCAP
     if (recorder) {
       const auto t0 = Clock::now();
@@ -302,6 +309,14 @@ int run_bench(const BenchOptions& o) {
     if (!o.out.empty()) write_file_atomic(o.out, text);
     return kExitOk;
   }
+  const RunChild child_without_cameras = [&](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); };
+  if (o.mission_only) {
+    report["mission"] = bench_mission(o.mission_scenario, std::min(o.scenario_time, 60.0), child_without_cameras);
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   std::fprintf(stderr, "bench: physics ...\n");
   report["physics"] = bench_physics(world, o.physics_steps);
   std::fprintf(stderr, "bench: lidar rays ...\n");
@@ -347,6 +362,7 @@ int run_bench(const BenchOptions& o) {
   report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
                               [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
   report["sdf"] = bench_sdf(o.sdf_world, sdf_paths, o.seconds);
+  report["mission"] = bench_mission(o.mission_scenario, std::min(o.scenario_time, 60.0), child_without_cameras);
   report["mcap_recording"] = bench_recording(def, models);
   if (o.batch_trials > 0) report["batch"] = bench_batch(def, o.batch_trials);
   report["reset"] = bench_reset(def, models);
@@ -386,7 +402,10 @@ void add_bench_command(CLI::App& app, Action& action) {
       "its convex decomposition; the robot's real-time factor beside the built-in robot in the same maze.\n"
       "SDF (sdf; docs/worlds.md): reading --sdf-world beside loading its mesh files alone; lidar rays/s\n"
       "through a room of walls and pillars as one 100k-triangle static mesh beside the same room from\n"
-      "box primitives.");
+      "box primitives.\n"
+      "Mission (mission; docs/missions.md): the --mission-scenario's real-time factor with its mission\n"
+      "(referee and radio) beside the same run without it (median of 3, target >= 0.9x), and the cost\n"
+      "of one radio link update for 4, 10 and 30 radios in its world.");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
@@ -397,6 +416,8 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
   cmd->add_flag("--urdf-only", o->urdf_only, "measure only the URDF figures");
   cmd->add_flag("--sdf-only", o->sdf_only, "measure only the SDF figures");
+  cmd->add_flag("--mission-only", o->mission_only, "measure only the mission figures");
+  cmd->add_option("--mission-scenario", o->mission_scenario, "scenario with a mission: block for the mission figures")->capture_default_str();
   cmd->add_option("--sdf-world", o->sdf_world, "SDF world for the SDF load figure")->capture_default_str();
   cmd->add_option("--sdf-resource-path", o->sdf_resource_paths, "where the SDF world's model:// URIs are looked for first")
       ->capture_default_str();

@@ -157,13 +157,14 @@ bool check_one(const std::string& file, const CheckOptions& o) {
   if (is_sdf_path(p)) return check_sdf(file, o);
   WorldSpec world;
   Diagnostics diag;
-  std::string scale_note;
+  std::string scale_note, mission;
   try {
     if (ext == ".yaml" || ext == ".yml") {
       const Scenario s = load_scenario(p, builtin_models());
       for (const auto& robot : s.robots) diag.append(robot.diagnostics);  // warnings from their URDFs
       world = build_world(s, &diag);
       scale_note = "scenario '" + s.name + "', seed " + std::to_string(s.seed);
+      if (s.mission) mission = mission_summary(*s.mission, world);
     } else {
       SvgLoadOptions svg;
       svg.units_per_metre = o.scale;
@@ -179,7 +180,7 @@ bool check_one(const std::string& file, const CheckOptions& o) {
   const Diagnostics problems = validate(world);
   diag.append(problems);
   const bool ok = !diag.has_errors();
-  std::printf("%s: %s (%s)\n%s", file.c_str(), ok ? "ok" : "has errors", scale_note.c_str(), world_summary(world).c_str());
+  std::printf("%s: %s (%s)\n%s%s", file.c_str(), ok ? "ok" : "has errors", scale_note.c_str(), world_summary(world).c_str(), mission.c_str());
   if (!diag.items().empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "  %d error(s), %d warning(s):\n", diag.error_count(), diag.warning_count());

@@ -53,8 +53,10 @@ void print_progress(const RunResult& r, double duration, bool tty) {
   const int filled = static_cast<int>(f * 30);
   for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '-';
   bar[30] = 0;
-  std::fprintf(stderr, "%s[%s] %6.1f/%.0f s  %5.1fx real time  victims %d/%zu  collisions %d%s", tty ? "\r" : "", bar, r.sim_time,
-               duration, r.real_time_factor, r.victims_found, r.victims.size(), r.collisions, tty ? "  " : "\n");
+  const std::string score = r.mission ? fmt::format("  score {:g} ({}/{} reported)", r.mission->score, r.mission->victims_found, r.mission->victims)
+                                      : std::string();
+  std::fprintf(stderr, "%s[%s] %6.1f/%.0f s  %5.1fx real time  victims %d/%zu  collisions %d%s%s", tty ? "\r" : "", bar, r.sim_time,
+               duration, r.real_time_factor, r.victims_found, r.victims.size(), r.collisions, score.c_str(), tty ? "  " : "\n");
   std::fflush(stderr);
 }
 
@@ -85,6 +87,7 @@ int run(const RunCommand& c) {
   std::printf("scenario %s (seed %llu, %s, %s): world %s\n%s", s.name.c_str(), static_cast<unsigned long long>(s.seed),
               pacing_name(mode.pacing), forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
               w.name.c_str(), world_summary(w).c_str());
+  if (s.mission) std::printf("%s", mission_summary(*s.mission, w).c_str());
   if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
   if (!so.controllers) std::printf("  controllers   off (robots wait for cmd_vel)\n");
   for (auto& b : bridges) {
@@ -132,7 +135,18 @@ int run(const RunCommand& c) {
     if (v.found) std::printf(", %s at %.1f s", v.name.c_str(), v.time);
   }
   std::printf("\ncoverage %.0f%%, distance %.1f m, collisions %d\n", 100 * r.coverage, r.distance, r.collisions);
-  std::printf("wrote %s/{summary.json, overview.png, trajectory.csv, world.svg, sensors/}\n", out.string().c_str());
+  if (r.mission) {
+    const MissionResult& m = *r.mission;
+    std::printf("mission score %g: %d/%d victims reported, %llu false, %llu duplicate, %llu out of contact", m.score, m.victims_found,
+                m.victims, static_cast<unsigned long long>(m.counts[ReportOutcome::false_report]),
+                static_cast<unsigned long long>(m.counts[ReportOutcome::duplicate]),
+                static_cast<unsigned long long>(m.counts[ReportOutcome::out_of_contact]));
+    std::printf("; radio contact");
+    for (std::size_t i = 0; i < m.robot_names.size(); ++i) std::printf(" %s %.0f%%", m.robot_names[i].c_str(), 100 * m.contact_fraction[i]);
+    std::printf("\n");
+  }
+  std::printf("wrote %s/{summary.json, overview.png,%s trajectory.csv, world.svg, sensors/}\n", out.string().c_str(),
+              r.mission ? " score.png," : "");
   return r.trouble ? kExitFailure : kExitOk;
 }
 

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "world/mission_spec.h"
 #include "world/world_spec.h"
 
 namespace rescuesim::app {
@@ -30,6 +31,8 @@ void add_recover_command(CLI::App& app, Action& action);
 
 /// Several lines describing a world: size, counts of each kind, starts.
 std::string world_summary(const WorldSpec& world);
+/// Several lines describing a mission: its rules, its radio model, its base stations.
+std::string mission_summary(const MissionSpec& mission, const WorldSpec& world);
 /// Prints diagnostics to stderr, one per line, indented.
 void print_diagnostics(const Diagnostics& d);
 

@@ -82,6 +82,12 @@ std::string to_json_line(const TrialRecord& r) {
   j["real_time_factor"] = finite_or_zero(r.real_time_factor);
   j["state_hash"] = r.state_hash;
   j["host"] = r.host;
+  if (r.mission) {
+    j["mission"] = {{"score", finite_or_zero(r.mission->score)}, {"victims_reported", r.mission->victims_reported},
+                    {"false_reports", r.mission->false_reports}, {"contact_fraction", finite_or_zero(r.mission->contact_fraction)}};
+  } else {
+    j["mission"] = json();
+  }
   // one line: dump() without indentation never emits a newline (strings are escaped)
   return j.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
 }
@@ -125,6 +131,18 @@ TrialRecord parse_trial_line(std::string_view line) {
   r.real_time_factor = number(j, "real_time_factor");
   r.state_hash = text(j, "state_hash");
   r.host = text(j, "host");
+  // "mission" came later: files without the key are read as trials without a mission
+  if (j.contains("mission") && !j["mission"].is_null()) {
+    const json& m = j["mission"];
+    if (!m.is_object()) throw Error("key \"mission\" should be an object or null");
+    TrialMission tm;
+    tm.score = number(m, "score");
+    tm.victims_reported = static_cast<int>(integer(m, "victims_reported", 0));
+    tm.false_reports = static_cast<int>(integer(m, "false_reports", 0));
+    tm.contact_fraction = number(m, "contact_fraction");
+    if (tm.contact_fraction < 0 || tm.contact_fraction > 1) throw Error("mission.contact_fraction should lie in [0, 1]");
+    r.mission = tm;
+  }
   if (r.victims_found > r.victims_total) throw Error("victims_found exceeds victims_total");
   if (r.coverage < 0 || r.coverage > 1) throw Error("coverage should lie in [0, 1]");
   return r;
@@ -135,7 +153,7 @@ bool same_outcome(const TrialRecord& a, const TrialRecord& b) {
          a.error == b.error && a.success == b.success && a.success_time == b.success_time && a.stop_reason == b.stop_reason &&
          a.victims_total == b.victims_total && a.victims_found == b.victims_found && a.victims == b.victims &&
          a.coverage == b.coverage && a.distance == b.distance && a.collisions == b.collisions && a.sim_time == b.sim_time &&
-         a.state_hash == b.state_hash;
+         a.state_hash == b.state_hash && a.mission == b.mission;
 }
 
 }  // namespace rescuesim

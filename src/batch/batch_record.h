@@ -4,6 +4,7 @@
 /// resume and `rescuesim batch merge` treat them alike (docs/batch.md lists every key).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,16 @@ struct TrialVictim {
   bool found = false;
   double time = -1;  ///< s of sim time when first seen; -1 when never
   bool operator==(const TrialVictim&) const = default;
+};
+
+/// A trial's mission score (scenarios with a `mission:` block).
+struct TrialMission {
+  double score = 0;
+  int victims_reported = 0;     ///< accepted by the referee
+  int false_reports = 0;
+  double contact_fraction = 0;  ///< mean over the robots: share of link updates in contact with a base
+
+  bool operator==(const TrialMission&) const = default;
 };
 
 /// What one trial did.
@@ -40,6 +51,7 @@ struct TrialRecord {
   double real_time_factor = 0;  ///< sim_time / wall_time
   std::string state_hash;       ///< 16 hex digits: hash of the final State ("" when none)
   std::string host;             ///< machine that ran it
+  std::optional<TrialMission> mission;  ///< the referee's figures; none without a mission (key "mission": null)
 };
 
 /// The record as one line of JSON (keys in a fixed order, ending in '\n').

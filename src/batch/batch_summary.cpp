@@ -61,6 +61,7 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
   j["base_seed"] = first ? first->seed - static_cast<std::uint64_t>(first->trial) : 0;
   int ok = 0, failed = 0, successes = 0, victims = 0, found = 0;
   std::vector<double> success_times, victims_found, coverage, distance, collisions, sim_time, wall_time, rtf;
+  std::vector<double> score, reported, false_reports, contact;  // trials with a mission
   json failures = json::array();
   for (const auto& [trial, r] : records) {
     wall_time.push_back(r.wall_time);
@@ -80,6 +81,12 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
     collisions.push_back(r.collisions);
     sim_time.push_back(r.sim_time);
     rtf.push_back(r.real_time_factor);
+    if (r.mission) {
+      score.push_back(r.mission->score);
+      reported.push_back(r.mission->victims_reported);
+      false_reports.push_back(r.mission->false_reports);
+      contact.push_back(r.mission->contact_fraction);
+    }
   }
   const int n = static_cast<int>(records.size());
   j["trials"] = n;
@@ -99,6 +106,17 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
   j["sim_time_s"] = stat_json(stat_of(sim_time));
   j["wall_time_s"] = stat_json(stat_of(wall_time));
   j["real_time_factor"] = stat_json(stat_of(rtf));
+  if (!score.empty()) {
+    j["mission"] = {{"trials", score.size()},
+                    {"score", stat_json(stat_of(score))},
+                    {"victims_reported", stat_json(stat_of(reported))},
+                    {"false_reports", stat_json(stat_of(false_reports))},
+                    {"contact_fraction", stat_json(stat_of(contact))},
+                    {"per_seed", json::array()}};
+    for (const auto& [trial, r] : records) {
+      if (r.status == "ok" && r.mission) j["mission"]["per_seed"].push_back({{"trial", trial}, {"seed", r.seed}, {"score", r.mission->score}});
+    }
+  }
   if (run.trials_run > 0 && run.wall_time > 0) {
     j["run"] = {{"jobs", run.jobs}, {"trials", run.trials_run}, {"wall_time_s", run.wall_time},
                 {"trials_per_hour", run.trials_run / run.wall_time * 3600.0}};
@@ -110,14 +128,17 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
 std::string batch_summary_csv(const std::map<int, TrialRecord>& records) {
   std::string out =
       "trial,seed,status,success,success_time_s,victims_found,victims_total,coverage,distance_m,collisions,sim_time_s,wall_time_s,"
-      "real_time_factor,stop_reason,state_hash,host,error\n";
+      "real_time_factor,stop_reason,state_hash,host,error,mission_score,victims_reported,false_reports\n";
   for (const auto& [trial, r] : records) {
     out += std::to_string(trial) + "," + std::to_string(r.seed) + "," + r.status + "," + (r.success ? "true" : "false") + "," +
            (r.success_time >= 0 ? num(r.success_time, "%.3f") : std::string()) + "," + std::to_string(r.victims_found) + "," +
            std::to_string(r.victims_total) + "," + num(r.coverage, "%.4f") + "," + num(r.distance, "%.3f") + "," +
            std::to_string(r.collisions) + "," + num(r.sim_time, "%.3f") + "," + num(r.wall_time, "%.3f") + "," +
            num(r.real_time_factor, "%.2f") + "," + csv_field(r.stop_reason) + "," + r.state_hash + "," + csv_field(r.host) + "," +
-           csv_field(r.error) + "\n";
+           csv_field(r.error) + "," + (r.mission ? num(r.mission->score, "%g") + "," + std::to_string(r.mission->victims_reported) + "," +
+                                                      std::to_string(r.mission->false_reports)
+                                                : std::string(",,")) +
+           "\n";
   }
   return out;
 }

@@ -137,6 +137,14 @@ TrialRecord run_trial(const Scenario& base, const ModelMap& models, int trial, s
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
     rec.state_hash = hash;
     rec.host = host_name();
+    if (r.mission) {
+      TrialMission m;
+      m.score = r.mission->score;
+      m.victims_reported = r.mission->victims_found;
+      m.false_reports = static_cast<int>(r.mission->counts[ReportOutcome::false_report]);
+      for (double c : r.mission->contact_fraction) m.contact_fraction += c / static_cast<double>(r.mission->contact_fraction.size());
+      rec.mission = m;
+    }
   } catch (const std::exception& e) {
     rec = failed_trial(base, trial, seed, batch, e.what());
   }

@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "comms/radio_model.h"
+#include "world/radio_model.h"
 #include "comms/radio_routes.h"
 #include "comms/wall_count.h"
 #include "core/pose.h"

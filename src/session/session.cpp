@@ -59,6 +59,13 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     sim_->set_victim_detector(std::make_unique<ThermalImageDetector>(rendered));
   }
   last_scans_.resize(sim_->world().robots.size());
+  if (scenario_.mission) {
+    try {
+      mission_ = std::make_unique<Mission>(*scenario_.mission, *sim_);
+    } catch (const Error& e) {
+      throw Error({scenario_.source_file, 0, "mission"}, e.what());
+    }
+  }
 
   // controllers listen to the laser and odometry topics and answer with cmd_vel
   controllers_ = std::make_unique<Controllers>();
@@ -67,6 +74,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     const RobotInstance& robot = sim_->world().robots[r];
     controllers_->X_WO.push_back(robot.X_W_start.to_pose2());
     controllers_->explorers.emplace_back();
+    controllers_->queued.emplace_back();
     const SensorSpec* laser = nullptr;
     const SensorSpec* odom = nullptr;
     for (const auto& s : robot.spec.sensors) {
@@ -100,9 +108,18 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), [this, ex, ri](const Topic&, const msg::Message& m) {
       const auto& scan = std::get<msg::LaserScan>(m);
       ex->on_scan(scan);
-      sim_->command_velocity(ri, ex->command(scan.header.stamp));
+      const msg::Twist cmd = ex->command(scan.header.stamp);
+      sim_->command_velocity(ri, cmd);
+      controllers_->queued[static_cast<std::size_t>(ri)] = cmd;
     });
   }
+
+  const std::size_t robots = sim_->world().robots.size();
+  controllers_->pending.assign(robots, {});
+  controllers_->known.assign(robots, std::vector<bool>(sim_->world().victims.size(), false));
+  controllers_->next_report.assign(robots, SimTime{});
+  controllers_->lost_contact.assign(robots, SimTime{-1});
+  controllers_->returning.assign(robots, 0);
 
   // the coverage grid: cells of free floor
   grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
@@ -168,10 +185,89 @@ double Session::coverage() const {
   return free > 0 ? static_cast<double>(seen) / free : 0.0;
 }
 
+namespace {
+// The built-in team's radio rules (docs/missions.md, "The built-in team")
+constexpr double kReturnAfter = 10.0;     // s out of contact with reports to make before heading back
+constexpr double kRelayMargin = 3.0;      // dB: drop a relay when the route's weakest link is this close to the threshold
+constexpr double kRelaySpacing = 3.0;     // m: ... and no base or relay is nearer than this
+}  // namespace
+
+void Session::mission_step() {
+  mission_->after_step();
+  const State& s = sim_->state();
+  Controllers& c = *controllers_;
+  const SimTime gap = SimTime::from_seconds(1.0 / mission_->spec().rules.report_rate_hz);
+  const RadioNetwork& net = mission_->network();
+  for (std::size_t r = 0; r < c.explorers.size(); ++r) {
+    autonomy::Explorer* ex = c.explorers[r].get();
+    if (!ex) continue;  // robots driven from outside report for themselves
+    const int ri = static_cast<int>(r);
+    const RobotState& rs = s.robots[r];
+    const std::string& name = sim_->world().robots[r].name;
+    for (std::size_t v = 0; v < s.victims.size(); ++v) {
+      if (c.known[r][v] || s.victims[v].first_seen.ns < 0 || s.victims[v].seen_by != name) continue;
+      // where the robot believes the victim is: its offset from the robot (the victim sensor),
+      // placed at the robot's own pose estimate (odometry in its start frame)
+      const Vec3 centre = sim_->world().victims[v].centre;
+      const Vec2 p_B = rs.base.X_WB.to_pose2().inverse().transform(centre.head<2>());
+      const Vec2 p_W = (c.X_WO[r] * rs.odom).transform(p_B);
+      c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z())});
+      c.known[r][v] = true;
+    }
+    const bool contact = mission_->in_contact(ri);
+    if (contact) {
+      c.lost_contact[r] = SimTime{-1};
+    } else if (c.lost_contact[r].ns < 0) {
+      c.lost_contact[r] = s.time;
+    }
+    if (!c.pending[r].empty() && contact && s.time >= c.next_report[r]) {
+      mission_->report(ri, c.pending[r].front().p_W);
+      c.pending[r].erase(c.pending[r].begin());
+      c.next_report[r] = s.time + gap;
+    }
+    // out of contact for a while with reports to make: back towards the (first) base, in the
+    // robot's own odometry frame, until contact is back and the reports are made
+    if (!c.returning[r] && !c.pending[r].empty() && !contact && (s.time - c.lost_contact[r]).seconds() >= kReturnAfter) {
+      const Vec3 base = net.node(mission_->base_nodes().front()).p_W;
+      ex->set_goal(c.X_WO[r].inverse().transform(base.head<2>()));
+      c.returning[r] = 1;
+    } else if (c.returning[r] && contact && c.pending[r].empty()) {
+      ex->clear_goal();
+      c.returning[r] = 0;
+    }
+    // a relay where the link to the base grows weak, unless one is close by
+    if (contact && net.relays_left(mission_->robot_node(ri)) > 0 && net.model().kind != RadioModelKind::ideal) {
+      const int me = mission_->robot_node(ri);
+      // the margin of the route to a base: its weakest link's, the best over the bases
+      double margin = -std::numeric_limits<double>::infinity();
+      for (int b : mission_->base_nodes()) {
+        const std::vector<int> path = net.route(me, b);
+        if (path.size() < 2) continue;
+        double bottleneck = std::numeric_limits<double>::infinity();
+        for (std::size_t k = 1; k < path.size(); ++k) bottleneck = std::min(bottleneck, net.link(path[k - 1], path[k]).margin_db);
+        margin = std::max(margin, bottleneck);
+      }
+      bool near = false;
+      for (int n = 0; n < net.node_count(); ++n) {
+        if (net.node(n).kind == RadioNodeKind::robot) continue;
+        near = near || (net.node(n).p_W - net.node(me).p_W).head<2>().norm() < kRelaySpacing;
+      }
+      if (margin < kRelayMargin && !near) mission_->drop_relay(ri);
+    }
+  }
+}
+
+void Session::step_once() {
+  // what the controllers queue during this step is for the next one
+  for (auto& q : controllers_->queued) q.reset();
+  sim_->step();
+  record();
+  if (mission_) mission_step();
+}
+
 bool Session::step_until(SimTime t) {
   while (sim_->time() < t) {
-    sim_->step();
-    record();
+    step_once();
     if (sim_->in_trouble()) return false;
   }
   return true;
@@ -204,6 +300,7 @@ RunResult Session::result() const {
   }
   for (const auto& t : sim_->bus().topics()) r.message_counts.emplace_back(t.name, sim_->bus().count(t.id));
   r.state_hash = state_hash(s);
+  if (mission_) r.mission = mission_->result();
   return r;
 }
 
@@ -218,6 +315,8 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
   auto last_report = t0;
   stop_reason_ = "duration";
   const auto all_found = [&] {
+    // with a mission, found means reported and accepted by the referee
+    if (mission_) return mission_->referee().victim_count() > 0 && mission_->referee().victims_found() == mission_->referee().victim_count();
     for (const auto& v : sim_->state().victims) {
       if (v.first_seen.ns < 0) return false;
     }
@@ -253,8 +352,7 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       break;
     }
     if (sync) wait_for_controller();
-    sim_->step();
-    record();
+    step_once();
     if (sim_->in_trouble()) {
       stop_reason_ = sim_->state().trouble.first;
       log::warn("run stopped: {}", stop_reason_);

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mission/mission.h"
 #include "sim/simulation.h"
 #include "world/scenario/scenario.h"
 
@@ -42,6 +44,7 @@ struct RunResult {
   double distance = 0;          ///< m driven (ground truth)
   std::vector<std::pair<std::string, std::uint64_t>> message_counts;  ///< per topic
   std::uint64_t state_hash = 0; ///< of the final State (determinism checks)
+  std::optional<MissionResult> mission;  ///< the referee's score and the radio's figures, with a mission
 };
 
 /// One trajectory sample.
@@ -98,13 +101,19 @@ class Session {
 
   /// The run as it is now, to restore() later: Simulation::snapshot (a synchronisation point
   /// for the physics engine, see there) plus the camera frames in flight, the built-in
-  /// controllers and the recordings. Restoring it and stepping on with the same commands gives
-  /// bitwise the same messages, images included. Not while run() is stepping.
+  /// controllers (their memory and the commands they queued for the next step), the mission
+  /// and the recordings. Restoring it and stepping on with the same commands gives bitwise the
+  /// same messages, images included. Not while run() is stepping.
   SessionSnapshot snapshot();
   /// Goes back to `snapshot` (from this Session): frames in flight now are dropped and the
-  /// snapshot's are rendered anew. The Bus's message counts, the wall time and the last camera
-  /// frames (sensors/*.png) are not rewound.
+  /// snapshot's are rendered anew; commands queued now (bridges' too) are dropped and the
+  /// built-in controllers' queued at the snapshot are queued again. The Bus's message counts,
+  /// the wall time and the last camera frames (sensors/*.png) are not rewound.
   void restore(const SessionSnapshot& snapshot);
+
+  /// The run's mission (referee and radio), or null when the scenario has none.
+  Mission* mission() { return mission_.get(); }
+  const Mission* mission() const { return mission_.get(); }
 
   /// Scans a synchronous run (SessionOptions::sync_timeout) waited for in vain.
   std::uint64_t sync_timeouts() const { return sync_timeouts_; }
@@ -114,13 +123,17 @@ class Session {
   double coverage() const;
   const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
 
-  /// Writes summary.json, overview.png, trajectory.csv, world.svg and sensors/laser.png into
-  /// `dir` (atomically, file by file).
+  /// Writes summary.json, overview.png, trajectory.csv, world.svg, sensors/laser.png and, with
+  /// a mission, score.png into `dir` (atomically, file by file).
   void write_outputs(const std::filesystem::path& dir, const RunResult& result) const;
 
  private:
   struct Controllers;
+  /// One Simulation step with what a run does around it: the trajectory, the mission.
+  void step_once();
   void record();
+  /// After every step with a mission: its links and datagrams, and the built-in controllers' reports.
+  void mission_step();
   void write_camera_frames(const std::filesystem::path& dir) const;
   bool world_has_no_thermal() const;
 
@@ -129,6 +142,7 @@ class Session {
   Diagnostics diagnostics_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<Controllers> controllers_;
+  std::unique_ptr<Mission> mission_;             ///< after sim_ (it refers to it), before the controllers use it
   std::unique_ptr<RenderCameraService> cameras_;  ///< attached to sim_ (not owned there); detached in ~Session
   SessionOptions options_;
   std::vector<TrajectoryPoint> trajectory_;

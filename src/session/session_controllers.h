@@ -2,6 +2,7 @@
 // Internal to src/session: the built-in controllers of a run.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "autonomy/explorer.h"
@@ -9,10 +10,31 @@
 
 namespace rescuesim {
 
+/// A victim report a built-in controller has still to make (see Session::Controllers::pending).
+struct PendingReport {
+  int victim = -1;
+  Vec3 p_W = Vec3::Zero();  ///< where the robot believes the victim is
+};
+
 /// The built-in controllers, one per robot that asked for one, fed from the Bus.
 struct Session::Controllers {
   std::vector<std::unique_ptr<autonomy::Explorer>> explorers;  // per robot, null when none
   std::vector<Pose2> X_WO;                                     // per robot: odom frame in the world (its start pose)
+  /// Per robot: the cmd_vel its controller queued during the step that ran last, which the next
+  /// step applies; a snapshot carries it, since the Simulation's command queue is not State.
+  std::vector<std::optional<msg::Twist>> queued;
+
+  /// With a mission: what the built-in controllers report. A robot that has seen a victim
+  /// reports it where it believes it is (its odometry pose, placed at its start, plus the
+  /// victim's offset from it), at the referee's report rate, whenever it is in radio contact.
+  /// Out of contact with reports to make, it drives back towards the base after a grace
+  /// period, and explores on once they are made; it drops a relay where its link to the base
+  /// grows weak (Session::mission_step has the rule).
+  std::vector<std::vector<PendingReport>> pending;  // per robot, oldest first
+  std::vector<std::vector<bool>> known;             // per robot, per victim: queued or reported already
+  std::vector<SimTime> next_report;                 // per robot: not before this
+  std::vector<SimTime> lost_contact;                // per robot: when it last lost contact (-1: in contact)
+  std::vector<std::uint8_t> returning;              // per robot: driving back towards the base to report
 };
 
 }  // namespace rescuesim

@@ -1,5 +1,5 @@
-// The files a run leaves behind: summary.json, trajectory.csv, world.svg, overview.png and
-// sensors/laser.png, each written atomically.
+// The files a run leaves behind: summary.json, trajectory.csv, world.svg, overview.png,
+// score.png (with a mission) and sensors/laser.png, each written atomically.
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +17,84 @@
 namespace rescuesim {
 
 namespace {
+
+/// The mission's part of summary.json: score, reports by outcome, victims as the referee saw
+/// them, and the radio's figures (see docs/missions.md).
+nlohmann::ordered_json mission_json(const MissionResult& m) {
+  nlohmann::ordered_json j;
+  j["rules"] = m.rules;
+  j["radio_model"] = m.radio_model;
+  j["score"] = m.score;
+  j["victims_found"] = m.victims_found;
+  j["victims"] = m.victims;
+  auto& reports = j["reports"] = nlohmann::ordered_json::object();
+  reports["charged"] = m.counts.charged;
+  for (int o = 0; o <= static_cast<int>(ReportOutcome::invalid); ++o) {
+    reports[std::string(report_outcome_name(static_cast<ReportOutcome>(o)))] = m.counts.by_outcome[o];
+  }
+  auto& victims = j["victim_reports"] = nlohmann::ordered_json::array();
+  for (std::size_t v = 0; v < m.victim_states.size(); ++v) {
+    const RefereeVictimState& s = m.victim_states[v];
+    const auto or_null = [&](auto x) { return s.found ? nlohmann::ordered_json(x) : nlohmann::ordered_json(); };
+    victims.push_back({{"name", m.victim_names[v]}, {"found", s.found}, {"time_s", or_null(s.time)},
+                       {"by", s.found ? nlohmann::ordered_json(m.robot_names[static_cast<std::size_t>(s.by)]) : nlohmann::ordered_json()},
+                       {"error_m", or_null(s.error_m)}});
+  }
+  auto& robots = j["robots"] = nlohmann::ordered_json::array();
+  for (std::size_t r = 0; r < m.robot_names.size(); ++r) {
+    robots.push_back({{"name", m.robot_names[r]}, {"contact_fraction", m.contact_fraction[r]}, {"relays_dropped", m.relays_dropped[r]}});
+  }
+  j["link_updates"] = m.link_updates;
+  j["datagrams"] = {{"sent", m.datagrams_sent}, {"delivered", m.datagrams_delivered}, {"dropped", m.datagrams_dropped}};
+  return j;
+}
+
+/// score.png: the score over the run as a step line, with each charged report marked (green:
+/// a victim found, red: false, grey: duplicate) and the victims found as a second line.
+Canvas score_plot(const MissionResult& m, double sim_time, const std::string& title) {
+  const int w = 720, h = 360, left = 56, right = 20, top = 40, bottom = 44;
+  Canvas img(w, h, {255, 255, 255});
+  const double t_max = std::max(sim_time, 1.0);
+  double lo = 0, hi = std::max(1.0, static_cast<double>(m.victims));
+  for (const auto& e : m.timeline) lo = std::min(lo, e.score), hi = std::max(hi, e.score);
+  const auto px = [&](double t, double y) {
+    return Vec2(left + (w - left - right) * t / t_max, h - bottom - (h - top - bottom) * (y - lo) / (hi - lo));
+  };
+  // axes, a grid line per score unit (at most 20), and their labels
+  const int step = std::max(1, static_cast<int>(std::ceil((hi - lo) / 20)));
+  for (int k = static_cast<int>(std::floor(lo)); k <= static_cast<int>(std::ceil(hi)); k += step) {
+    img.line(px(0, k), px(t_max, k), k == 0 ? Rgb8{120, 120, 120} : Rgb8{225, 225, 225});
+    img.text(8, static_cast<int>(px(0, k).y()) - 4, std::to_string(k), {0, 0, 0});
+  }
+  for (int i = 0; i <= 6; ++i) {
+    const double t = t_max * i / 6;
+    img.text(static_cast<int>(px(t, lo).x()) - 12, h - bottom + 8, std::to_string(static_cast<int>(std::lround(t))) + " s", {0, 0, 0});
+  }
+  // victims found (blue) and score (black), as steps
+  std::vector<Vec2> found{px(0, 0)}, score{px(0, 0)};
+  int n = 0;
+  double last = 0;
+  for (const auto& e : m.timeline) {
+    found.push_back(px(e.t, n));
+    if (e.outcome == ReportOutcome::accepted) ++n;
+    found.push_back(px(e.t, n));
+    score.push_back(px(e.t, last));
+    score.push_back(px(e.t, e.score));
+    last = e.score;
+  }
+  found.push_back(px(t_max, n));
+  score.push_back(px(t_max, last));
+  img.polyline(found, {60, 110, 220}, 2.0);
+  img.polyline(score, {0, 0, 0}, 2.0);
+  for (const auto& e : m.timeline) {
+    const Rgb8 c = e.outcome == ReportOutcome::accepted ? Rgb8{20, 170, 40}
+                   : e.outcome == ReportOutcome::false_report ? Rgb8{220, 30, 30} : Rgb8{150, 150, 150};
+    img.fill_circle(px(e.t, e.score), 4, c);
+  }
+  img.text(left, 8, title, {0, 0, 0});
+  img.text(left, 22, "score (black; dots: green found, red false, grey duplicate), victims found (blue)", {90, 90, 90});
+  return img;
+}
 
 nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const WorldSpec& w) {
   nlohmann::ordered_json j;
@@ -46,6 +124,7 @@ nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
   j["state_hash"] = hash;
+  if (r.mission) j["mission"] = mission_json(*r.mission);
   return j;
 }
 
@@ -180,6 +259,14 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
     }
   }
   img.write_png(dir / "overview.png");
+  if (result.mission) {
+    const MissionResult& m = *result.mission;
+    char title[160];
+    std::snprintf(title, sizeof title, "%s: score %g, %d/%d victims, %llu false (%s rules, %s radio)", scenario_.name.c_str(), m.score,
+                  m.victims_found, m.victims, static_cast<unsigned long long>(m.counts[ReportOutcome::false_report]), m.rules.c_str(),
+                  m.radio_model.c_str());
+    score_plot(m, result.sim_time, title).write_png(dir / "score.png");
+  }
 
   write_camera_frames(dir);
   for (std::size_t r = 0; r < last_scans_.size(); ++r) {

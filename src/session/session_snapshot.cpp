@@ -12,11 +12,18 @@ namespace rescuesim {
 struct SessionExtras {
   RenderCameraService::InFlight cameras;                    // frames sampled, not yet delivered
   std::vector<std::optional<autonomy::Explorer>> explorers;  // per robot: its controller's memory
+  std::vector<std::optional<msg::Twist>> queued;             // per robot: its controller's command for the next step
   std::vector<TrajectoryPoint> trajectory;
   SimTime next_record;
   std::vector<msg::LaserScan> last_scans;
   std::vector<std::uint8_t> visited_cells;
   std::string stop_reason;
+  std::optional<Mission::Memory> mission;                    // referee and radio network
+  std::vector<std::vector<PendingReport>> pending;            // the built-in controllers' reports
+  std::vector<std::vector<bool>> known;
+  std::vector<SimTime> next_report;
+  std::vector<SimTime> lost_contact;
+  std::vector<std::uint8_t> returning;
 };
 
 SessionSnapshot Session::snapshot() {
@@ -25,11 +32,18 @@ SessionSnapshot Session::snapshot() {
   for (const auto& ex : controllers_->explorers) {
     extras->explorers.push_back(ex ? std::optional<autonomy::Explorer>(*ex) : std::nullopt);
   }
+  extras->queued = controllers_->queued;
   extras->trajectory = trajectory_;
   extras->next_record = next_record_;
   extras->last_scans = last_scans_;
   extras->visited_cells = visited_cells_;
   extras->stop_reason = stop_reason_;
+  if (mission_) extras->mission = mission_->save();
+  extras->pending = controllers_->pending;
+  extras->known = controllers_->known;
+  extras->next_report = controllers_->next_report;
+  extras->lost_contact = controllers_->lost_contact;
+  extras->returning = controllers_->returning;
   return SessionSnapshot{sim_->snapshot(), std::move(extras)};
 }
 
@@ -38,6 +52,13 @@ void Session::restore(const SessionSnapshot& snapshot) {
   // frames in flight first: none of them may be delivered into the restored state
   if (cameras_) cameras_->restore(x.cameras);
   sim_->restore(snapshot.state);
+  // the commands the controllers had queued at the snapshot replace whatever is queued now
+  // (commands from bridges queued now are dropped too: outside input is not part of a snapshot)
+  sim_->discard_commands();
+  controllers_->queued = x.queued;
+  for (std::size_t r = 0; r < controllers_->queued.size(); ++r) {
+    if (controllers_->queued[r]) sim_->command_velocity(static_cast<int>(r), *controllers_->queued[r]);
+  }
   // controllers are fed through the Bus by pointer: their objects stay, their memory goes back
   for (std::size_t r = 0; r < controllers_->explorers.size() && r < x.explorers.size(); ++r) {
     if (controllers_->explorers[r] && x.explorers[r]) *controllers_->explorers[r] = *x.explorers[r];
@@ -47,6 +68,12 @@ void Session::restore(const SessionSnapshot& snapshot) {
   last_scans_ = x.last_scans;
   visited_cells_ = x.visited_cells;
   stop_reason_ = x.stop_reason;
+  if (mission_ && x.mission) mission_->load(*x.mission);
+  controllers_->pending = x.pending;
+  controllers_->known = x.known;
+  controllers_->next_report = x.next_report;
+  controllers_->lost_contact = x.lost_contact;
+  controllers_->returning = x.returning;
 }
 
 }  // namespace rescuesim

@@ -336,6 +336,41 @@ TEST(BatchSummary, StatisticsTableAndFigure) {
   EXPECT_EQ(batch_figure({}).width(), 1200);  // an empty batch still draws
 }
 
+TEST(BatchSummary, MissionScoresAreAggregatedPerSeed) {
+  // scores 3, -0.5 and 2 over three trials: median 2, mean 1.5, min -0.5, max 3
+  std::map<int, TrialRecord> records;
+  const double scores[] = {3, -0.5, 2};
+  for (int i = 0; i < 3; ++i) {
+    TrialRecord r = sample_record(i);
+    r.mission = TrialMission{scores[i], i + 1, i, 0.25 * (i + 1)};
+    records.emplace(i, r);
+  }
+  records.emplace(3, sample_record(3));  // a trial without a mission is left out of them
+  const auto j = nlohmann::json::parse(batch_summary_json(records, {}));
+  EXPECT_EQ(j["mission"]["trials"], 3);
+  EXPECT_DOUBLE_EQ(j["mission"]["score"]["median"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(j["mission"]["score"]["mean"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(j["mission"]["score"]["min"].get<double>(), -0.5);
+  EXPECT_DOUBLE_EQ(j["mission"]["false_reports"]["max"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(j["mission"]["contact_fraction"]["mean"].get<double>(), 0.5);
+  ASSERT_EQ(j["mission"]["per_seed"].size(), 3u);
+  EXPECT_EQ(j["mission"]["per_seed"][1]["seed"], 101);
+  EXPECT_EQ(j["mission"]["per_seed"][1]["score"], -0.5);
+  EXPECT_FALSE(nlohmann::json::parse(batch_summary_json({{0, sample_record(0)}}, {})).contains("mission"));
+
+  // the line keeps the mission; an older line without the key reads as no mission
+  const TrialRecord back = parse_trial_line(to_json_line(records.at(1)));
+  ASSERT_TRUE(back.mission.has_value());
+  EXPECT_EQ(*back.mission, *records.at(1).mission);
+  EXPECT_TRUE(same_outcome(back, records.at(1)));
+  auto old = nlohmann::json::parse(to_json_line(sample_record(0)));
+  old.erase("mission");
+  EXPECT_FALSE(parse_trial_line(old.dump()).mission.has_value());
+  const std::string csv = batch_summary_csv(records);
+  EXPECT_NE(csv.find(",mission_score,victims_reported,false_reports\n"), std::string::npos);
+  EXPECT_NE(csv.find(",-0.5,2,1\n"), std::string::npos) << csv;
+}
+
 TEST(BatchMerge, ShardsMergeAndOtherBatchesAreRefused) {
   const auto a = testing::temp_dir("merge-a"), b = testing::temp_dir("merge-b"), out = testing::temp_dir("merge-out");
   {

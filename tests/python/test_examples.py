@@ -32,6 +32,12 @@ class Examples(unittest.TestCase):
         for c in ("explorer", "wall_follower"):
             self.assertTrue(os.path.exists(os.path.join(out_dir, c, "summary.png")), c)
 
+    def test_mission_team(self):
+        out = run("mission_team.py", "--max-time", "12")
+        self.assertIn("r1: in contact True", out)
+        self.assertIn("team score ", out)
+        self.assertIn("/6 victims reported", out)
+
 
 if __name__ == "__main__":
     unittest.main()

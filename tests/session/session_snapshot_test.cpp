@@ -64,3 +64,120 @@ TEST(SessionSnapshot, RestoreReplaysTheDefaultScenarioWithCamerasBitwise) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+/// A team of two explorers in a small maze with a WSS radio: what the mission adds to a run.
+Scenario mission_scenario() {
+  return parse_scenario(
+      "name: team\nseed: 4\nduration: 60\n"
+      "world:\n  maze: {cols: 4, rows: 4, victims: 3, start_cells: [[0, 0], [3, 3]]}\n"
+      "robots:\n  - {name: a}\n  - {name: b}\n"
+      "mission:\n  radio: {model: wss}\n",
+      "team.yaml", builtin_models());
+}
+
+TEST(SessionMission, RestoreReplaysReportsScoreAndRadioBitwise) {
+  const ModelMap models = builtin_models();
+  SessionOptions so;
+  so.cameras = false;
+  Session session(mission_scenario(), models, so);
+  ASSERT_NE(session.mission(), nullptr);
+  EXPECT_NE(session.sim().bus().find("/a/rescue/comms/status"), kNoTopic);
+  EXPECT_NE(session.sim().bus().find("/rescue/score"), kNoTopic);
+  session.step_until(SimTime::from_seconds(5));
+  const SessionSnapshot snap = session.snapshot();
+  // (topic, text) of every mission message while stepping (not the latched ones subscribe replays)
+  const auto recorder = [&](std::vector<std::pair<std::string, std::string>>& out, bool& live) {
+    return session.sim().bus().subscribe("", [&out, &live](const Topic& t, const msg::Message& m) {
+      if (live && t.name.find("rescue") != std::string::npos) out.emplace_back(t.name, std::get<msg::String>(m).data);
+    });
+  };
+  std::vector<std::pair<std::string, std::string>> first;
+  {
+    bool live = false;
+    const auto h = recorder(first, live);
+    live = true;
+    session.step_until(SimTime::from_seconds(40));
+    session.sim().bus().unsubscribe(h);
+  }
+  const MissionResult at_end = session.result().mission.value();
+  session.restore(snap);
+  std::vector<std::pair<std::string, std::string>> again;
+  {
+    bool live = false;
+    const auto h = recorder(again, live);
+    live = true;
+    session.step_until(SimTime::from_seconds(40));
+    session.sim().bus().unsubscribe(h);
+  }
+  ASSERT_EQ(again.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) ASSERT_EQ(again[i], first[i]) << i;
+  const MissionResult replay = session.result().mission.value();
+  EXPECT_EQ(replay.score, at_end.score);
+  EXPECT_EQ(replay.timeline.size(), at_end.timeline.size());
+  EXPECT_EQ(replay.link_updates, at_end.link_updates);
+  EXPECT_EQ(replay.contact_fraction, at_end.contact_fraction);
+  // 35 s at 1 Hz for two robots, plus the latched score and the reports' answers
+  int status = 0;
+  for (const auto& [topic, d] : first) status += topic.find("comms/status") != std::string::npos;
+  EXPECT_EQ(status, 2 * 35);
+}
+
+TEST(SessionMission, TheFinderReportsWhatItSawWhereItBelievesItIs) {
+  const ModelMap models = builtin_models();
+  SessionOptions so;
+  so.cameras = false;
+  Scenario s = mission_scenario();
+  s.mission->radio.model = radio_model("ideal");
+  Session session(s, models, so);
+  const RunResult r = session.run();
+  ASSERT_TRUE(r.mission.has_value());
+  // every victim the robots saw early enough was reported (one report per 0.5 s per robot)
+  int seen = 0, seen_early = 0;
+  for (const auto& v : r.victims) {
+    seen += v.found;
+    seen_early += v.found && v.time < r.sim_time - 1.0;
+  }
+  EXPECT_GE(static_cast<int>(r.mission->counts.charged), seen_early);
+  EXPECT_LE(static_cast<int>(r.mission->counts.charged), seen);
+  EXPECT_GT(seen, 0) << "the explorers should see a victim of this small maze in 60 s";
+  // reports are odometry estimates: accepted ones lie within the 1.5 m radius of their victim
+  for (const auto& v : r.mission->victim_states) {
+    if (v.found) EXPECT_LE(v.error_m, 1.5);
+  }
+  EXPECT_EQ(r.mission->score, r.mission->victims_found - 0.5 * static_cast<double>(r.mission->counts[ReportOutcome::false_report]));
+}
+
+}  // namespace
+}  // namespace rescuesim
+namespace rescuesim {
+namespace {
+
+TEST(SessionSnapshot, ASnapshotRightAfterAScanKeepsTheCommandTheExplorerQueued) {
+  // at 5.0 s a scan has just been published and the explorer's answer waits in the
+  // simulation's command queue for the next step: the snapshot must carry it, and a restore
+  // must not apply whatever is queued at the moment of the restore instead
+  const ModelMap models = builtin_models();
+  SessionOptions so;
+  so.cameras = false;
+  for (int robots = 1; robots <= 2; ++robots) {
+    Scenario s = parse_scenario(
+        "name: t\nseed: 4\nworld:\n  maze: {cols: 4, rows: 4, victims: 3, start_cells: [[0, 0], [3, 3]]}\n"
+        "robots:\n  - {name: a}\n  - {name: b}\n",
+        "t.yaml", models);
+    s.robots.resize(static_cast<std::size_t>(robots));
+    Session session(s, models, so);
+    session.step_until(SimTime::from_seconds(5));
+    const SessionSnapshot snap = session.snapshot();
+    session.step_until(SimTime::from_seconds(6));
+    const std::uint64_t hash = state_hash(session.sim().state());
+    session.restore(snap);
+    session.step_until(SimTime::from_seconds(6));
+    EXPECT_EQ(state_hash(session.sim().state()), hash) << robots << " robot(s)";
+  }
+}
+
+}  // namespace
+}  // namespace rescuesim

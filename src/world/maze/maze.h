@@ -27,6 +27,9 @@ struct MazeOptions {
   double ramp_length = 0.40;         ///< m
   int victims = 0;                   ///< victims to place, dead ends first
   std::array<int, 2> start_cell{0, 0};  ///< (col, row) where the robot starts
+  /// Cells where further robots start ("robot2", "robot3", ... in this order), each kept free
+  /// of platforms, victims and rubble like start_cell; distinct from it and each other.
+  std::vector<std::array<int, 2>> more_start_cells;
   std::uint64_t seed = 1;            ///< everything random derives from this
 };
 

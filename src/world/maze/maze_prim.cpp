@@ -83,6 +83,19 @@ void check_options(const MazeOptions& o) {
                                  " grid (col in [0, " + std::to_string(o.cols - 1) + "], row in [0, " +
                                  std::to_string(o.rows - 1) + "])");
   }
+  for (std::size_t k = 0; k < o.more_start_cells.size(); ++k) {
+    const auto& c = o.more_start_cells[k];
+    const std::string name = "start_cells[" + std::to_string(k + 1) + "]";
+    if (c[0] < 0 || c[0] >= o.cols || c[1] < 0 || c[1] >= o.rows) {
+      bad_option("start_cells", name + " = (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ") lies outside the " +
+                                    std::to_string(o.cols) + " x " + std::to_string(o.rows) + " grid");
+    }
+    bool repeated = c == o.start_cell;
+    for (std::size_t j = 0; j < k; ++j) repeated = repeated || c == o.more_start_cells[j];
+    if (repeated) {
+      bad_option("start_cells", name + " = (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ") is already a start: one robot per cell");
+    }
+  }
   // geometry that must fit whichever cells are chosen, so the answer never depends on the seed
   const double interior = o.cell_size - o.wall_thickness;
   if (raised_target(o) > 0 && interior - 2 * o.ramp_length < kMinPlatform) {
@@ -190,14 +203,22 @@ void add_loops(Maze& m) {
   for (std::size_t j = 0; j < k; ++j) set_open(m, closed[j].first % cols, closed[j].first / cols, closed[j].second);
 }
 
-/// Picks the raised cells at random among all but the start cell; listed in cell order.
+/// True for the start cells (start_cell and more_start_cells), per cell index.
+std::vector<std::uint8_t> start_cells(const Maze& m) {
+  std::vector<std::uint8_t> starts(static_cast<std::size_t>(m.cell_count()), 0);
+  starts[static_cast<std::size_t>(m.index(m.options.start_cell[0], m.options.start_cell[1]))] = 1;
+  for (const auto& c : m.options.more_start_cells) starts[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
+  return starts;
+}
+
+/// Picks the raised cells at random among all but the start cells; listed in cell order.
 void choose_raised(Maze& m) {
   const int want = raised_target(m.options);
   if (want <= 0) return;
-  const int start = m.index(m.options.start_cell[0], m.options.start_cell[1]);
+  const std::vector<std::uint8_t> starts = start_cells(m);
   std::vector<int> cells;
   for (int i = 0; i < m.cell_count(); ++i) {
-    if (i != start) cells.push_back(i);
+    if (!starts[static_cast<std::size_t>(i)]) cells.push_back(i);
   }
   Rng rng(m.options.seed, "maze/raised");
   choose_front(cells, static_cast<std::size_t>(want), rng);
@@ -207,17 +228,17 @@ void choose_raised(Maze& m) {
 }
 
 /// Places victims: random dead ends first, then random other cells with a closed side;
-/// never the start cell or a raised cell, one per cell, each against a closed side.
+/// never a start cell or a raised cell, one per cell, each against a closed side.
 void choose_victims(Maze& m) {
   const int want = m.options.victims;
   if (want <= 0) return;
   const int cols = m.options.cols;
-  const int start = m.index(m.options.start_cell[0], m.options.start_cell[1]);
+  const std::vector<std::uint8_t> starts = start_cells(m);
   std::vector<std::uint8_t> raised(static_cast<std::size_t>(m.cell_count()), 0);
   for (const auto& rc : m.raised_cells) raised[static_cast<std::size_t>(m.index(rc[0], rc[1]))] = 1;
   std::vector<int> dead_ends, others;
   for (int i = 0; i < m.cell_count(); ++i) {
-    if (i == start || raised[static_cast<std::size_t>(i)]) continue;
+    if (starts[static_cast<std::size_t>(i)] || raised[static_cast<std::size_t>(i)]) continue;
     const int d = m.degree(i % cols, i / cols);
     if (d == 1) {
       dead_ends.push_back(i);
@@ -228,7 +249,7 @@ void choose_victims(Maze& m) {
   const auto room = static_cast<int>(dead_ends.size() + others.size());
   if (want > room) {
     bad_option("victims", std::to_string(want) + " requested, but only " + std::to_string(room) +
-                              " cells can hold one (not the start cell, not a raised cell, not a cell open on all sides)");
+                              " cells can hold one (not a start cell, not a raised cell, not a cell open on all sides)");
   }
   Rng rng(m.options.seed, "maze/victims");
   choose_front(dead_ends, static_cast<std::size_t>(want), rng);

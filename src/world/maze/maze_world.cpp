@@ -86,6 +86,7 @@ void check_maze(const Maze& m) {
     }
   };
   check_cell(o.start_cell, "start cell");
+  for (const auto& c : o.more_start_cells) check_cell(c, "start cell");
   for (const auto& c : m.victim_cells) check_cell(c, "victim cell");
   for (const auto& c : m.raised_cells) check_cell(c, "raised cell");
 }
@@ -214,6 +215,7 @@ int add_rubble(WorldSpec& w, const Maze& m) {
   if (o.rubble <= 0) return 0;
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(m.cell_count()), 0);
   taken[static_cast<std::size_t>(m.index(o.start_cell[0], o.start_cell[1]))] = 1;
+  for (const auto& c : o.more_start_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   for (const auto& c : m.victim_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   for (const auto& c : m.raised_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   std::vector<int> free_cells;
@@ -289,24 +291,31 @@ int add_rubble(WorldSpec& w, const Maze& m) {
   return count;
 }
 
-/// The robot at the start cell's centre, facing its first open side (east, north, west, south).
-void add_robot(WorldSpec& w, const Maze& m) {
+/// A robot at each start cell's centre ("robot" at start_cell, then "robot2", ...), facing its
+/// cell's first open side (east, north, west, south).
+void add_robots(WorldSpec& w, const Maze& m) {
   const MazeOptions& o = m.options;
-  const int c = o.start_cell[0], r = o.start_cell[1];
+  std::vector<std::array<int, 2>> cells{o.start_cell};
+  cells.insert(cells.end(), o.more_start_cells.begin(), o.more_start_cells.end());
   const double yaw_of[4] = {0, M_PI / 2, M_PI, -M_PI / 2};
-  double yaw = 0;
-  for (int k = 0; k < 4; ++k) {
-    if (m.is_open(c, r, kSides[k])) {
-      yaw = yaw_of[k];
-      break;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const int c = cells[i][0], r = cells[i][1];
+    double yaw = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (m.is_open(c, r, kSides[k])) {
+        yaw = yaw_of[k];
+        break;
+      }
     }
+    RobotPlacement robot;
+    robot.name = "robot";
+    if (i > 0) robot.name += std::to_string(i + 1);
+    robot.model = "rescue_robot";
+    robot.start = {(c + 0.5) * o.cell_size, (r + 0.5) * o.cell_size, yaw};
+    robot.source = SourceRef{"", 0, "maze start"};
+    if (i > 0) robot.source.element += " " + std::to_string(i + 1);
+    w.robots.push_back(robot);
   }
-  RobotPlacement robot;
-  robot.name = "robot";
-  robot.model = "rescue_robot";
-  robot.start = {(c + 0.5) * o.cell_size, (r + 0.5) * o.cell_size, yaw};
-  robot.source = SourceRef{"", 0, "maze start"};
-  w.robots.push_back(robot);
 }
 
 /// One sun-like directional light and two point lights over the maze's diagonal.
@@ -335,7 +344,7 @@ WorldSpec maze_to_world(const Maze& maze) {
   add_raised(w, maze);
   add_victims(w, maze);
   const int rubble_placed = add_rubble(w, maze);
-  add_robot(w, maze);
+  add_robots(w, maze);
   add_lights(w);
 
   // every option, as text that reads back exactly
@@ -354,6 +363,11 @@ WorldSpec maze_to_world(const Maze& maze) {
   md["ramp_length"] = text(o.ramp_length);
   md["victims"] = std::to_string(o.victims);
   md["start_cell"] = std::to_string(o.start_cell[0]) + "," + std::to_string(o.start_cell[1]);
+  if (!o.more_start_cells.empty()) {
+    std::string more;
+    for (const auto& c : o.more_start_cells) more += (more.empty() ? "" : " ") + std::to_string(c[0]) + "," + std::to_string(c[1]);
+    md["more_start_cells"] = more;
+  }
   md["seed"] = std::to_string(o.seed);
   return w;
 }

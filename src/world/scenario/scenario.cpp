@@ -1,8 +1,11 @@
 #include "world/scenario/scenario.h"
 
+#include <array>
 #include <cmath>
+#include <cstdlib>
 
 #include "core/atomic_file.h"
+#include "world/scenario/scenario_mission.h"
 #include "world/scenario/scenario_robots.h"
 #include "world/scenario/yaml_reader.h"
 
@@ -34,6 +37,33 @@ MazeOptions read_maze(const YamlNode& m, std::uint64_t run_seed) {
                                            "] is not a cell of a " + std::to_string(o.cols) + " x " + std::to_string(o.rows) + " maze");
   }
   o.start_cell = {static_cast<int>(start[0]), static_cast<int>(start[1])};
+  // start_cells: one robot per cell, the first taking start_cell's place
+  if (m.has("start_cells")) {
+    if (m.has("start_cell")) throw Error(m.where("start_cells"), "give start_cell or start_cells, not both");
+    const auto cells = m.sequence("start_cells");
+    if (cells.empty()) throw Error(m.where("start_cells"), "expected a list of [col, row] cells, one per robot");
+    std::vector<std::array<int, 2>> read;
+    for (const auto& c : cells) {
+      const auto xy = c.items();
+      const auto whole = [&](const YamlNode& n) {
+        const std::string text = n.scalar();
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (xy.size() != 2 || end == text.c_str() || *end != '\0' || v != std::floor(v) || v < 0 || v > 100000) {
+          throw Error(c.where(), "expected a cell as [col, row] with whole numbers >= 0, got '" + text + "'");
+        }
+        return static_cast<int>(v);
+      };
+      if (xy.size() != 2) throw Error(c.where(), "expected a cell as [col, row]");
+      read.push_back({whole(xy[0]), whole(xy[1])});
+      if (read.back()[0] >= o.cols || read.back()[1] >= o.rows) {
+        throw Error(c.where(), "cell [" + std::to_string(read.back()[0]) + ", " + std::to_string(read.back()[1]) + "] is not a cell of a " +
+                                   std::to_string(o.cols) + " x " + std::to_string(o.rows) + " maze");
+      }
+    }
+    o.start_cell = read[0];
+    o.more_start_cells.assign(read.begin() + 1, read.end());
+  }
   o.seed = m.uint64("seed", run_seed);
   m.finish();
   return o;
@@ -160,6 +190,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
       if (s.robots[k].name == s.robots[i].name) throw Error(robots[i].where("name"), "two robots are named '" + s.robots[i].name + "'");
     }
   }
+  if (root.has("mission")) s.mission = read_mission(root.map("mission"));
   root.finish();
   return s;
 }

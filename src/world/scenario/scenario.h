@@ -1,8 +1,8 @@
 #pragma once
 /// A scenario: which world (an SVG drawing or a generated maze), which robots with which
-/// sensors and controllers, the physics step, the run's seed, length and pace. Read from YAML
-/// (worlds/default.yaml is the built-in default); every key is checked, and errors name the
-/// file, line and key path.
+/// sensors and controllers, the physics step, the run's seed, length and pace, and the
+/// mission. Read from YAML (worlds/default.yaml is the built-in default); every key is
+/// checked, and errors name the file, line and key path.
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "world/maze/maze.h"
+#include "world/mission_spec.h"
 #include "world/robot_spec.h"
 #include "world/sdf/sdf_import.h"
 #include "world/svg/svg_world.h"
@@ -64,6 +65,10 @@ struct Scenario {
 
   /// Robots; empty means one robot per start in the world, with default settings.
   std::vector<RobotConfig> robots;
+
+  /// The rescue mission (`mission:`): referee rules, radio model, base stations. None: a
+  /// plain run, without referee or radio (docs/missions.md).
+  std::optional<MissionSpec> mission;
 };
 
 /// The robot models a scenario may name, by model name.

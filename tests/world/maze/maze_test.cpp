@@ -514,6 +514,46 @@ TEST(MazeWorld, RobotStartsAtTheStartCellCentreFacingAnOpenSide) {
   }
 }
 
+TEST(MazeWorld, MoreStartCellsGetARobotEachAndStayClear) {
+  MazeOptions o = make(6, 6, 9, 0.2);
+  o.victims = 8;
+  o.raised_fraction = 0.3;
+  o.rubble = 20;
+  const WorldSpec one = maze_to_world(generate_maze(o));
+  o.more_start_cells = {{5, 5}, {0, 5}};
+  const Maze m = generate_maze(o);
+  const WorldSpec w = maze_to_world(m);
+  ASSERT_EQ(w.robots.size(), 3u);
+  EXPECT_EQ(w.robots[0].name, "robot");
+  EXPECT_EQ(w.robots[1].name, "robot2");
+  EXPECT_EQ(w.robots[2].name, "robot3");
+  EXPECT_NEAR(w.robots[1].start.x, 5.5 * o.cell_size, 1e-12);
+  EXPECT_NEAR(w.robots[1].start.y, 5.5 * o.cell_size, 1e-12);
+  EXPECT_NEAR(w.robots[2].start.x, 0.5 * o.cell_size, 1e-12);
+  for (const auto& start : o.more_start_cells) {
+    for (const auto& c : m.victim_cells) EXPECT_NE(c, start);
+    for (const auto& c : m.raised_cells) EXPECT_NE(c, start);
+  }
+  // rubble keeps out of every start cell
+  for (const auto& r : w.rubble) {
+    const std::array<int, 2> cell{static_cast<int>(std::floor(r.pose.x / o.cell_size)), static_cast<int>(std::floor(r.pose.y / o.cell_size))};
+    EXPECT_NE(cell, o.start_cell);
+    for (const auto& start : o.more_start_cells) EXPECT_NE(cell, start);
+  }
+  // the walls do not depend on where the robots start
+  EXPECT_EQ(w.walls.size(), one.walls.size());
+  EXPECT_EQ(w.metadata.at("more_start_cells"), "5,5 0,5");
+  EXPECT_EQ(one.metadata.count("more_start_cells"), 0u);
+
+  MazeOptions same = o;
+  same.more_start_cells = {{2, 2}, {2, 2}};
+  EXPECT_THROW(generate_maze(same), Error);
+  same.more_start_cells = {o.start_cell};
+  EXPECT_THROW(generate_maze(same), Error);
+  same.more_start_cells = {{6, 0}};
+  EXPECT_THROW(generate_maze(same), Error);
+}
+
 TEST(MazeWorld, WorldValidatesWithoutErrors) {
   struct Case {
     int cols, rows;

@@ -1,7 +1,7 @@
 // The link models against their formulas worked by hand: WSS and SubT received power,
 // clamping, SubT's seeded shadowing, and validation of impossible parameters.
 
-#include "comms/radio_model.h"
+#include "world/radio_model.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

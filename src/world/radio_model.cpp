@@ -1,4 +1,4 @@
-#include "comms/radio_model.h"
+#include "world/radio_model.h"
 
 #include <algorithm>
 #include <cmath>

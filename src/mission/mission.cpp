@@ -1,0 +1,234 @@
+#include "mission/mission.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+
+namespace {
+
+constexpr double kStatusRate = 1.0;  // Hz of /<robot>/rescue/comms/status
+
+std::vector<RefereeVictim> referee_victims(const World& world) {
+  std::vector<RefereeVictim> out;
+  for (const auto& v : world.victims) out.push_back({v.name, v.centre});
+  return out;
+}
+
+RadioNetworkOptions network_options(const MissionSpec& spec) {
+  RadioNetworkOptions o;
+  o.relays_per_robot = spec.radio.relays_per_robot;
+  return o;
+}
+
+std::int64_t period_ns(double hz) { return std::max<std::int64_t>(1, std::llround(1e9 / hz)); }
+
+/// A finite double for JSON (NaN and ±inf have no JSON form): null instead.
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+Mission::Mission(const MissionSpec& spec, Simulation& sim)
+    : spec_(spec),
+      sim_(sim),
+      referee_(spec.rules, referee_victims(sim.world()), static_cast<int>(sim.world().robots.size())),
+      network_(spec.radio.model, sim.seed(), network_options(spec)) {
+  const World& world = sim_.world();
+  if (world.robots.empty()) throw Error("a mission needs at least one robot");
+  const std::vector<Vec3> robots = radio_positions();
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    robot_nodes_.push_back(network_.add_node(world.robots[r].name, RadioNodeKind::robot, robots[r]));
+  }
+  std::vector<BaseStationSpec> bases = spec_.bases;
+  if (bases.empty()) {
+    BaseStationSpec b;
+    b.p_W = world.robots[0].X_W_start.p + Vec3(0, 0, 1.0);
+    bases.push_back(b);
+    spec_.bases = bases;
+  }
+  for (const auto& b : bases) {
+    if (network_.find(b.name)) throw Error("mission base '" + b.name + "' has the name of a robot or another base");
+    base_nodes_.push_back(network_.add_node(b.name, RadioNodeKind::base, b.p_W));
+  }
+  in_contact_updates_.assign(world.robots.size(), 0);
+  in_contact_.assign(world.robots.size(), false);
+
+  Bus& bus = sim_.bus();
+  score_topic_ = bus.advertise("/rescue/score", "std_msgs/String", 0, true);
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    const int ri = static_cast<int>(r);
+    result_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/report_result"), "std_msgs/String", 0, false, ri));
+    status_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/status"), "std_msgs/String", kStatusRate, false, ri));
+  }
+  update_links();
+  next_link_ns_ = sim_.time().ns + period_ns(spec_.radio.link_rate_hz);
+  next_status_ns_ = sim_.time().ns;
+  publish_score();
+}
+
+std::vector<Vec3> Mission::radio_positions() const {
+  const State& s = sim_.state();
+  std::vector<Vec3> out;
+  for (std::size_t r = 0; r < s.robots.size(); ++r) out.push_back(s.robots[r].base.X_WB.p + Vec3(0, 0, spec_.radio.antenna_height_m));
+  return out;
+}
+
+void Mission::update_links() {
+  const std::vector<Vec3> robots = radio_positions();
+  for (std::size_t r = 0; r < robots.size(); ++r) network_.set_position(robot_nodes_[r], robots[r]);
+  if (spec_.radio.model.kind == RadioModelKind::wss) {
+    const WallCounter walls(sim_.ray_scene(), sim_.world());
+    network_.update(&walls);
+  } else {
+    network_.update();
+  }
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const bool c = network_.status(robot_nodes_[r]).hops_to_base.has_value();
+    in_contact_[r] = c;
+    if (c) ++in_contact_updates_[r];
+  }
+}
+
+void Mission::after_step() {
+  const std::int64_t now = sim_.time().ns;
+  if (now >= next_link_ns_) {
+    // datagrams queued since the last update go along the routes of that update, then links move on
+    const double dt = static_cast<double>(period_ns(spec_.radio.link_rate_hz)) * 1e-9;
+    network_.deliver(dt);
+    update_links();
+    while (next_link_ns_ <= now) next_link_ns_ += period_ns(spec_.radio.link_rate_hz);
+  }
+  if (now >= next_status_ns_) {
+    publish_status();
+    while (next_status_ns_ <= now) next_status_ns_ += period_ns(kStatusRate);
+  }
+}
+
+bool Mission::in_contact(int robot) const { return in_contact_.at(static_cast<std::size_t>(robot)); }
+
+ReportReply Mission::report(int robot, const Vec3& p_W) {
+  VictimReport r;
+  r.robot = robot;
+  r.p_W = p_W;
+  r.time = sim_.time();
+  r.in_contact = robot >= 0 && robot < static_cast<int>(in_contact_.size()) && in_contact_[static_cast<std::size_t>(robot)];
+  const double before = referee_.score();
+  const std::uint64_t charged = referee_.counts().charged;
+  ReportReply reply = referee_.judge(r);
+  if (robot >= 0 && robot < static_cast<int>(result_topics_.size())) {
+    nlohmann::json j;
+    j["id"] = reply.id;
+    j["outcome"] = std::string(report_outcome_name(reply.outcome));
+    j["victim"] = reply.victim >= 0 ? nlohmann::json(referee_.victims()[static_cast<std::size_t>(reply.victim)].name) : nlohmann::json(nullptr);
+    j["distance"] = reply.distance_m >= 0 ? nlohmann::json(reply.distance_m) : nlohmann::json(nullptr);
+    j["position"] = {number_or_null(p_W.x()), number_or_null(p_W.y()), number_or_null(p_W.z())};
+    j["score_change"] = reply.score_change;
+    j["score"] = reply.score;
+    j["reports_left"] = reply.reports_left;
+    j["message"] = reply.message;
+    j["stamp"] = r.time.seconds();
+    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)], msg::String{j.dump()});
+  }
+  if (referee_.score() != before || referee_.counts().charged != charged) publish_score();
+  return reply;
+}
+
+SendResult Mission::send(int robot, std::string_view to, std::vector<std::uint8_t> bytes) {
+  if (robot < 0 || robot >= static_cast<int>(robot_nodes_.size())) return {false, 0, "no robot " + std::to_string(robot)};
+  int dest = kRadioBroadcast;
+  if (to != "*") {
+    const auto n = network_.find(to);
+    if (!n) return {false, 0, "no radio called '" + std::string(to) + "' (robots, bases and '*' for every neighbour)"};
+    dest = *n;
+  }
+  return network_.send(robot_nodes_[static_cast<std::size_t>(robot)], dest, std::move(bytes));
+}
+
+std::vector<Datagram> Mission::take_inbox(int robot) { return network_.take_inbox(robot_node(robot)); }
+
+RadioStatus Mission::status(int robot) const { return network_.status(robot_node(robot)); }
+
+RelayResult Mission::drop_relay(int robot) {
+  const int node = robot_node(robot);
+  return network_.add_relay(node, network_.node(node).p_W);
+}
+
+void Mission::publish_score() {
+  nlohmann::json j;
+  j["score"] = referee_.score();
+  j["victims_found"] = referee_.victims_found();
+  j["victims"] = referee_.victim_count();
+  j["false_reports"] = referee_.counts()[ReportOutcome::false_report];
+  j["reports"] = referee_.counts().charged;
+  j["reports_left"] = referee_.reports_left();
+  j["elapsed"] = sim_.time().seconds();
+  sim_.bus().publish(score_topic_, msg::String{j.dump()});
+}
+
+void Mission::publish_status() {
+  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
+    const int node = robot_nodes_[r];
+    const RadioStatus st = network_.status(node);
+    nlohmann::json j;
+    j["stamp"] = sim_.time().seconds();
+    j["in_contact"] = in_contact_[r];
+    j["hops_to_base"] = st.hops_to_base ? nlohmann::json(*st.hops_to_base) : nlohmann::json(nullptr);
+    nlohmann::json nb = nlohmann::json::array();
+    for (const auto& n : st.neighbours) {
+      nb.push_back({{"id", network_.node(n.node).id}, {"rssi_dbm", number_or_null(n.rssi_dbm)}, {"margin_db", number_or_null(n.margin_db)}});
+    }
+    j["neighbours"] = nb;
+    j["bytes_sent"] = st.bytes_sent;
+    j["bytes_received"] = st.bytes_received;
+    j["bytes_dropped"] = st.bytes_dropped;
+    j["datagrams_dropped"] = st.datagrams_dropped;
+    j["relays_left"] = network_.relays_left(node);
+    sim_.bus().publish(status_topics_[r], msg::String{j.dump()});
+  }
+}
+
+MissionResult Mission::result() const {
+  MissionResult m;
+  m.rules = spec_.rules.preset;
+  m.radio_model = std::string(radio_model_name(spec_.radio.model.kind));
+  m.score = referee_.score();
+  m.victims_found = referee_.victims_found();
+  m.victims = referee_.victim_count();
+  m.counts = referee_.counts();
+  m.timeline = referee_.timeline();
+  for (const auto& v : referee_.victims()) m.victim_names.push_back(v.name);
+  m.victim_states = referee_.victim_states();
+  m.link_updates = network_.update_count();
+  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
+    m.robot_names.push_back(network_.node(robot_nodes_[r]).id);
+    m.contact_fraction.push_back(m.link_updates ? static_cast<double>(in_contact_updates_[r]) / static_cast<double>(m.link_updates) : 0.0);
+    m.relays_dropped.push_back(spec_.radio.relays_per_robot - network_.relays_left(robot_nodes_[r]));
+  }
+  for (int n = 0; n < network_.node_count(); ++n) {
+    const RadioStatus st = network_.status(n);
+    m.datagrams_sent += st.datagrams_sent;
+    m.datagrams_delivered += st.datagrams_received;
+  }
+  m.datagrams_dropped = network_.dropped(RadioDropReason::no_route) + network_.dropped(RadioDropReason::capacity);
+  return m;
+}
+
+Mission::Memory Mission::save() const {
+  return Memory{referee_, network_, in_contact_updates_, in_contact_, next_link_ns_, next_status_ns_};
+}
+
+void Mission::load(const Memory& m) {
+  referee_ = m.referee;
+  network_ = m.network;
+  in_contact_updates_ = m.in_contact_updates;
+  in_contact_ = m.in_contact;
+  next_link_ns_ = m.next_link_ns;
+  next_status_ns_ = m.next_status_ns;
+}
+
+}  // namespace rescuesim

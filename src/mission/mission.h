@@ -1,0 +1,118 @@
+#pragma once
+/// The mission of a run: the referee judging victim reports, the radio network kept in step
+/// with the robots (robots, base stations, dropped relays), and what both publish on the Bus:
+///   /rescue/score                   std_msgs/String, JSON {score, victims_found, victims,
+///                                   false_reports, reports, elapsed}: latched, on every change
+///   /<robot>/rescue/report_result   std_msgs/String, JSON: the answer to each of its reports
+///   /<robot>/rescue/comms/status    std_msgs/String, JSON: neighbours with RSSI, hops to base,
+///                                   bytes sent/received/dropped, relays left; at 1 Hz
+/// Reports, datagrams and relays come in through the calls below (the built-in team autonomy,
+/// the Python API). Driven from the stepping thread: after_step() after every Simulation step.
+/// Deterministic: the network's shadowing draws come from the run seed, wall counts do not
+/// depend on thread count, and link updates happen on a schedule of sim time.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bus/topic_id.h"
+#include "comms/radio_network.h"
+#include "mission/referee.h"
+#include "world/mission_spec.h"
+
+namespace rescuesim {
+
+class Simulation;
+
+/// What a mission came to, for summary.json and the score figure.
+struct MissionResult {
+  std::string rules;                          ///< the rules preset
+  std::string radio_model;                    ///< ideal, wss or subt
+  double score = 0;
+  int victims_found = 0;
+  int victims = 0;
+  RefereeCounts counts;                       ///< reports by outcome
+  std::vector<ScoreEvent> timeline;           ///< charged reports in order
+  std::vector<std::string> victim_names;
+  std::vector<RefereeVictimState> victim_states;
+  std::vector<std::string> robot_names;
+  std::vector<double> contact_fraction;       ///< per robot: share of link updates with a route to a base
+  std::vector<int> relays_dropped;            ///< per robot
+  std::uint64_t link_updates = 0;
+  std::uint64_t datagrams_sent = 0;           ///< accepted by send()
+  std::uint64_t datagrams_delivered = 0;       ///< copies handed to inboxes (a broadcast: one per neighbour)
+  std::uint64_t datagrams_dropped = 0;        ///< no route or beyond capacity
+};
+
+class Mission {
+ public:
+  /// Sets the network up: one radio per robot (at its base link, antenna_height above it), the
+  /// spec's bases (or "base", 1 m above the first robot's start), and the referee with the
+  /// world's victims. Links are computed at once, so in_contact() is valid before the first
+  /// step. Keeps a reference to `sim`, which must outlive it.
+  Mission(const MissionSpec& spec, Simulation& sim);
+
+  /// After every Simulation step: at the link rate moves the radios with their robots,
+  /// recomputes the links (walls through the simulation's ray scene) and delivers the
+  /// datagrams queued since; publishes the comms status at 1 Hz.
+  void after_step();
+
+  /// A report by `robot` of a victim at p_W (map frame = world frame), judged now; the answer
+  /// is also published on /<robot>/rescue/report_result, and the score when it changes.
+  ReportReply report(int robot, const Vec3& p_W);
+
+  /// True when `robot` had a radio route to a base at the last link update.
+  bool in_contact(int robot) const;
+  /// Sends a datagram from `robot` to `to` ("base", a robot's name, or "*" for every
+  /// neighbour); delivered at the next link update along the route of that moment.
+  SendResult send(int robot, std::string_view to, std::vector<std::uint8_t> bytes);
+  /// Empties the robot's inbox.
+  std::vector<Datagram> take_inbox(int robot);
+  RadioStatus status(int robot) const;
+  /// Drops a relay where the robot stands (its antenna position); from the robot's budget.
+  RelayResult drop_relay(int robot);
+  /// The radio node of robot `robot`, of base `index`.
+  int robot_node(int robot) const { return robot_nodes_.at(static_cast<std::size_t>(robot)); }
+  const std::vector<int>& base_nodes() const { return base_nodes_; }
+
+  const Referee& referee() const { return referee_; }
+  const RadioNetwork& network() const { return network_; }
+  const MissionSpec& spec() const { return spec_; }
+  MissionResult result() const;
+
+  /// Everything of the mission that changes, for Session snapshots (restore puts it back).
+  struct Memory;
+  Memory save() const;
+  void load(const Memory& memory);
+
+ private:
+  void update_links();
+  void publish_score();
+  void publish_status();
+  std::vector<Vec3> radio_positions() const;
+
+  MissionSpec spec_;
+  Simulation& sim_;
+  Referee referee_;
+  RadioNetwork network_;
+  std::vector<int> robot_nodes_, base_nodes_;
+  std::vector<std::uint64_t> in_contact_updates_;  ///< per robot
+  std::vector<bool> in_contact_;                   ///< per robot, at the last update
+  std::int64_t next_link_ns_ = 0, next_status_ns_ = 0;
+  TopicId score_topic_ = kNoTopic;
+  std::vector<TopicId> result_topics_, status_topics_;
+};
+
+/// See Mission::save.
+struct Mission::Memory {
+  Referee referee;
+  RadioNetwork network;
+  std::vector<std::uint64_t> in_contact_updates;
+  std::vector<bool> in_contact;
+  std::int64_t next_link_ns = 0, next_status_ns = 0;
+};
+
+}  // namespace rescuesim

@@ -1,0 +1,232 @@
+// The mission inside a running Simulation: robots' radios follow the robots, WSS received
+// power through counted walls against the formula, a datagram beyond the cut-off never
+// arrives, a dropped relay carries the link when its robot drives on, reports judged with the
+// radio's contact, and what is published on the Bus.
+
+#include "mission/mission.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "robots/rescue_robot.h"
+#include "sim/simulation.h"
+
+namespace rescuesim {
+namespace {
+
+/// A floor from x = −5 to 60, walls 0.1 m thick and 1 m high across the x axis (y from −5 to
+/// 5) at each x of `wall_x`, robots "a", "b", ... on y = 0 at each x of `robot_x`, facing +x.
+World line_world(const std::vector<double>& wall_x, const std::vector<double>& robot_x) {
+  WorldSpec s;
+  s.name = "mission_test";
+  s.materials = default_materials();
+  s.floor_min = {-5, -10};
+  s.floor_max = {60, 10};
+  for (double x : wall_x) s.walls.push_back(WallSpec{{x, -5}, {x, 5}, 0.1, 1.0, "wall", {}});
+  for (std::size_t i = 0; i < robot_x.size(); ++i) {
+    RobotPlacement r;
+    r.name = std::string(1, static_cast<char>('a' + i));
+    r.start = {robot_x[i], 0, 0};
+    s.robots.push_back(r);
+  }
+  return compile_world(s, builtin_models());
+}
+
+/// WSS radio; the base 0.5 m above the floor at (−1, 0), below the tops of the walls.
+MissionSpec wss_mission() {
+  MissionSpec m;
+  m.radio.model = radio_model("wss");
+  m.bases.push_back({"base", {-1, 0, 0.5}});
+  return m;
+}
+
+void steps(Simulation& sim, Mission& mission, double seconds) {
+  const SimTime end = sim.time() + SimTime::from_seconds(seconds);
+  while (sim.time() < end) {
+    sim.step();
+    mission.after_step();
+  }
+}
+
+TEST(Mission, WssPowerBetweenTwoRobotsIsTheFormulasThroughTheWallsBetweenThem) {
+  // 20 m apart, walls at x = 5 and 15 between them, one at 30 behind b:
+  // P = −49.67 − 10·1·log10(20/2) − 2·6.325 = −49.67 − 10 − 12.65 = −72.32 dBm
+  Simulation sim(line_world({5, 15, 30}, {0, 20}));
+  Mission mission(wss_mission(), sim);
+  steps(sim, mission, 0.5);
+  const RadioLink& l = mission.network().link(mission.robot_node(0), mission.robot_node(1));
+  EXPECT_EQ(l.walls, 2);
+  EXPECT_NEAR(l.distance_m, 20.0, 0.01);
+  EXPECT_NEAR(l.rssi_dbm, -72.32, 0.01);
+  EXPECT_TRUE(l.connected);
+  // the base, 1 m behind a: a hears it directly, b through the same two walls
+  EXPECT_TRUE(mission.in_contact(0));
+  EXPECT_TRUE(mission.in_contact(1));
+  EXPECT_EQ(mission.status(0).hops_to_base, 1);
+  EXPECT_EQ(mission.network().node(mission.base_nodes()[0]).id, "base");
+}
+
+TEST(Mission, BeyondTheCutOffADatagramNeverArrivesAndReportsAreOutOfContact) {
+  // 40 m apart with five walls between: −49.67 − 10·log10(20) − 5·6.325 = −94.31 dBm < −93
+  Simulation sim(line_world({5, 10, 15, 20, 25}, {0, 40}));
+  Mission mission(wss_mission(), sim);
+  const RadioLink& l = mission.network().link(mission.robot_node(0), mission.robot_node(1));
+  EXPECT_EQ(l.walls, 5);
+  EXPECT_NEAR(l.rssi_dbm, -94.31, 0.01);
+  EXPECT_FALSE(l.connected);
+  EXPECT_TRUE(mission.in_contact(0));
+  EXPECT_FALSE(mission.in_contact(1));
+
+  const SendResult sent = mission.send(1, "a", {1, 2, 3});
+  ASSERT_TRUE(sent.accepted) << sent.reason;
+  steps(sim, mission, 1.0);  // ten link updates
+  EXPECT_TRUE(mission.take_inbox(0).empty());
+  EXPECT_EQ(mission.status(1).datagrams_dropped, 1u);
+  EXPECT_EQ(mission.result().datagrams_dropped, 1u);
+
+  // a's datagram to the base arrives at the next link update
+  ASSERT_TRUE(mission.send(0, "base", {7}).accepted);
+  steps(sim, mission, 0.1);
+  EXPECT_EQ(mission.network().inbox(mission.base_nodes()[0]).size(), 1u);
+
+  // no victims here: a report in contact is false (−0.5), one out of contact is refused at no cost
+  EXPECT_EQ(mission.report(1, {40, 0, 0}).outcome, ReportOutcome::out_of_contact);
+  EXPECT_EQ(mission.report(0, {1, 0, 0}).outcome, ReportOutcome::false_report);
+  EXPECT_EQ(mission.referee().score(), -0.5);
+
+  EXPECT_FALSE(mission.send(1, "nobody", {1}).accepted);
+  EXPECT_FALSE(mission.send(1, "a", std::vector<std::uint8_t>(70000)).accepted);  // over max_datagram_bytes
+}
+
+TEST(Mission, ADroppedRelayCarriesTheLinkWhenItsRobotDrivesOn) {
+  // open floor, path-loss exponent 4: P = −49.67 − 40·log10(d/2) links up to d = 2·10^(43.33/40) = 24.2 m
+  MissionSpec spec = wss_mission();
+  spec.radio.model.wss.n = 4;
+  Simulation sim(line_world({}, {20}));
+  Mission mission(spec, sim);
+  EXPECT_TRUE(mission.in_contact(0));  // 21 m from the base: −49.67 − 40·log10(10.5) = −90.5 dBm
+  const RelayResult relay = mission.drop_relay(0);
+  ASSERT_TRUE(relay.ok()) << relay.reason;
+  EXPECT_EQ(mission.network().node(relay.node).id, "a/relay_1");
+  EXPECT_EQ(mission.network().relays_left(mission.robot_node(0)), 11);
+
+  // a drives on along +x at 1 m/s for 16 s: about 37 m from the base, out of its reach, 16 m from the relay
+  const SimTime end = sim.time() + SimTime::from_seconds(16);
+  while (sim.time() < end) {
+    msg::Twist t;
+    t.linear.x() = 1.0;
+    sim.command_velocity(0, t);
+    steps(sim, mission, 0.1);
+  }
+  const double x = sim.state().robots[0].base.X_WB.p.x();
+  ASSERT_GT(x, 33.0);
+  const int base = mission.base_nodes()[0];
+  EXPECT_FALSE(mission.network().link(mission.robot_node(0), base).connected);
+  EXPECT_TRUE(mission.network().link(mission.robot_node(0), relay.node).connected);
+  EXPECT_TRUE(mission.in_contact(0));
+  EXPECT_EQ(mission.status(0).hops_to_base, 2);  // a → relay → base
+  EXPECT_EQ(mission.network().route(mission.robot_node(0), base), (std::vector<int>{mission.robot_node(0), relay.node, base}));
+  EXPECT_EQ(mission.result().relays_dropped, (std::vector<int>{1}));
+}
+
+TEST(Mission, ReportsAreAnsweredOnTheBusAndTheScoreIsLatched) {
+  WorldSpec s;
+  s.materials = default_materials();
+  s.floor_min = {-5, -5};
+  s.floor_max = {5, 5};
+  RobotPlacement r;
+  r.name = "a";
+  s.robots.push_back(r);
+  VictimSpec v;
+  v.name = "v1";
+  v.pose = {3, 0, 0};
+  s.victims.push_back(v);
+  Simulation sim(compile_world(s, builtin_models()));
+  Mission mission(MissionSpec{}, sim);  // ideal radio, RoboCup rules
+  std::vector<nlohmann::json> answers;
+  sim.bus().subscribe("/rescue/report_result", [&](const Topic&, const msg::Message& m) {
+    answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
+  steps(sim, mission, 1.0);
+  const Vec3 c = sim.world().victims[0].centre;
+  const ReportReply reply = mission.report(0, c + Vec3(0.6, 0.8, 0));  // 1 m from the victim's centre
+  EXPECT_EQ(reply.outcome, ReportOutcome::accepted);
+  ASSERT_EQ(answers.size(), 1u);
+  EXPECT_EQ(answers[0]["outcome"], "accepted");
+  EXPECT_EQ(answers[0]["victim"], "v1");
+  EXPECT_NEAR(answers[0]["distance"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(answers[0]["score"], 1.0);
+
+  // a subscriber that comes late gets the latched score at once
+  nlohmann::json score;
+  sim.bus().subscribe("/rescue/score", [&](const Topic&, const msg::Message& m) { score = nlohmann::json::parse(std::get<msg::String>(m).data); });
+  EXPECT_EQ(score["score"], 1.0);
+  EXPECT_EQ(score["victims_found"], 1);
+  EXPECT_EQ(score["victims"], 1);
+  EXPECT_EQ(score["reports"], 1);
+  EXPECT_NEAR(score["elapsed"].get<double>(), 1.0, 1e-9);
+
+  // NaN gets an answer with null coordinates, nothing is scored
+  EXPECT_EQ(mission.report(0, {std::nan(""), 0, 0}).outcome, ReportOutcome::invalid);
+  ASSERT_EQ(answers.size(), 2u);
+  EXPECT_TRUE(answers[1]["position"][0].is_null());
+  EXPECT_EQ(mission.result().counts[ReportOutcome::invalid], 1u);
+}
+
+TEST(Mission, StatusIsPublishedOncePerSimSecond) {
+  Simulation sim(line_world({}, {0, 5}));
+  Mission mission(wss_mission(), sim);
+  std::vector<nlohmann::json> status;
+  sim.bus().subscribe("/b/rescue/comms/status", [&](const Topic&, const msg::Message& m) {
+    status.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
+  steps(sim, mission, 3.0);
+  ASSERT_EQ(status.size(), 4u);  // at the first step, then at 1, 2 and 3 s
+  EXPECT_EQ(status.back()["in_contact"], true);
+  // the widest path: b hears a (5 m, −53.65 dBm) better than the base (6 m, −54.44 dBm), and a
+  // the base at 1 m, so b's route goes through a
+  EXPECT_EQ(status.back()["hops_to_base"], 2);
+  ASSERT_EQ(status.back()["neighbours"].size(), 2u);  // robot a and the base
+  EXPECT_EQ(status.back()["neighbours"][0]["id"], "a");
+  EXPECT_EQ(status.back()["relays_left"], 12);
+  EXPECT_EQ(mission.network().update_count(), 31u);  // at set-up and every 0.1 s to 3 s
+}
+
+TEST(Mission, SameSeedSameLinksAndARestoredMemoryReplaysThem) {
+  // SubT's shadowing draws from the run seed: two missions of one seed see the same margins
+  MissionSpec spec;
+  spec.radio.model = radio_model("subt");
+  spec.radio.model.subt.max_range_m = 1e9;
+  SimOptions o;
+  o.seed = 7;
+  Simulation s1(line_world({}, {0, 30}), o), s2(line_world({}, {0, 30}), o);
+  Mission m1(spec, s1), m2(spec, s2);
+  // both take a snapshot (a synchronisation point of the physics engine), so both step alike
+  const State state = s1.snapshot();
+  s2.snapshot();
+  const Mission::Memory saved = m1.save();
+  std::vector<double> margins1, margins2, margins3;
+  for (int i = 0; i < 20; ++i) {
+    steps(s1, m1, 0.1);
+    steps(s2, m2, 0.1);
+    margins1.push_back(m1.network().link(0, 1).margin_db);
+    margins2.push_back(m2.network().link(0, 1).margin_db);
+  }
+  EXPECT_EQ(margins1, margins2);
+  EXPECT_NE(margins1[0], margins1[1]);  // a new draw per update
+  // the simulation and the mission back to set-up: the same links again, bitwise
+  s1.restore(state);
+  m1.load(saved);
+  EXPECT_EQ(m1.network().update_count(), 1u);
+  for (int i = 0; i < 20; ++i) {
+    steps(s1, m1, 0.1);
+    margins3.push_back(m1.network().link(0, 1).margin_db);
+  }
+  EXPECT_EQ(margins3, margins1);
+}
+
+}  // namespace
+}  // namespace rescuesim
