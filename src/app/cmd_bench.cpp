@@ -226,6 +226,8 @@ json run_child(const Scenario& scenario, const ModelMap& models, bool cameras, [
   });
   json j = std::move(child.report);
   j["peak_memory_mb"] = static_cast<double>(child.usage.ru_maxrss) / 1024.0;
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  j["cpu_time_s"] = seconds(child.usage.ru_utime) + seconds(child.usage.ru_stime);
   return j;
 }
 

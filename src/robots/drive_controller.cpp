@@ -22,6 +22,25 @@ void update_drive(const RobotSpec& spec, RobotState& s, SimTime now, double dt) 
   }
   s.drive_v = approach(s.drive_v, v, d.max_linear_accel * dt);
   s.drive_w = approach(s.drive_w, w_cmd, d.max_angular_accel * dt);
+  if (s.joint_target.size() != spec.joints.size()) s.joint_target.assign(spec.joints.size(), 0.0);
+  // at rest the wheels are held where they stopped (a brake), not merely told to turn at zero
+  const bool at_rest = v == 0 && w_cmd == 0 && s.drive_v == 0 && s.drive_w == 0 && d.brake_gain > 0 &&
+                       s.q.size() == spec.joints.size();
+  if (at_rest) {
+    if (!s.braking) {
+      s.brake_q = s.q;
+      s.braking = true;
+      s.yaw_rate_integral = 0;
+    }
+    for (const auto* wheels : {&d.left_wheels, &d.right_wheels}) {
+      for (const auto& name : *wheels) {
+        const auto j = static_cast<std::size_t>(spec.joint_index(name));
+        s.joint_target[j] = d.brake_gain * (s.brake_q[j] - s.q[j]);
+      }
+    }
+    return;
+  }
+  s.braking = false;
   // yaw-rate feedback: the chassis' measured turn rate (about its own z axis) against the set point
   const double measured_w = (s.base.X_WB.q.conjugate() * s.base.w_WB).z();
   const double error = s.drive_w - measured_w;
@@ -31,7 +50,6 @@ void update_drive(const RobotSpec& spec, RobotState& s, SimTime now, double dt) 
   const double half_track = 0.5 * d.track_width * d.track_multiplier;
   const double left = (s.drive_v - w * half_track) / d.wheel_radius;
   const double right = (s.drive_v + w * half_track) / d.wheel_radius;
-  if (s.joint_target.size() != spec.joints.size()) s.joint_target.assign(spec.joints.size(), 0.0);
   for (std::size_t i = 0; i < d.left_wheels.size(); ++i) {
     s.joint_target[static_cast<std::size_t>(spec.joint_index(d.left_wheels[i]))] = wheel_sign(d.left_signs, i) * left;
   }

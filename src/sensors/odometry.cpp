@@ -8,6 +8,9 @@ namespace rescuesim {
 
 namespace {
 
+/// m/s: wheel rims slower than this count as standing (the brake holds them well below it)
+constexpr double kStandingWheelSpeed = 1e-3;
+
 /// Body speed (m/s, rad/s) implied by wheel joint velocities under the drive geometry.
 struct BodyRate {
   double v = 0, w = 0;
@@ -46,6 +49,16 @@ void integrate_odometry(const World& world, State& state, int robot, const Senso
     double& bias = slot.odometry.gyro_bias;
     bias = walk_bias(bias, spec.odometry.gyro, dt, slot.rng);
     rate.w = add_noise(true_rate, spec.odometry.gyro, bias, slot.rng);
+    // a zero-velocity update, as bases that fuse a gyro do: wheels standing still (the drive
+    // brakes them at rest) mean the robot is not turning, so the gyro's bias and noise are not
+    // integrated into the heading while it stands
+    bool standing = !rspec.drive.left_wheels.empty() || !rspec.drive.right_wheels.empty();
+    for (const auto* side : {&rspec.drive.left_wheels, &rspec.drive.right_wheels}) {
+      for (const auto& name : *side) {
+        standing = standing && std::abs(rs.qd[static_cast<std::size_t>(rspec.joint_index(name))] * rspec.drive.wheel_radius) < kStandingWheelSpeed;
+      }
+    }
+    if (standing) rate.w = 0;
   }
   // midpoint integration of the unicycle model
   const double yaw_mid = rs.odom.yaw + 0.5 * rate.w * dt;

@@ -80,6 +80,11 @@ struct DriveSpec {
   /// depends on how the wheels slide, so the controller trims the wheel speed difference until
   /// the chassis turns at the commanded rate. Zero gains give a purely open-loop drive.
   double yaw_rate_kp = 3.0, yaw_rate_ki = 20.0;
+  /// At rest (no command in force and both set points at zero) the drive holds its wheels at the
+  /// angles where they stopped, like a motor brake: each wheel turns at brake_gain × its angle
+  /// error (1/s). A velocity motor alone lets a standing robot creep (0.7 mm/s) and its
+  /// odometry turn. 0: no brake.
+  double brake_gain = 20.0;
 };
 
 /// A whole robot model.

@@ -49,6 +49,8 @@ struct RobotState {
   SimTime cmd_time{-1};                 ///< when it arrived (-1: never)
   double drive_v = 0, drive_w = 0;      ///< acceleration-limited set points (m/s, rad/s)
   double yaw_rate_integral = 0;         ///< drive controller: integral of the yaw-rate error (rad)
+  bool braking = false;                 ///< the drive is at rest and holds its wheels (see update_drive)
+  std::vector<double> brake_q;          ///< per joint: the angle a braked wheel is held at (rad)
   std::vector<double> joint_target;     ///< per joint: velocity target (velocity control) or position target
   std::vector<double> head_target;      ///< per head joint (rad)
 
@@ -172,6 +174,8 @@ void visit_fields(S& r, V& v) {
     w("drive_v", r.drive_v);
     w("drive_w", r.drive_w);
     w("yaw_rate_integral", r.yaw_rate_integral);
+    w("braking", r.braking);
+    w("brake_q", r.brake_q);
     w("joint_target", r.joint_target);
     w("head_target", r.head_target);
   });

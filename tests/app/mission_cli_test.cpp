@@ -22,7 +22,7 @@ TEST(MissionCli, CheckDescribesTheShippedTeamScenario) {
   EXPECT_NE(r.out.find("robot starts  3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("mission       robocup rules: victims within 1.5 m"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("radio         wss: -49.67 dBm at 2 m"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("base          base, 1 m above r1's start (0.75, 0.75) m"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("base          base, 1 m above r1's start (1.25, 1.25) m"), std::string::npos) << r.out;
 }
 
 TEST(MissionCli, ARunWritesTheScoreAndItsFigure) {

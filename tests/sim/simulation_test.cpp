@@ -179,6 +179,30 @@ TEST(Simulation, CommandTimeoutStopsTheRobot) {
   EXPECT_LT(sim.state().robots[0].base.v_WB.norm(), 0.02);
 }
 
+TEST(Simulation, AnIdleRobotStaysWhereItStandsAndSoDoesItsOdometry) {
+  // 200 s without a command: the drive brakes the wheels where they stopped, so neither the
+  // robot nor its odometry wanders (without the brake: 0.7 mm/s forward, odometry yaw 0.26 rad)
+  Simulation sim = make_sim(room_spec());
+  sim.step_until(SimTime::from_seconds(1.0));  // settled on its wheels
+  const Pose3 X0 = sim.state().robots[0].base.X_WB;
+  const Pose2 odom0 = sim.state().robots[0].odom;
+  sim.step_until(SimTime::from_seconds(201.0));
+  const RobotState& r = sim.state().robots[0];
+  EXPECT_LT((r.base.X_WB.p - X0.p).norm(), 1e-3);
+  EXPECT_LT(std::abs(r.base.X_WB.to_pose2().yaw - X0.to_pose2().yaw), 0.01);
+  EXPECT_LT(std::hypot(r.odom.x - odom0.x, r.odom.y - odom0.y), 1e-3);
+  EXPECT_LT(std::abs(r.odom.yaw - odom0.yaw), 0.01);
+  EXPECT_TRUE(r.braking);
+
+  // and after standing, it drives off as usual and brakes again when told to stop
+  drive(sim, 0.5, 0.0, 2.0);
+  EXPECT_FALSE(sim.state().robots[0].braking);
+  EXPECT_GT(truth_from_start(sim).x, 0.5);
+  sim.step_until(sim.time() + SimTime::from_seconds(2.0));
+  EXPECT_TRUE(sim.state().robots[0].braking);
+  EXPECT_LT(sim.state().robots[0].base.v_WB.norm(), 1e-3);
+}
+
 TEST(Simulation, DiscardedCommandsAreNeverApplied) {
   Simulation sim = make_sim(room_spec());
   msg::Twist t;

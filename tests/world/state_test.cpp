@@ -27,6 +27,7 @@ State full_state() {
   r.qd = {0, 0.1};
   r.effort = {0, 2};
   r.joint_target = {0, 0.5};
+  r.brake_q = {0, 0.25};
   r.head_target = {0.5};
   r.touching = {"wall_1"};
   s.robots.push_back(r);
@@ -103,9 +104,9 @@ TEST(StateHash, EveryFieldOfTheListChangesTheHash) {
   Perturber count;
   State probe = base;
   visit_fields(probe, count);
-  // 2 top-level leaves, 4 sequences, 5 per body, per robot its base's 5 + 1 + 1 + 3 + 8 + 3 + 3,
+  // 2 top-level leaves, 4 sequences, 5 per body, per robot its base's 5 + 1 + 1 + 3 + 10 + 3 + 3,
   // 2 per victim, 8 per sensor slot, 4 schedule and 3 trouble leaves
-  EXPECT_EQ(count.seen, 2 + 4 + 5 + 24 + 2 + 8 + 4 + 3);
+  EXPECT_EQ(count.seen, 2 + 4 + 5 + 26 + 2 + 8 + 4 + 3);
   for (int k = 0; k < count.seen; ++k) {
     State s = base;
     Perturber p;
