@@ -198,6 +198,9 @@ void Session::mission_step() {
   Controllers& c = *controllers_;
   const SimTime gap = SimTime::from_seconds(1.0 / mission_->spec().rules.report_rate_hz);
   const RadioNetwork& net = mission_->network();
+  // the relay rule reads only the links, so it runs once per link update, not every step
+  const bool links_new = net.update_count() != c.relay_check;
+  c.relay_check = net.update_count();
   for (std::size_t r = 0; r < c.explorers.size(); ++r) {
     autonomy::Explorer* ex = c.explorers[r].get();
     if (!ex) continue;  // robots driven from outside report for themselves
@@ -236,7 +239,7 @@ void Session::mission_step() {
       c.returning[r] = 0;
     }
     // a relay where the link to the base grows weak, unless one is close by
-    if (contact && net.relays_left(mission_->robot_node(ri)) > 0 && net.model().kind != RadioModelKind::ideal) {
+    if (links_new && contact && net.relays_left(mission_->robot_node(ri)) > 0 && net.model().kind != RadioModelKind::ideal) {
       const int me = mission_->robot_node(ri);
       // the margin of the route to a base: its weakest link's, the best over the bases
       double margin = -std::numeric_limits<double>::infinity();

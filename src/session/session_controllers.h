@@ -35,6 +35,7 @@ struct Session::Controllers {
   std::vector<SimTime> next_report;                 // per robot: not before this
   std::vector<SimTime> lost_contact;                // per robot: when it last lost contact (-1: in contact)
   std::vector<std::uint8_t> returning;              // per robot: driving back towards the base to report
+  std::uint64_t relay_check = 0;                    // link update the relay rule last looked at (it changes only with the links)
 };
 
 }  // namespace rescuesim
