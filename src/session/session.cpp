@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/log.h"
+#include "core/memory.h"
 #include "sensors/camera/render_camera_service.h"
 #include "session/explorer_settings.h"
 #include "session/session_controllers.h"
@@ -20,6 +21,8 @@ constexpr double kCoverageRadius = 1.0;  // m around the path counts as covered
 
 Session::Session(const Scenario& scenario, const ModelMap& models, SessionOptions options)
     : scenario_(scenario), options_(std::move(options)) {
+  if (!(options_.trajectory_rate > 0)) throw Error("SessionOptions::trajectory_rate must be > 0 Hz");
+  record_interval_ = SimTime::from_seconds(1.0 / options_.trajectory_rate);
   spec_ = build_world(scenario_, &diagnostics_);
   Diagnostics problems = validate(spec_);
   diagnostics_.append(problems);
@@ -153,10 +156,31 @@ bool Session::world_has_no_thermal() const {
 
 std::string Session::render_device() const { return cameras_ ? cameras_->device() : std::string(); }
 
+bool Session::thin_trajectory() {
+  // samples come in groups of one per robot at each sample time: keep groups 0, 2, 4, ...
+  const std::size_t group = sim_->state().robots.size();
+  const std::size_t groups = trajectory_.size() / group;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < trajectory_.size(); i += 2 * group) {
+    for (std::size_t k = 0; k < group && i + k < trajectory_.size(); ++k) trajectory_[kept++] = trajectory_[i + k];
+  }
+  trajectory_.resize(kept);
+  record_interval_ = record_interval_ + record_interval_;
+  // the sample due now is group number `groups`: on the new grid when that is even
+  return groups % 2 == 0;
+}
+
 void Session::record() {
   const State& s = sim_->state();
   if (s.time < next_record_) return;
-  next_record_ = s.time + SimTime::from_seconds(1.0 / options_.trajectory_rate);
+  if (!s.robots.empty() && trajectory_.size() + s.robots.size() > options_.trajectory_max_points) {
+    const SimTime before = record_interval_;
+    if (!thin_trajectory()) {
+      next_record_ = s.time + before;  // the sample due now falls between the kept ones
+      return;
+    }
+  }
+  next_record_ = s.time + record_interval_;
   for (std::size_t r = 0; r < s.robots.size(); ++r) {
     const RobotState& rs = s.robots[r];
     const Pose2 truth = rs.base.X_WB.to_pose2();
@@ -349,7 +373,14 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       commands_owed = sim_->velocity_commands();  // what was missed is not owed any more
     }
   };
+  // long runs give freed memory back now and then (threads' malloc arenas keep it otherwise)
+  const SimTime trim_every = SimTime::from_seconds(options_.return_memory_every > 0 ? options_.return_memory_every : 0);
+  SimTime next_trim = sim_->time() + trim_every;
   while (sim_->time() < end) {
+    if (trim_every.ns > 0 && sim_->time() >= next_trim) {
+      return_free_memory();
+      next_trim = sim_->time() + trim_every;
+    }
     if (stop && stop->load(std::memory_order_relaxed)) {
       stop_reason_ = "interrupted";
       break;

@@ -60,6 +60,13 @@ struct SessionOptions {
   bool controllers = true;      ///< attach the scenario's built-in controllers
   bool cameras = true;          ///< render camera sensors (false: every camera sensor is switched off)
   double trajectory_rate = 10;  ///< Hz
+  /// Most trajectory samples kept (all robots together; 80 bytes each, so 10.5 MB by default:
+  /// 3.6 h of one robot at 10 Hz). When a run reaches it, every other sample time is dropped
+  /// and the rate halves from there, so a run of any length keeps its whole path, evenly
+  /// thinned, in bounded memory (trajectory.csv then has the coarser spacing).
+  std::size_t trajectory_max_points = std::size_t{1} << 17;
+  /// Sim seconds between returns of freed memory to the system during run() (core/memory.h); 0: never.
+  double return_memory_every = 60;
   /// > 0: synchronous with an outside controller (a ROS node), like Webots' synchronous mode:
   /// after each step that published laser scans, run() waits up to this many wall seconds for
   /// as many velocity commands before stepping on, so the command answering a scan is applied
@@ -121,7 +128,9 @@ class Session {
   RunResult result() const;
   /// Fraction of free floor passed within 1 m of so far (see docs/outputs.md).
   double coverage() const;
+  /// Samples at record_interval() (see SessionOptions::trajectory_max_points), robots in order per time.
   const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
+  SimTime record_interval() const { return record_interval_; }
 
   /// Writes summary.json, overview.png, trajectory.csv, world.svg, sensors/laser.png and, with
   /// a mission, score.png into `dir` (atomically, file by file).
@@ -132,6 +141,9 @@ class Session {
   /// One Simulation step with what a run does around it: the trajectory, the mission.
   void step_once();
   void record();
+  /// Drops every other sample time from the trajectory and doubles the interval; true when the
+  /// sample due now falls on the new grid.
+  bool thin_trajectory();
   /// After every step with a mission: its links and datagrams, and the built-in controllers' reports.
   void mission_step();
   void write_camera_frames(const std::filesystem::path& dir) const;
@@ -147,6 +159,7 @@ class Session {
   SessionOptions options_;
   std::vector<TrajectoryPoint> trajectory_;
   SimTime next_record_;
+  SimTime record_interval_;  ///< between trajectory samples: 1/trajectory_rate, doubled at each thinning
   double wall_time_ = 0;
   std::string stop_reason_;
   std::uint64_t sync_timeouts_ = 0;

@@ -14,7 +14,7 @@ struct SessionExtras {
   std::vector<std::optional<autonomy::Explorer>> explorers;  // per robot: its controller's memory
   std::vector<std::optional<msg::Twist>> queued;             // per robot: its controller's command for the next step
   std::vector<TrajectoryPoint> trajectory;
-  SimTime next_record;
+  SimTime next_record, record_interval;
   std::vector<msg::LaserScan> last_scans;
   std::vector<std::uint8_t> visited_cells;
   std::string stop_reason;
@@ -35,6 +35,7 @@ SessionSnapshot Session::snapshot() {
   extras->queued = controllers_->queued;
   extras->trajectory = trajectory_;
   extras->next_record = next_record_;
+  extras->record_interval = record_interval_;
   extras->last_scans = last_scans_;
   extras->visited_cells = visited_cells_;
   extras->stop_reason = stop_reason_;
@@ -65,6 +66,7 @@ void Session::restore(const SessionSnapshot& snapshot) {
   }
   trajectory_ = x.trajectory;
   next_record_ = x.next_record;
+  record_interval_ = x.record_interval;
   last_scans_ = x.last_scans;
   visited_cells_ = x.visited_cells;
   stop_reason_ = x.stop_reason;

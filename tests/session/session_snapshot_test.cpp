@@ -145,7 +145,9 @@ TEST(SessionMission, TheFinderReportsWhatItSawWhereItBelievesItIs) {
   EXPECT_GT(seen, 0) << "the explorers should see a victim of this small maze in 60 s";
   // reports are odometry estimates: accepted ones lie within the 1.5 m radius of their victim
   for (const auto& v : r.mission->victim_states) {
-    if (v.found) EXPECT_LE(v.error_m, 1.5);
+    if (v.found) {
+      EXPECT_LE(v.error_m, 1.5);
+    }
   }
   EXPECT_EQ(r.mission->score, r.mission->victims_found - 0.5 * static_cast<double>(r.mission->counts[ReportOutcome::false_report]));
 }

@@ -66,6 +66,38 @@ TEST(Session, StopsWhenAllVictimsAreFoundIfAsked) {
   EXPECT_LT(r.sim_time, 0.1);  // stopped right after the check that found it
 }
 
+/// Samples of a run of the default scenario for `seconds` with at most `cap` trajectory points.
+std::vector<TrajectoryPoint> capped_trajectory(std::size_t cap, double seconds, SimTime* interval) {
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  s.duration = seconds;
+  SessionOptions o = no_cameras();
+  o.trajectory_max_points = cap;
+  Session session(s, models, o);
+  session.run();
+  *interval = session.record_interval();
+  return session.trajectory();
+}
+
+TEST(Session, ALongTrajectoryIsThinnedEvenlyWithinItsCap) {
+  // 10 Hz, at most 20 points, 10 s. By hand: 0..1.9 s fill it; at 2.0 every other one goes
+  // (0, 0.2, .., 1.8) and the rate halves; 0..3.8 by 0.2 fill it again, at 4.0 -> 0.4 s;
+  // 0..7.6 by 0.4, at 8.0 -> 0.8 s: 0, 0.8, .., 7.2, 8.0, 8.8, 9.6 = 13 points
+  SimTime interval;
+  const auto traj = capped_trajectory(20, 10.0, &interval);
+  ASSERT_EQ(traj.size(), 13u);
+  EXPECT_EQ(interval, SimTime::from_seconds(0.8));
+  for (std::size_t i = 0; i < traj.size(); ++i) EXPECT_NEAR(traj[i].t, 0.8 * static_cast<double>(i), 1e-6) << i;
+
+  // 21 points: the first thinning comes with an odd count (0..2.0 s, 21 samples) so the sample
+  // due at 2.1 s falls between the kept ones (0, 0.2, .., 2.0) and is skipped: still even spacing
+  const auto odd = capped_trajectory(21, 5.0, &interval);
+  EXPECT_EQ(interval, SimTime::from_seconds(0.4));
+  ASSERT_GE(odd.size(), 2u);
+  EXPECT_LE(odd.size(), 21u);
+  for (std::size_t i = 0; i < odd.size(); ++i) EXPECT_NEAR(odd[i].t, 0.4 * static_cast<double>(i), 1e-6) << i;
+}
+
 TEST(Session, InvalidWorldIsRefusedWithItsProblems) {
   const ModelMap models = builtin_models();
   Scenario s = default_scenario(models);
