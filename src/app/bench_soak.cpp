@@ -14,6 +14,8 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -106,6 +108,13 @@ double heap_mb() {
   return static_cast<double>(m.uordblks + m.hblkhd) / 1e6;
 }
 
+/// What the arenas hold (MB): all their memory from the system (mallinfo2 arena) and the free
+/// part of it (fordblks); freed memory is resident until it is given back.
+std::pair<double, double> arena_mb() {
+  const struct mallinfo2 m = ::mallinfo2();
+  return {static_cast<double>(m.arena) / 1e6, static_cast<double>(m.fordblks) / 1e6};
+}
+
 /// Set by SIGINT/SIGTERM: the soak stops at the next step and still writes its files.
 std::atomic<bool> g_soak_stop{false};
 extern "C" void on_soak_signal(int) { g_soak_stop = true; }
@@ -118,9 +127,18 @@ double peak_mb() {
 }
 
 struct Sample {
-  double sim_s = 0, wall_s = 0, rtf = 0, resident_mb = 0, peak_mb = 0, heap_mb = 0;
+  double sim_s = 0, wall_s = 0, rtf = 0, resident_mb = 0, peak_mb = 0, heap_mb = 0, arena_mb = 0, arena_free_mb = 0;
   std::uint64_t messages = 0, nans = 0, recorded_bytes = 0;
 };
+
+std::string soak_csv(const std::vector<Sample>& samples) {
+  std::string csv = "sim_s,wall_s,rtf,resident_mb,peak_mb,heap_mb,arena_mb,arena_free_mb,messages,nans,recorded_bytes\n";
+  for (const Sample& x : samples) {
+    csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{},{},{}\n", x.sim_s, x.wall_s, x.rtf, x.resident_mb, x.peak_mb,
+                       x.heap_mb, x.arena_mb, x.arena_free_mb, x.messages, x.nans, x.recorded_bytes);
+  }
+  return csv;
+}
 
 /// Least-squares slope of y against x (0 with fewer than two points).
 double slope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -300,6 +318,7 @@ json bench_soak(const SoakOptions& o) {
     x.resident_mb = resident_mb();
     x.peak_mb = peak_mb();
     x.heap_mb = heap_mb();
+    std::tie(x.arena_mb, x.arena_free_mb) = arena_mb();
     x.messages = messages;
     x.nans = nan.nans;
 #ifdef RESCUESIM_HAS_MCAP
@@ -308,9 +327,13 @@ json bench_soak(const SoakOptions& o) {
     last_wall = x.wall_s;
     last_sim = sim_s;
     samples.push_back(x);
-    std::fprintf(stderr, "soak: %7.1f min sim, %7.1f s wall, %5.1fx, resident %.0f MB, peak %.0f MB, heap %.0f MB, %llu messages, %llu NaN\n",
-                 sim_s / 60, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.heap_mb, static_cast<unsigned long long>(x.messages),
-                 static_cast<unsigned long long>(x.nans));
+    std::fprintf(stderr,
+                 "soak: %7.1f min sim, %7.1f s wall, %5.1fx, resident %.0f MB, peak %.0f MB, heap %.0f MB (arenas %.0f MB, %.0f free), "
+                 "%llu messages, %llu NaN\n",
+                 sim_s / 60, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.heap_mb, x.arena_mb, x.arena_free_mb,
+                 static_cast<unsigned long long>(x.messages), static_cast<unsigned long long>(x.nans));
+    // the curve so far, so a soak that is killed still leaves its samples
+    write_file_atomic(o.out / "soak.csv", soak_csv(samples));
   };
   sample(0);
   next_sample = o.sample_seconds;
@@ -401,12 +424,7 @@ json bench_soak(const SoakOptions& o) {
   j["victims_found"] = r.victims_found;
   j["trouble"] = r.trouble;
 
-  std::string csv = "sim_s,wall_s,rtf,resident_mb,peak_mb,heap_mb,messages,nans,recorded_bytes\n";
-  for (const Sample& x : samples) {
-    csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.1f},{:.1f},{:.1f},{},{},{}\n", x.sim_s, x.wall_s, x.rtf, x.resident_mb, x.peak_mb, x.heap_mb,
-                       x.messages, x.nans, x.recorded_bytes);
-  }
-  write_file_atomic(o.out / "soak.csv", csv);
+  write_file_atomic(o.out / "soak.csv", soak_csv(samples));
   write_file_atomic(o.out / "soak.json", j.dump(2) + "\n");
   plot(samples, o.out / "soak.png");
   j["files"] = {(o.out / "soak.csv").string(), (o.out / "soak.json").string(), (o.out / "soak.png").string()};

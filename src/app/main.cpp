@@ -6,10 +6,12 @@
 
 #include "app/commands.h"
 #include "core/log.h"
+#include "core/memory.h"
 
 using namespace rescuesim;
 
 int main(int argc, char** argv) {
+  tune_allocator_for_long_runs();
   CLI::App app{
       "rescuesim — a simulator for mobile rescue robots: Bullet physics, worlds drawn as SVG or\n"
       "generated as random mazes, a wheeled robot with a sensor head, ROS and Foxglove output.\n\n"
