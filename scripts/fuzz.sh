@@ -15,12 +15,13 @@
 #   mcap_reader      the MCAP reader (open, check, read every message)
 #   foxglove_client  Foxglove WebSocket client frames (JSON requests, binary messages)
 #   batch_record     one line of a batch's results.jsonl (parse_trial_line), with a round trip
+#   datagram_request a comms/send request (parse_send_request), with a round trip
 # New inputs go to build-fuzz/corpus/<target>; crashes to build-fuzz/crashes/<target>/. The seed
 # corpus in fuzz/corpus/<target> is only read. Inputs that once crashed a target are kept in
 # fuzz/crashes/<target>/ and replayed before it runs. Exit code 2 for bad arguments.
 set -euo pipefail
 
-targets=(svg_path svg_world urdf sdf_world scenario cdr ros1 mcap_reader foxglove_client batch_record)
+targets=(svg_path svg_world urdf sdf_world scenario cdr ros1 mcap_reader foxglove_client batch_record datagram_request)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$root/build-fuzz
 jobs=${FUZZ_BUILD_JOBS:-$(nproc 2>/dev/null || echo 2)}

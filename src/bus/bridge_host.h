@@ -45,6 +45,15 @@ struct HostFrames {
   bool tf_from_ground_truth = false;  ///< odom -> base_link is ground truth (odom coincides with the world)
 };
 
+/// A topic a host takes messages on beyond the built-in commands (a mission's victim reports,
+/// datagrams and relay drops): bridges subscribe it on their transport with `type` and hand
+/// every message that decodes to submit_input(), with its index in inputs().
+struct HostInput {
+  std::string topic;  ///< absolute name ("/robot2/rescue/report")
+  std::string type;   ///< ROS 1 type name ("geometry_msgs/PoseStamped"); msgs/serialize.h has its serialisers
+  int robot = -1;     ///< the robot it belongs to, -1 for none
+};
+
 class BridgeHost {
  public:
   virtual ~BridgeHost() = default;
@@ -73,6 +82,15 @@ class BridgeHost {
   virtual CommandOutcome submit_head(int robot, const std::vector<double>& positions) = 0;
   /// Targets for commandable joints by name (see Simulation::command_joints).
   virtual CommandOutcome submit_joints(int robot, const msg::JointState& command) = 0;
+
+  /// Topics taken beyond the commands above; fixed before bridges start. None by default.
+  virtual std::vector<HostInput> inputs() const { return {}; }
+  /// A message for inputs()[index] (of its type), handed over at the next step boundary.
+  virtual CommandOutcome submit_input(std::size_t index, const msg::Message& message) {
+    (void)index;
+    (void)message;
+    return CommandOutcome::refused("this host takes no inputs");
+  }
 };
 
 }  // namespace rescuesim

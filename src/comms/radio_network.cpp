@@ -281,6 +281,15 @@ std::vector<Datagram> RadioNetwork::take_inbox(int node) {
   return out;
 }
 
+std::size_t RadioNetwork::trim_inbox(int node, std::size_t keep) {
+  check_node(node, "trim_inbox");
+  auto& inbox = inboxes_[static_cast<std::size_t>(node)];
+  if (inbox.size() <= keep) return 0;
+  const std::size_t n = inbox.size() - keep;
+  inbox.erase(inbox.begin(), inbox.begin() + static_cast<std::ptrdiff_t>(n));
+  return n;
+}
+
 RadioStatus RadioNetwork::status(int node) const {
   check_node(node, "status");
   RadioStatus s = traffic_[static_cast<std::size_t>(node)].counters;

@@ -164,6 +164,8 @@ class RadioNetwork {
   const std::vector<Datagram>& inbox(int node) const;
   /// Empties `node`'s inbox and returns what was in it.
   std::vector<Datagram> take_inbox(int node);
+  /// Drops the oldest datagrams of `node`'s inbox beyond the newest `keep`; returns how many went.
+  std::size_t trim_inbox(int node, std::size_t keep);
 
   /// Neighbours, hops to base and counters of `node`.
   RadioStatus status(int node) const;

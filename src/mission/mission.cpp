@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "mission/datagram_json.h"
 #include "sim/simulation.h"
 
 namespace rescuesim {
@@ -64,7 +65,10 @@ Mission::Mission(const MissionSpec& spec, Simulation& sim)
     const int ri = static_cast<int>(r);
     result_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/report_result"), "std_msgs/String", 0, false, ri));
     status_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/status"), "std_msgs/String", kStatusRate, false, ri));
+    inbox_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/inbox"), "std_msgs/String", 0, false, ri));
+    comms_result_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/result"), "std_msgs/String", 0, false, ri));
   }
+  add_inputs();
   update_links();
   next_link_ns_ = sim_.time().ns + period_ns(spec_.radio.link_rate_hz);
   next_status_ns_ = sim_.time().ns;
@@ -99,7 +103,10 @@ void Mission::after_step() {
   if (now >= next_link_ns_) {
     // datagrams queued since the last update go along the routes of that update, then links move on
     const double dt = static_cast<double>(period_ns(spec_.radio.link_rate_hz)) * 1e-9;
+    std::vector<std::size_t> before;
+    for (int node : robot_nodes_) before.push_back(network_.inbox(node).size());
     network_.deliver(dt);
+    publish_inboxes(before);
     update_links();
     while (next_link_ns_ <= now) next_link_ns_ += period_ns(spec_.radio.link_rate_hz);
   }
@@ -120,6 +127,12 @@ ReportReply Mission::report(int robot, const Vec3& p_W) {
   const double before = referee_.score();
   const std::uint64_t charged = referee_.counts().charged;
   ReportReply reply = referee_.judge(r);
+  publish_reply(robot, reply, p_W);
+  if (referee_.score() != before || referee_.counts().charged != charged) publish_score();
+  return reply;
+}
+
+void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W) {
   if (robot >= 0 && robot < static_cast<int>(result_topics_.size())) {
     nlohmann::json j;
     j["id"] = reply.id;
@@ -131,11 +144,89 @@ ReportReply Mission::report(int robot, const Vec3& p_W) {
     j["score"] = reply.score;
     j["reports_left"] = reply.reports_left;
     j["message"] = reply.message;
-    j["stamp"] = r.time.seconds();
-    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)], msg::String{j.dump()});
+    j["stamp"] = sim_.time().seconds();
+    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)], msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
   }
-  if (referee_.score() != before || referee_.counts().charged != charged) publish_score();
-  return reply;
+}
+
+void Mission::publish_comms_result(int robot, const std::string& json) {
+  sim_.bus().publish(comms_result_topics_.at(static_cast<std::size_t>(robot)), msg::String{json});
+}
+
+void Mission::publish_inboxes(const std::vector<std::size_t>& before) {
+  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
+    const int node = robot_nodes_[r];
+    const std::vector<Datagram>& inbox = network_.inbox(node);
+    for (std::size_t i = before[r]; i < inbox.size(); ++i) {
+      const Datagram& d = inbox[i];
+      InboxEntry e;
+      e.seq = d.seq;
+      e.from = network_.node(d.from).id;
+      e.to = d.to == kRadioBroadcast ? std::string("*") : network_.node(d.to).id;
+      e.hops = d.hops();
+      e.sent = d.sent.seconds();
+      e.delivered = d.delivered.seconds();
+      e.bytes = &d.bytes;
+      sim_.bus().publish(inbox_topics_[r], msg::String{inbox_json(e)});
+    }
+    // nobody may ever take them (a ROS team reads the topic): keep only the newest
+    if (inbox.size() > kInboxKeep) network_.trim_inbox(node, kInboxKeep);
+  }
+}
+
+void Mission::add_inputs() {
+  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
+    const int ri = static_cast<int>(r);
+    sim_.add_input({sim_.topic_name(ri, "rescue/report"), "geometry_msgs/PoseStamped", ri}, [this, ri](const msg::Message& m) {
+      const auto& pose = std::get<msg::PoseStamped>(m);
+      const Vec3 p = pose.pose.p;
+      const std::string& frame = pose.header.frame_id;
+      if (!frame.empty() && frame != "map") {
+        ReportReply reply;
+        reply.outcome = ReportOutcome::invalid;
+        reply.score = referee_.score();
+        reply.reports_left = referee_.reports_left();
+        reply.message = "frame_id '" + frame + "': reports are positions in the map frame (\"map\", or empty); not judged, not charged";
+        publish_reply(ri, reply, p);
+        return;
+      }
+      report(ri, p);
+    });
+    sim_.add_input({sim_.topic_name(ri, "rescue/comms/send"), "std_msgs/String", ri}, [this, ri](const msg::Message& m) {
+      nlohmann::json j;
+      j["request"] = "send";
+      j["stamp"] = sim_.time().seconds();
+      try {
+        SendRequest req = parse_send_request(std::get<msg::String>(m).data);
+        j["to"] = req.to;
+        j["bytes"] = req.bytes.size();
+        const SendResult res = send(ri, req.to, std::move(req.bytes));
+        j["accepted"] = res.accepted;
+        if (res.accepted) j["seq"] = res.seq;
+        if (!res.accepted) j["reason"] = res.reason;
+      } catch (const Error& e) {
+        j["accepted"] = false;
+        j["reason"] = e.message();
+      }
+      publish_comms_result(ri, j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    });
+    sim_.add_input({sim_.topic_name(ri, "rescue/drop_relay"), "std_msgs/String", ri}, [this, ri](const msg::Message&) {
+      const RelayResult res = drop_relay(ri);
+      nlohmann::json j;
+      j["request"] = "drop_relay";
+      j["stamp"] = sim_.time().seconds();
+      j["accepted"] = res.ok();
+      if (res.ok()) {
+        j["relay"] = network_.node(res.node).id;
+        const Vec3 p = network_.node(res.node).p_W;
+        j["position"] = {p.x(), p.y(), p.z()};
+      } else {
+        j["reason"] = res.reason;
+      }
+      j["relays_left"] = network_.relays_left(robot_node(ri));
+      publish_comms_result(ri, j.dump());
+    });
+  }
 }
 
 SendResult Mission::send(int robot, std::string_view to, std::vector<std::uint8_t> bytes) {

@@ -6,8 +6,19 @@
 ///   /<robot>/rescue/report_result   std_msgs/String, JSON: the answer to each of its reports
 ///   /<robot>/rescue/comms/status    std_msgs/String, JSON: neighbours with RSSI, hops to base,
 ///                                   bytes sent/received/dropped, relays left; at 1 Hz
+///   /<robot>/rescue/comms/inbox     std_msgs/String, JSON: each datagram delivered to it
+///                                   (mission/datagram_json.h), as it is delivered
+///   /<robot>/rescue/comms/result    std_msgs/String, JSON: the answer to each send and relay
+///                                   drop that came in through a topic
 /// Reports, datagrams and relays come in through the calls below (the built-in team autonomy,
-/// the Python API). Driven from the stepping thread: after_step() after every Simulation step.
+/// the Python API) and through the topics it adds as Simulation inputs, which every bridge
+/// subscribes (ROS 1, ROS 2):
+///   /<robot>/rescue/report          geometry_msgs/PoseStamped: a victim at pose.position in
+///                                   the map frame (header.frame_id "map" or empty)
+///   /<robot>/rescue/comms/send      std_msgs/String, JSON {"to", "data" | "text"}
+///   /<robot>/rescue/drop_relay      std_msgs/String (content ignored): drop a relay here
+/// Driven from the stepping thread: after_step() after every Simulation step. The Simulation
+/// calls back into the Mission for those inputs: the Mission must live while it steps.
 /// Deterministic: the network's shadowing draws come from the run seed, wall counts do not
 /// depend on thread count, and link updates happen on a schedule of sim time.
 
@@ -69,8 +80,10 @@ class Mission {
   /// Sends a datagram from `robot` to `to` ("base", a robot's name, or "*" for every
   /// neighbour); delivered at the next link update along the route of that moment.
   SendResult send(int robot, std::string_view to, std::vector<std::uint8_t> bytes);
-  /// Empties the robot's inbox.
+  /// Empties the robot's inbox (which keeps the newest kInboxKeep datagrams not taken; every
+  /// one is also published on /<robot>/rescue/comms/inbox as it arrives).
   std::vector<Datagram> take_inbox(int robot);
+  static constexpr std::size_t kInboxKeep = 1024;
   RadioStatus status(int robot) const;
   /// Drops a relay where the robot stands (its antenna position); from the robot's budget.
   RelayResult drop_relay(int robot);
@@ -90,6 +103,11 @@ class Mission {
 
  private:
   void update_links();
+  /// Publishes the datagrams delivered since `before` (inbox sizes per robot before deliver()).
+  void publish_inboxes(const std::vector<std::size_t>& before);
+  void publish_reply(int robot, const ReportReply& reply, const Vec3& p_W);
+  void publish_comms_result(int robot, const std::string& json);
+  void add_inputs();
   void publish_score();
   void publish_status();
   std::vector<Vec3> radio_positions() const;
@@ -103,7 +121,7 @@ class Mission {
   std::vector<bool> in_contact_;                   ///< per robot, at the last update
   std::int64_t next_link_ns_ = 0, next_status_ns_ = 0;
   TopicId score_topic_ = kNoTopic;
-  std::vector<TopicId> result_topics_, status_topics_;
+  std::vector<TopicId> result_topics_, status_topics_, inbox_topics_, comms_result_topics_;
 };
 
 /// See Mission::save.

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "msgs/base64.h"
 #include "msgs/message_fields.h"
 #include "msgs/serialize.h"
 
@@ -13,36 +14,6 @@ namespace rescuesim::msg {
 namespace {
 
 using fields::Name;
-
-constexpr char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-void append_base64(std::string& out, const std::uint8_t* p, std::size_t n) {
-  // sized once and filled through a pointer: images are a megabyte of text at 30 Hz
-  const std::size_t start = out.size();
-  out.resize(start + 4 * ((n + 2) / 3));
-  char* o = out.data() + start;
-  std::size_t i = 0;
-  for (; i + 3 <= n; i += 3, o += 4) {
-    const std::uint32_t v = std::uint32_t(p[i]) << 16 | std::uint32_t(p[i + 1]) << 8 | p[i + 2];
-    o[0] = kBase64[v >> 18];
-    o[1] = kBase64[(v >> 12) & 63];
-    o[2] = kBase64[(v >> 6) & 63];
-    o[3] = kBase64[v & 63];
-  }
-  if (n - i == 1) {
-    const std::uint32_t v = std::uint32_t(p[i]) << 16;
-    o[0] = kBase64[v >> 18];
-    o[1] = kBase64[(v >> 12) & 63];
-    o[2] = '=';
-    o[3] = '=';
-  } else if (n - i == 2) {
-    const std::uint32_t v = std::uint32_t(p[i]) << 16 | std::uint32_t(p[i + 1]) << 8;
-    o[0] = kBase64[v >> 18];
-    o[1] = kBase64[(v >> 12) & 63];
-    o[2] = kBase64[(v >> 6) & 63];
-    o[3] = '=';
-  }
-}
 
 void append_string(std::string& out, std::string_view s) {
   out += '"';

@@ -256,18 +256,47 @@ CommandOutcome Simulation::submit_joints(int robot, const msg::JointState& comma
 
 std::size_t Simulation::discard_commands() {
   std::lock_guard lock(commands_mutex_);
-  const std::size_t n = commands_.size();
+  const std::size_t n = commands_.size() + input_queue_.size();
   commands_.clear();
+  input_queue_.clear();
   return n;
 }
 
+std::size_t Simulation::add_input(HostInput input, std::function<void(const msg::Message&)> handler) {
+  RS_DEMAND(handler, "Simulation::add_input needs a handler");
+  inputs_.push_back({std::move(input), std::move(handler)});
+  return inputs_.size() - 1;
+}
+
+std::vector<HostInput> Simulation::inputs() const {
+  std::vector<HostInput> out;
+  for (const auto& in : inputs_) out.push_back(in.topic);
+  return out;
+}
+
+CommandOutcome Simulation::submit_input(std::size_t index, const msg::Message& message) {
+  if (index >= inputs_.size()) return CommandOutcome::refused("no input " + std::to_string(index));
+  if (inputs_[index].topic.type != msg::type_name(message)) {
+    return CommandOutcome::refused("a " + std::string(msg::type_name(message)) + " where " + inputs_[index].topic.type + " is expected");
+  }
+  std::lock_guard lock(commands_mutex_);
+  if (input_queue_.size() >= kMaxQueuedInputs) {
+    return CommandOutcome::refused("full: " + std::to_string(kMaxQueuedInputs) + " messages already wait for the next step");
+  }
+  input_queue_.emplace_back(index, message);
+  return CommandOutcome::ok();
+}
+
 void Simulation::pre_step() {
-  // commands queued since the last step, in arrival order
+  // inputs, then commands queued since the last step, each in arrival order
   std::vector<Command> pending;
+  std::vector<std::pair<std::size_t, msg::Message>> inputs;
   {
     std::lock_guard lock(commands_mutex_);
     pending.swap(commands_);
+    inputs.swap(input_queue_);
   }
+  for (const auto& [index, m] : inputs) inputs_[index].handler(m);
   for (const auto& c : pending) {
     RobotState& rs = state_.robots[static_cast<std::size_t>(c.robot)];
     switch (c.kind) {

@@ -94,6 +94,15 @@ class Simulation : public BridgeHost {
   CommandOutcome submit_velocity(int robot, const msg::Twist& twist) override;
   CommandOutcome submit_head(int robot, const std::vector<double>& positions) override;
   CommandOutcome submit_joints(int robot, const msg::JointState& command) override;
+  /// Adds a topic bridges take in for an owner above the simulation (a Mission: reports,
+  /// datagrams, relay drops) and returns its index in inputs(). Every message submitted for it
+  /// (submit_input, from any thread) is handed to `handler` on the stepping thread at the next
+  /// step boundary, before the commands, in arrival order. Add inputs before bridges start.
+  /// At most kMaxQueuedInputs messages wait between two steps; more are refused ("full").
+  std::size_t add_input(HostInput input, std::function<void(const msg::Message&)> handler);
+  std::vector<HostInput> inputs() const override;
+  CommandOutcome submit_input(std::size_t index, const msg::Message& message) override;
+  static constexpr std::size_t kMaxQueuedInputs = 4096;
   /// Waits until at least `count` velocity commands have been accepted in all, or `timeout`
   /// of wall time passes; returns whether they have.
   bool wait_for_velocity_commands(std::uint64_t count, std::chrono::duration<double> timeout);
@@ -169,6 +178,12 @@ class Simulation : public BridgeHost {
   };
   mutable std::mutex commands_mutex_;
   std::vector<Command> commands_;
+  struct Input {
+    HostInput topic;
+    std::function<void(const msg::Message&)> handler;
+  };
+  std::vector<Input> inputs_;                                      ///< fixed before bridges start
+  std::vector<std::pair<std::size_t, msg::Message>> input_queue_;  ///< guarded by commands_mutex_
   std::uint64_t velocity_commands_ = 0;     ///< accepted so far (guarded by commands_mutex_)
   std::condition_variable command_arrived_;  ///< signalled when a velocity command is accepted
 };

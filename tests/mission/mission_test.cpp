@@ -176,6 +176,107 @@ TEST(Mission, ReportsAreAnsweredOnTheBusAndTheScoreIsLatched) {
   EXPECT_EQ(mission.result().counts[ReportOutcome::invalid], 1u);
 }
 
+/// The index of input `topic` in sim.inputs() (what a bridge subscribes), or -1.
+int input_index(const Simulation& sim, const std::string& topic) {
+  const std::vector<HostInput> inputs = sim.inputs();
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (inputs[i].topic == topic) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
+  // what the ROS bridges do with a message on these topics: submit_input, then the next step hands it over
+  Simulation sim(line_world({}, {0, 5}));
+  Mission mission(wss_mission(), sim);
+  const std::vector<HostInput> inputs = sim.inputs();
+  ASSERT_EQ(inputs.size(), 6u);  // per robot: report, comms/send, drop_relay
+  EXPECT_EQ(inputs[0].type, "geometry_msgs/PoseStamped");
+  const int report = input_index(sim, "/a/rescue/report"), send = input_index(sim, "/a/rescue/comms/send"),
+            relay = input_index(sim, "/a/rescue/drop_relay");
+  ASSERT_GE(report, 0);
+  ASSERT_GE(send, 0);
+  ASSERT_GE(relay, 0);
+  EXPECT_EQ(inputs[static_cast<std::size_t>(send)].type, "std_msgs/String");
+  const auto on = [&](const char* topic, std::vector<nlohmann::json>& into) {
+    sim.bus().subscribe(topic, [&into](const Topic&, const msg::Message& m) { into.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+  };
+  std::vector<nlohmann::json> inbox_b, results_a, answers_a;
+  on("/b/rescue/comms/inbox", inbox_b);
+  on("/a/rescue/comms/result", results_a);
+  on("/a/rescue/report_result", answers_a);
+  const auto submit = [&](int index, msg::Message m) { return sim.submit_input(static_cast<std::size_t>(index), m); };
+
+  // a datagram from a to b: answered at the next step, delivered at the next link update (0.1 s)
+  ASSERT_TRUE(submit(send, msg::String{R"({"to": "b", "text": "hello"})"}));
+  steps(sim, mission, 0.1);
+  ASSERT_EQ(results_a.size(), 1u);
+  EXPECT_EQ(results_a[0]["request"], "send");
+  EXPECT_EQ(results_a[0]["accepted"], true);
+  EXPECT_EQ(results_a[0]["seq"], 1);
+  EXPECT_EQ(results_a[0]["bytes"], 5);
+  ASSERT_EQ(inbox_b.size(), 1u);
+  EXPECT_EQ(inbox_b[0]["from"], "a");
+  EXPECT_EQ(inbox_b[0]["to"], "b");
+  EXPECT_EQ(inbox_b[0]["text"], "hello");
+  EXPECT_EQ(inbox_b[0]["data"], "aGVsbG8=");  // base64 of "hello"
+  EXPECT_EQ(inbox_b[0]["hops"], 1);
+  // still in b's inbox for whoever takes it in-process (the Python API)
+  EXPECT_EQ(mission.take_inbox(1).size(), 1u);
+
+  // bytes as base64, and three bad requests: each answered with the reason, nothing sent
+  ASSERT_TRUE(submit(send, msg::String{R"({"to": "*", "data": "AAEC/w=="})"}));
+  ASSERT_TRUE(submit(send, msg::String{"{to: b"}));
+  ASSERT_TRUE(submit(send, msg::String{R"({"to": "nobody", "text": "x"})"}));
+  ASSERT_TRUE(submit(send, msg::String{R"({"to": "b", "data": "not base64!"})"}));
+  steps(sim, mission, 0.1);
+  ASSERT_EQ(results_a.size(), 5u);
+  EXPECT_EQ(results_a[1]["accepted"], true);
+  EXPECT_EQ(results_a[1]["bytes"], 4);
+  EXPECT_EQ(results_a[2]["accepted"], false);
+  EXPECT_NE(results_a[2]["reason"].get<std::string>().find("not JSON"), std::string::npos) << results_a[2];
+  EXPECT_NE(results_a[3]["reason"].get<std::string>().find("no radio called 'nobody'"), std::string::npos) << results_a[3];
+  EXPECT_NE(results_a[4]["reason"].get<std::string>().find("not base64"), std::string::npos) << results_a[4];
+  ASSERT_EQ(inbox_b.size(), 2u);  // the broadcast reached b, its neighbour
+  EXPECT_EQ(inbox_b[1]["to"], "*");
+  EXPECT_FALSE(inbox_b[1].contains("text"));  // 00 01 02 ff is not text
+  EXPECT_EQ(mission.result().datagrams_sent, 2u);
+
+  // a relay, from the budget of 12
+  ASSERT_TRUE(submit(relay, msg::String{""}));
+  sim.step();
+  ASSERT_EQ(results_a.size(), 6u);
+  EXPECT_EQ(results_a[5]["request"], "drop_relay");
+  EXPECT_EQ(results_a[5]["accepted"], true);
+  EXPECT_EQ(results_a[5]["relay"], "a/relay_1");
+  EXPECT_EQ(results_a[5]["relays_left"], 11);
+
+  // reports: the map frame is judged (no victims here: false, −0.5); another frame is refused uncharged
+  msg::PoseStamped p;
+  p.pose.p = {1, 0, 0};
+  p.header.frame_id = "odom";
+  ASSERT_TRUE(submit(report, p));
+  p.header.frame_id = "map";
+  ASSERT_TRUE(submit(report, p));
+  sim.step();
+  ASSERT_EQ(answers_a.size(), 2u);
+  EXPECT_EQ(answers_a[0]["outcome"], "invalid");
+  EXPECT_NE(answers_a[0]["message"].get<std::string>().find("frame_id 'odom'"), std::string::npos);
+  EXPECT_EQ(answers_a[1]["outcome"], "false");
+  EXPECT_EQ(mission.referee().score(), -0.5);
+  EXPECT_EQ(mission.referee().counts().charged, 1u);
+
+  // a message of another type is refused at once; a flood is cut at the queue's bound
+  EXPECT_FALSE(submit(report, msg::String{"x"}));
+  for (std::size_t i = 0; i < Simulation::kMaxQueuedInputs; ++i) ASSERT_TRUE(submit(relay, msg::String{}));
+  const CommandOutcome full = submit(relay, msg::String{});
+  EXPECT_FALSE(full);
+  EXPECT_NE(full.reason.find("full"), std::string::npos) << full.reason;
+  sim.step();  // 4096 drops against a budget of 11 left: 11 relays, the rest refused with a reason
+  EXPECT_EQ(mission.result().relays_dropped, (std::vector<int>{12, 0}));
+  EXPECT_EQ(results_a.back()["accepted"], false);
+}
+
 TEST(Mission, StatusIsPublishedOncePerSimSecond) {
   Simulation sim(line_world({}, {0, 5}));
   Mission mission(wss_mission(), sim);

@@ -102,6 +102,12 @@ CommandOutcome CommandGate::head(int robot, const std::string& topic, const std:
   return CommandOutcome::ok();
 }
 
+CommandOutcome CommandGate::input(std::size_t index, const std::string& topic, const msg::Message& message) {
+  if (const CommandOutcome r = host_.submit_input(index, message); !r) return reject(topic, "refused", "refused by the host: " + r.reason);
+  ++received_;
+  return CommandOutcome::ok();
+}
+
 CommandOutcome CommandGate::joints(int robot, const std::string& topic, const msg::JointState& command) {
   if (const CommandOutcome r = host_.submit_joints(robot, command); !r) return reject(topic, "joints", r.reason);
   // accepted: say which position targets were clamped to their joint's limits

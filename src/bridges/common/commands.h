@@ -47,6 +47,9 @@ class CommandGate {
   /// arrays of the wrong length); position targets beyond a joint's limits are clamped, with a
   /// warning.
   CommandOutcome joints(int robot, const std::string& topic, const msg::JointState& command);
+  /// A message for the host's inputs()[index] (a mission's report, datagram or relay drop),
+  /// received on `topic`; the host checks its content when it hands it over.
+  CommandOutcome input(std::size_t index, const std::string& topic, const msg::Message& message);
   /// Bytes on `topic` that did not decode (`why` says where); counted as rejected.
   void malformed(const std::string& topic, const std::string& why);
 

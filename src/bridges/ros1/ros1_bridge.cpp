@@ -90,13 +90,14 @@ class Ros1Bridge final : public Bridge {
   };
   /// A command topic of a robot.
   struct Input {
-    enum class Kind { velocity, head, joints };  ///< cmd_vel, head/command, joint_command
+    enum class Kind { velocity, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
     std::string topic;
     int robot = 0;
     Kind kind = Kind::velocity;
     const msg::TypeSupport* type = nullptr;
     ros::Subscriber sub;                      ///< spinner thread only (after start)
     int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
+    std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
   };
 
   void advertise_all();
@@ -187,6 +188,14 @@ void Ros1Bridge::start(BridgeHost& host) {
         RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
         inputs_.push_back(std::move(j));
       }
+    }
+    // the host's own inputs (a mission's reports, datagrams, relay drops)
+    const std::vector<HostInput> host_inputs = host.inputs();
+    for (std::size_t i = 0; i < host_inputs.size(); ++i) {
+      Input in{host_inputs[i].topic, host_inputs[i].robot, Input::Kind::host, msg::find_type(host_inputs[i].type), {}};
+      in.host_input = i;
+      if (!in.type) throw Error("ROS 1: input " + in.topic + " has type " + host_inputs[i].type + ", which has no ROS 1 serialiser");
+      inputs_.push_back(std::move(in));
     }
     advertise_all();
     set_parameters();
@@ -438,6 +447,7 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
       case Input::Kind::velocity: gate_->velocity(in.robot, in.topic, std::get<msg::Twist>(m)); break;
       case Input::Kind::head: gate_->head(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data); break;
       case Input::Kind::joints: gate_->joints(in.robot, in.topic, std::get<msg::JointState>(m)); break;
+      case Input::Kind::host: gate_->input(in.host_input, in.topic, m); break;
     }
   } catch (const std::exception& e) {
     gate_->malformed(in.topic, e.what());

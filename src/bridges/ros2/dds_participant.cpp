@@ -252,4 +252,10 @@ int DdsParticipant::matched_readers(int writer) const {
   return static_cast<int>(st.current_count);
 }
 
+int DdsParticipant::matched_writers(int reader) const {
+  dds_subscription_matched_status_t st{};
+  if (dds_get_subscription_matched_status(readers_.at(static_cast<std::size_t>(reader)).entity, &st) != DDS_RETCODE_OK) return 0;
+  return static_cast<int>(st.current_count);
+}
+
 }  // namespace rescuesim::ros2

@@ -50,6 +50,8 @@ class DdsParticipant {
   Guid reader_guid(int reader) const;
   /// Readers currently matched with writer `writer`, for diagnostics.
   int matched_readers(int writer) const;
+  /// Writers currently matched with reader `reader`.
+  int matched_writers(int reader) const;
 
  private:
   struct Endpoint {

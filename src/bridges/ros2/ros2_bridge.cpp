@@ -1,8 +1,8 @@
 // The ROS 2 bridge: every Bus topic becomes a DDS writer on rt/<topic> with ROS 2's type name,
 // carrying msgs/serialize.h's XCDR1 bytes (latched ones, /tf_static and robot_description,
 // transient local); /cmd_vel, /head/command and (for robots with commandable joints)
-// /joint_command of each robot become readers whose samples are decoded, checked and queued into
-// the simulation; the participant announces a node (rescuesim, namespace /) on
+// /joint_command of each robot, and the host's own inputs (a mission's reports, datagrams, relay
+// drops), become readers whose samples are decoded, checked and queued into the simulation; the participant announces a node (rescuesim, namespace /) on
 // ros_discovery_info so `ros2 node list` sees it.
 //
 // Threads: the Bus callback (simulation thread) only queues the shared message (no copy) in the
@@ -54,11 +54,13 @@ class Ros2Bridge final : public Bridge {
  private:
   /// A command reader: whose commands, of which kind.
   struct Input {
-    enum class Kind { velocity, head, joints };  ///< cmd_vel, head/command, joint_command
+    enum class Kind { velocity, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
     int reader;
     int robot;
     Kind kind;
     std::string topic;  ///< ROS name, for warnings
+    std::size_t host_input = 0;                   ///< Kind::host: the index in BridgeHost::inputs()
+    const msg::TypeSupport* type = nullptr;       ///< Kind::host: how to decode it
   };
 
   void send_loop();
@@ -131,6 +133,22 @@ void Ros2Bridge::start(BridgeHost& host) {
       inputs_.push_back({rj, robot, Input::Kind::joints, joints});
       node.readers.push_back(dds_->reader_guid(rj));
     }
+  }
+
+  // the host's own inputs (a mission's reports, datagrams, relay drops)
+  const std::vector<HostInput> host_inputs = host.inputs();
+  for (std::size_t i = 0; i < host_inputs.size(); ++i) {
+    const msg::TypeSupport* type = msg::find_type(host_inputs[i].type);
+    if (type == nullptr || !DdsParticipant::knows_type(type->dds_name)) {
+      log::warn("ROS 2 bridge: input {} of type {} is not bridged (no ROS 2 type for it)", host_inputs[i].topic, host_inputs[i].type);
+      continue;
+    }
+    const int reader = dds_->create_reader(ros2::dds_topic_name(host_inputs[i].topic), type->dds_name, ros2::command_reader_qos());
+    Input in{reader, host_inputs[i].robot, Input::Kind::host, host_inputs[i].topic};
+    in.host_input = i;
+    in.type = type;
+    inputs_.push_back(std::move(in));
+    node.readers.push_back(dds_->reader_guid(reader));
   }
 
   // the node, for `ros2 node list` / `ros2 node info` (transient-local: late joiners get it too)
@@ -243,6 +261,13 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
       break;
     case Input::Kind::joints:
       take(ros2::decode_joint_command(bytes), [&](const msg::JointState& j) { gate_->joints(in.robot, in.topic, j); });
+      break;
+    case Input::Kind::host:
+      try {
+        gate_->input(in.host_input, in.topic, msg::from_cdr(*in.type, bytes));
+      } catch (const Error& e) {
+        gate_->malformed(in.topic, "malformed CDR: " + e.message());
+      }
       break;
   }
 }

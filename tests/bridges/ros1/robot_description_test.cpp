@@ -21,12 +21,6 @@ namespace {
 
 using namespace testing;
 
-#define SKIP_WITHOUT_ROS1()                               \
-  do {                                                    \
-    const std::string missing = ros1_tools_missing();     \
-    if (!missing.empty()) GTEST_SKIP() << missing;        \
-  } while (0)
-
 /// A rospy node that takes one message of the latched std_msgs/String topic argv[1] and the
 /// parameter of the same name, and writes both, byte for byte, to argv[2] and argv[3].
 const char* kReadDescriptionPy = R"(import sys

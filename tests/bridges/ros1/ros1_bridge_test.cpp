@@ -34,12 +34,6 @@ while not rospy.is_shutdown():
     rate.sleep()
 )";
 
-#define SKIP_WITHOUT_ROS1()                               \
-  do {                                                    \
-    const std::string missing = ros1_tools_missing();     \
-    if (!missing.empty()) GTEST_SKIP() << missing;        \
-  } while (0)
-
 /// A roscore and rescuesim on it, for one test.
 class Ros1Run : public ::testing::Test {
  protected:

@@ -102,6 +102,13 @@ inline std::string ros1_tools_missing() {
   return "";
 }
 
+/// Skips the test, with the reason, when the ROS 1 tools are not installed.
+#define SKIP_WITHOUT_ROS1()                               \
+  do {                                                    \
+    const std::string missing = rescuesim::testing::ros1_tools_missing(); \
+    if (!missing.empty()) GTEST_SKIP() << missing;        \
+  } while (0)
+
 
 
 /// Polls `done` every 100 ms until it holds or `timeout` passes.
