@@ -108,6 +108,7 @@ void Mission::after_step() {
     network_.deliver(dt);
     publish_inboxes(before);
     update_links();
+    update_visible();
     while (next_link_ns_ <= now) next_link_ns_ += period_ns(spec_.radio.link_rate_hz);
   }
   if (now >= next_status_ns_) {
@@ -306,11 +307,12 @@ MissionResult Mission::result() const {
     m.datagrams_delivered += st.datagrams_received;
   }
   m.datagrams_dropped = network_.dropped(RadioDropReason::no_route) + network_.dropped(RadioDropReason::capacity);
+  m.map = map_score_;
   return m;
 }
 
 Mission::Memory Mission::save() const {
-  return Memory{referee_, network_, in_contact_updates_, in_contact_, next_link_ns_, next_status_ns_};
+  return Memory{referee_, network_, in_contact_updates_, in_contact_, next_link_ns_, next_status_ns_, visible_, seen_from_, map_score_};
 }
 
 void Mission::load(const Memory& m) {
@@ -320,6 +322,101 @@ void Mission::load(const Memory& m) {
   in_contact_ = m.in_contact;
   next_link_ns_ = m.next_link_ns;
   next_status_ns_ = m.next_status_ns;
+  visible_ = m.visible;
+  seen_from_ = m.seen_from;
+  map_score_ = m.map_score;
+}
+
+void Mission::enable_map_scoring(const WorldSpec& world) {
+  RS_DEMAND(!map_truth_, "Mission::enable_map_scoring called twice");
+  constexpr double kResolution = 0.05;  // m, as the built-in explorer's maps
+  auto t = std::make_shared<MapTruth>();
+  const World& w = sim_.world();
+  double laser_height = 0.3;
+  for (std::size_t r = 0; r < w.robots.size(); ++r) {
+    map_eval::LaserModel laser;
+    bool found = false;
+    for (const auto& sensor : w.robots[r].spec.sensors) {
+      if (sensor.type != SensorSpec::Type::lidar || sensor.link != "base_link") continue;
+      laser.X_BL = {sensor.X_LS.p.x(), sensor.X_LS.p.y(), sensor.X_LS.yaw()};
+      laser.min_angle = sensor.lidar.min_angle;
+      laser.max_angle = sensor.lidar.max_angle;
+      laser.beams = sensor.lidar.samples;
+      laser.max_range = sensor.lidar.max_range;
+      // the scan plane above the floor: base_link's height at the start plus the mount
+      if (r == 0) laser_height = w.robots[r].X_W_start.p.z() + sensor.X_LS.p.z();
+      found = true;
+      break;
+    }
+    t->lasers.push_back(laser);
+    t->has_laser.push_back(found);
+  }
+  t->truth = map_eval::true_occupancy(world, kResolution, laser_height);
+  t->ignore = map_eval::ignore_mask(world, t->truth, 0.3);
+  visible_ = t->truth;
+  std::fill(visible_.cells.begin(), visible_.cells.end(), 0);
+  seen_from_.assign(w.robots.size(), std::nullopt);
+  map_truth_ = std::move(t);
+  map_score_topic_ = sim_.bus().advertise("/rescue/map_score", "std_msgs/String", 0, true);
+  sim_.add_input({"/rescue/map", "nav_msgs/OccupancyGrid", -1}, [this](const msg::Message& m) { score_map(std::get<msg::OccupancyGrid>(m)); });
+  update_visible();
+}
+
+void Mission::update_visible() {
+  if (!map_truth_) return;
+  const State& s = sim_.state();
+  for (std::size_t r = 0; r < s.robots.size() && r < map_truth_->lasers.size(); ++r) {
+    if (!map_truth_->has_laser[r]) continue;
+    const Pose2 X_WB = s.robots[r].base.X_WB.to_pose2();
+    const auto& last = seen_from_[r];
+    if (last && (X_WB.position() - last->position()).norm() < 0.2 && std::abs(wrap_angle(X_WB.yaw - last->yaw)) < 0.3) continue;
+    map_eval::add_visible(visible_, map_truth_->truth, X_WB, map_truth_->lasers[r]);
+    seen_from_[r] = X_WB;
+  }
+}
+
+MapScoreResult Mission::score_map(const msg::OccupancyGrid& map) {
+  MapScoreResult out;
+  out.stamp = sim_.time().seconds();
+  out.maps = (map_score_ ? map_score_->maps : 0) + 1;
+  nlohmann::json j;
+  j["stamp"] = out.stamp;
+  j["maps"] = out.maps;
+  try {
+    if (!map_truth_) throw Error("map scoring is off (Mission::enable_map_scoring)");
+    if (!map.header.frame_id.empty() && map.header.frame_id != "map") {
+      throw Error("map: frame_id '" + map.header.frame_id + "': maps are scored in the map frame (\"map\", or empty)");
+    }
+    const Pose2 X_WM = map.origin.to_pose2();
+    const map_eval::Grid grid = map_eval::grid_from_occupancy(static_cast<int>(map.width), static_cast<int>(map.height), map.resolution, X_WM, map.data);
+    const map_eval::MapScore sc = map_eval::score_map(grid, X_WM, map_truth_->truth, visible_, map_truth_->ignore);
+    out.precision = sc.precision;
+    out.recall = sc.recall;
+    out.map_occupied = sc.map_occupied;
+    out.map_matched = sc.map_matched;
+    out.visible = sc.visible;
+    out.visible_matched = sc.visible_matched;
+    j["precision"] = out.precision;
+    j["recall"] = out.recall;
+    j["map_occupied"] = out.map_occupied;
+    j["map_matched"] = out.map_matched;
+    j["visible"] = out.visible;
+    j["visible_matched"] = out.visible_matched;
+    j["tolerance_m"] = map_truth_->truth.resolution;
+  } catch (const Error& e) {
+    out.error = e.message();
+    // a refused map does not replace the score of the last good one
+    if (map_score_) {
+      MapScoreResult kept = *map_score_;
+      kept.maps = out.maps;
+      kept.error = out.error;
+      out = kept;
+    }
+    j["error"] = e.message();
+  }
+  map_score_ = out;
+  if (map_score_topic_ != kNoTopic) sim_.bus().publish(map_score_topic_, msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+  return out;
 }
 
 }  // namespace rescuesim

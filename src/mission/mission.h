@@ -23,6 +23,7 @@
 /// depend on thread count, and link updates happen on a schedule of sim time.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -31,12 +32,25 @@
 
 #include "bus/topic_id.h"
 #include "comms/radio_network.h"
+#include "mission/map_metrics.h"
+#include "msgs/messages.h"
 #include "mission/referee.h"
 #include "world/mission_spec.h"
 
 namespace rescuesim {
 
 class Simulation;
+
+/// The score of the last map a team submitted on /rescue/map (map_eval::score_map: occupied
+/// cells within one cell of the truth, and the truth the robots' lasers could have seen that
+/// the map has).
+struct MapScoreResult {
+  double stamp = 0;            ///< sim time it was scored (s)
+  double precision = 0, recall = 0;
+  long map_occupied = 0, map_matched = 0, visible = 0, visible_matched = 0;
+  int maps = 0;                ///< maps received so far (refused ones included)
+  std::string error;           ///< why the last map was refused, or ""
+};
 
 /// What a mission came to, for summary.json and the score figure.
 struct MissionResult {
@@ -56,6 +70,7 @@ struct MissionResult {
   std::uint64_t datagrams_sent = 0;           ///< accepted by send()
   std::uint64_t datagrams_delivered = 0;       ///< copies handed to inboxes (a broadcast: one per neighbour)
   std::uint64_t datagrams_dropped = 0;        ///< no route or beyond capacity
+  std::optional<MapScoreResult> map;          ///< with map scoring, once a map came
 };
 
 class Mission {
@@ -74,6 +89,16 @@ class Mission {
   /// A report by `robot` of a victim at p_W (map frame = world frame), judged now; the answer
   /// is also published on /<robot>/rescue/report_result, and the score when it changes.
   ReportReply report(int robot, const Vec3& p_W);
+
+  /// Scores team maps against `world` (the WorldSpec the run was built from): adds the input
+  /// /rescue/map (nav_msgs/OccupancyGrid in the map frame) and the latched /rescue/map_score;
+  /// from now on every link update adds to the surface the robots could have seen what each
+  /// robot's first lidar sees from its true pose (when it moved 0.2 m or turned 0.3 rad).
+  /// Call once, before bridges start (Session does for every mission).
+  void enable_map_scoring(const WorldSpec& world);
+  /// Scores `map` now: published on /rescue/map_score and kept for result(). A map that is not
+  /// one (a bad size or resolution, another frame) is answered with the reason and not scored.
+  MapScoreResult score_map(const msg::OccupancyGrid& map);
 
   /// True when `robot` had a radio route to a base at the last link update.
   bool in_contact(int robot) const;
@@ -122,6 +147,18 @@ class Mission {
   std::int64_t next_link_ns_ = 0, next_status_ns_ = 0;
   TopicId score_topic_ = kNoTopic;
   std::vector<TopicId> result_topics_, status_topics_, inbox_topics_, comms_result_topics_;
+  // map scoring (enable_map_scoring): what does not change, then what does (in Memory too)
+  struct MapTruth {
+    map_eval::Grid truth, ignore;
+    std::vector<map_eval::LaserModel> lasers;  ///< per robot
+    std::vector<bool> has_laser;
+  };
+  std::shared_ptr<const MapTruth> map_truth_;
+  map_eval::Grid visible_;
+  std::vector<std::optional<Pose2>> seen_from_;  ///< per robot: the pose of its last visibility update
+  std::optional<MapScoreResult> map_score_;
+  TopicId map_score_topic_ = kNoTopic;
+  void update_visible();
 };
 
 /// See Mission::save.
@@ -131,6 +168,9 @@ struct Mission::Memory {
   std::vector<std::uint64_t> in_contact_updates;
   std::vector<bool> in_contact;
   std::int64_t next_link_ns = 0, next_status_ns = 0;
+  map_eval::Grid visible;
+  std::vector<std::optional<Pose2>> seen_from;
+  std::optional<MapScoreResult> map_score;
 };
 
 }  // namespace rescuesim

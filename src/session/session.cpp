@@ -65,6 +65,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   if (scenario_.mission) {
     try {
       mission_ = std::make_unique<Mission>(*scenario_.mission, *sim_);
+      mission_->enable_map_scoring(spec_);
     } catch (const Error& e) {
       throw Error({scenario_.source_file, 0, "mission"}, e.what());
     }

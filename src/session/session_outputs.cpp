@@ -46,6 +46,11 @@ nlohmann::ordered_json mission_json(const MissionResult& m) {
   }
   j["link_updates"] = m.link_updates;
   j["datagrams"] = {{"sent", m.datagrams_sent}, {"delivered", m.datagrams_delivered}, {"dropped", m.datagrams_dropped}};
+  if (m.map) {
+    j["map"] = {{"precision", m.map->precision}, {"recall", m.map->recall}, {"map_occupied", m.map->map_occupied},
+                {"visible", m.map->visible}, {"stamp", m.map->stamp}, {"maps", m.map->maps}};
+    if (!m.map->error.empty()) j["map"]["error"] = m.map->error;
+  }
   return j;
 }
 

@@ -277,6 +277,64 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   EXPECT_EQ(results_a.back()["accepted"], false);
 }
 
+TEST(Mission, ATeamMapIsScoredAgainstTheWallsTheRobotsCouldSee) {
+  // one wall 4 m long across x = 3 (y from -2 to 2), robot "a" at the origin facing it
+  WorldSpec spec;
+  spec.name = "map_scoring";
+  spec.materials = default_materials();
+  spec.floor_min = {-5, -5};
+  spec.floor_max = {5, 5};
+  spec.walls.push_back(WallSpec{{3, -2}, {3, 2}, 0.1, 1.0, "wall", {}});
+  RobotPlacement r;
+  r.name = "a";
+  spec.robots.push_back(r);
+  Simulation sim(compile_world(spec, builtin_models()));
+  Mission mission(MissionSpec{}, sim);
+  mission.enable_map_scoring(spec);
+  ASSERT_EQ(input_index(sim, "/rescue/map"), static_cast<int>(sim.inputs().size()) - 1);
+  nlohmann::json published;
+  sim.bus().subscribe("/rescue/map_score", [&](const Topic&, const msg::Message& m) { published = nlohmann::json::parse(std::get<msg::String>(m).data); });
+  steps(sim, mission, 0.5);
+
+  // the truth itself as a map (100 on the wall's cells, 0 elsewhere): every occupied cell is a
+  // wall (precision 1) and every wall cell the laser saw is in it (recall 1); the laser saw the
+  // face towards the robot: 4 m / 0.05 m = 80 cells, one more for the grown outline's ends
+  const map_eval::Grid truth = map_eval::true_occupancy(spec, 0.05, 0.3);
+  msg::OccupancyGrid map;
+  map.header.frame_id = "map";
+  map.resolution = 0.05f;
+  map.width = static_cast<std::uint32_t>(truth.width);
+  map.height = static_cast<std::uint32_t>(truth.height);
+  map.origin.p = {truth.origin.x(), truth.origin.y(), 0};
+  for (std::uint8_t c : truth.cells) map.data.push_back(c ? 100 : 0);
+  MapScoreResult s = mission.score_map(map);
+  EXPECT_EQ(s.error, "");
+  EXPECT_EQ(s.precision, 1.0);
+  EXPECT_EQ(s.recall, 1.0);
+  EXPECT_GE(s.visible, 80);
+  EXPECT_LE(s.visible, 84);
+  EXPECT_EQ(published["precision"], 1.0);
+
+  // the same map 1 m off in x: nothing lines up
+  map.origin.p.x() += 1.0;
+  s = mission.score_map(map);
+  EXPECT_EQ(s.precision, 0.0);
+  EXPECT_EQ(s.recall, 0.0);
+
+  // not a map, or another frame: answered with the reason; the last score stays
+  map.data.pop_back();
+  s = mission.score_map(map);
+  EXPECT_NE(s.error.find("cells of data"), std::string::npos) << s.error;
+  EXPECT_EQ(s.maps, 3);
+  EXPECT_NE(published["error"].get<std::string>().find("cells of data"), std::string::npos);
+  map.data.push_back(0);
+  map.header.frame_id = "odom";
+  s = mission.score_map(map);
+  EXPECT_NE(s.error.find("frame_id 'odom'"), std::string::npos) << s.error;
+  ASSERT_TRUE(mission.result().map);
+  EXPECT_EQ(mission.result().map->maps, 4);
+}
+
 TEST(Mission, StatusIsPublishedOncePerSimSecond) {
   Simulation sim(line_world({}, {0, 5}));
   Mission mission(wss_mission(), sim);

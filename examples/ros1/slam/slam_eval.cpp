@@ -1,5 +1,5 @@
 // slam_eval: scores a SLAM run of the office demonstration against the world's ground truth
-// (slam_metrics.h) and draws it. Reads the scenario (for the world and the robot's laser) and a
+// (mission/map_metrics.h) and draws it. Reads the scenario (for the world and the robot's laser) and a
 // run folder holding map.yaml + map.pgm and trajectory.csv (slam_recorder writes them); writes
 // map.png, slam.png (floor plan | SLAM map | trajectories) and slam_metrics.json into --out.
 
@@ -16,14 +16,14 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "robots/rescue_robot.h"
-#include "slam_metrics.h"
+#include "mission/map_metrics.h"
 #include "viz/canvas.h"
 #include "viz/world_plot.h"
 #include "world/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 using namespace rescuesim;
-using namespace rescuesim::slam_eval;
+using namespace rescuesim::map_eval;
 using json = nlohmann::json;
 
 namespace {

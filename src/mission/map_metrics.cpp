@@ -1,4 +1,4 @@
-#include "slam_metrics.h"
+#include "mission/map_metrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "core/polygon.h"
 
-namespace rescuesim::slam_eval {
+namespace rescuesim::map_eval {
 
 void Grid::cell_of(const Vec2& p, int& i, int& j) const {
   i = static_cast<int>(std::floor((p.x() - origin.x()) / resolution));
@@ -133,51 +133,73 @@ Grid ignore_mask(const WorldSpec& world, const Grid& like, double margin) {
   return g;
 }
 
-Grid visible_surface(const Grid& truth, const std::vector<Pose2>& poses, const LaserModel& laser) {
-  Grid seen = truth;
-  std::fill(seen.cells.begin(), seen.cells.end(), 0);
+void add_visible(Grid& seen, const Grid& truth, const Pose2& X_WB, const LaserModel& laser) {
   const double res = truth.resolution;
-  for (const Pose2& X_WB : poses) {
-    const Pose2 X_WL = X_WB * laser.X_BL;
-    // walk each beam through the grid cell by cell (Amanatides & Woo) to the first occupied one
-    for (int k = 0; k < laser.beams; ++k) {
-      const double a = X_WL.yaw + laser.min_angle +
-                       (laser.beams > 1 ? k * (laser.max_angle - laser.min_angle) / (laser.beams - 1) : 0.0);
-      const double dx = std::cos(a), dy = std::sin(a);
-      int i, j;
-      truth.cell_of(X_WL.position(), i, j);
-      const int si = dx > 0 ? 1 : -1, sj = dy > 0 ? 1 : -1;
-      const Vec2 p = (X_WL.position() - truth.origin) / res;  // in cells
-      double t_max_x = std::fabs(dx) < 1e-12 ? INFINITY : ((si > 0 ? std::floor(p.x()) + 1 - p.x() : p.x() - std::floor(p.x())) / std::fabs(dx));
-      double t_max_y = std::fabs(dy) < 1e-12 ? INFINITY : ((sj > 0 ? std::floor(p.y()) + 1 - p.y() : p.y() - std::floor(p.y())) / std::fabs(dy));
-      const double t_dx = std::fabs(dx) < 1e-12 ? INFINITY : 1 / std::fabs(dx);
-      const double t_dy = std::fabs(dy) < 1e-12 ? INFINITY : 1 / std::fabs(dy);
-      const double t_end = laser.max_range / res;
-      double t = 0;
-      while (t <= t_end && truth.inside(i, j)) {
-        if (truth.at(i, j)) {
-          seen.at(i, j) = 1;
-          break;
-        }
-        if (t_max_x < t_max_y) {
-          t = t_max_x;
-          t_max_x += t_dx;
-          i += si;
-        } else {
-          t = t_max_y;
-          t_max_y += t_dy;
-          j += sj;
-        }
+  const Pose2 X_WL = X_WB * laser.X_BL;
+  // walk each beam through the grid cell by cell (Amanatides & Woo) to the first occupied one
+  for (int k = 0; k < laser.beams; ++k) {
+    const double a = X_WL.yaw + laser.min_angle + (laser.beams > 1 ? k * (laser.max_angle - laser.min_angle) / (laser.beams - 1) : 0.0);
+    const double dx = std::cos(a), dy = std::sin(a);
+    int i, j;
+    truth.cell_of(X_WL.position(), i, j);
+    const int si = dx > 0 ? 1 : -1, sj = dy > 0 ? 1 : -1;
+    const Vec2 p = (X_WL.position() - truth.origin) / res;  // in cells
+    double t_max_x = std::fabs(dx) < 1e-12 ? INFINITY : ((si > 0 ? std::floor(p.x()) + 1 - p.x() : p.x() - std::floor(p.x())) / std::fabs(dx));
+    double t_max_y = std::fabs(dy) < 1e-12 ? INFINITY : ((sj > 0 ? std::floor(p.y()) + 1 - p.y() : p.y() - std::floor(p.y())) / std::fabs(dy));
+    const double t_dx = std::fabs(dx) < 1e-12 ? INFINITY : 1 / std::fabs(dx);
+    const double t_dy = std::fabs(dy) < 1e-12 ? INFINITY : 1 / std::fabs(dy);
+    const double t_end = laser.max_range / res;
+    double t = 0;
+    while (t <= t_end && truth.inside(i, j)) {
+      if (truth.at(i, j)) {
+        seen.at(i, j) = 1;
+        break;
+      }
+      if (t_max_x < t_max_y) {
+        t = t_max_x;
+        t_max_x += t_dx;
+        i += si;
+      } else {
+        t = t_max_y;
+        t_max_y += t_dy;
+        j += sj;
       }
     }
   }
+}
+
+Grid visible_surface(const Grid& truth, const std::vector<Pose2>& poses, const LaserModel& laser) {
+  Grid seen = truth;
+  std::fill(seen.cells.begin(), seen.cells.end(), 0);
+  for (const Pose2& X_WB : poses) add_visible(seen, truth, X_WB, laser);
   return seen;
 }
 
-MapScore score_map(const SlamMap& map, const Pose2& X_WM, const Grid& truth, const Grid& visible, const Grid& ignore,
-                   int tol) {
+Grid grid_from_occupancy(int width, int height, double resolution, const Pose2& origin, const std::vector<std::int8_t>& data,
+                         int free_max, int occupied_min) {
+  if (!(resolution > 0) || !std::isfinite(resolution)) throw Error("map: resolution " + std::to_string(resolution) + " m is not a positive number");
+  if (width < 0 || height < 0 || static_cast<std::size_t>(width) * static_cast<std::size_t>(height) != data.size()) {
+    throw Error("map: " + std::to_string(data.size()) + " cells of data for " + std::to_string(width) + " x " + std::to_string(height));
+  }
+  if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(origin.yaw)) throw Error("map: the origin is not finite");
+  Grid g;
+  g.resolution = resolution;
+  g.width = width;
+  g.height = height;
+  g.cells.resize(data.size());
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    const int v = data[k];
+    g.cells[k] = v < 0 ? kUnknown : v <= free_max ? kFree : v >= occupied_min ? kOccupied : kUnknown;
+  }
+  return g;
+}
+
+MapScore score_map(const SlamMap& map, const Pose2& X_WM, const Grid& truth, const Grid& visible, const Grid& ignore, int tol) {
+  return score_map(map.grid, X_WM, truth, visible, ignore, tol);
+}
+
+MapScore score_map(const Grid& m, const Pose2& X_WM, const Grid& truth, const Grid& visible, const Grid& ignore, int tol) {
   MapScore s;
-  const Grid& m = map.grid;
   auto any_near = [tol](const Grid& g, int i, int j, auto&& pred) {
     for (int dj = -tol; dj <= tol; ++dj)
       for (int di = -tol; di <= tol; ++di)
@@ -248,4 +270,4 @@ TrajectoryError trajectory_error(const std::vector<Pose2>& truth, const std::vec
   return e;
 }
 
-}  // namespace rescuesim::slam_eval
+}  // namespace rescuesim::map_eval

@@ -1,4 +1,4 @@
-// The SLAM demonstration's scoring (examples/ros1/slam/slam_metrics.h) on worlds and maps
+// Map scoring (mission/map_metrics.h: the SLAM demonstration's and the referee's) on worlds and maps
 // small enough to check by hand: a perfect map scores 1, a map shifted by more than the
 // tolerance fails, hidden walls are not counted against recall, and the trajectory error of
 // known offsets comes out as computed on paper.
@@ -11,9 +11,9 @@
 #include <unistd.h>
 
 #include "core/error.h"
-#include "slam_metrics.h"
+#include "mission/map_metrics.h"
 
-namespace rescuesim::slam_eval {
+namespace rescuesim::map_eval {
 namespace {
 
 // a closed 6 m x 4 m room of 10 cm walls, 2 m high, with a 0.8 m x 0.8 m cabinet inside
@@ -200,4 +200,4 @@ TEST(SlamMetrics, ReadsMapServerFilesAndNamesBadOnes) {
 }
 
 }  // namespace
-}  // namespace rescuesim::slam_eval
+}  // namespace rescuesim::map_eval

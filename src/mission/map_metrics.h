@@ -1,5 +1,6 @@
 #pragma once
-/// Scoring a SLAM run against the simulator's ground truth (slam_eval; docs/demos.md):
+/// Scoring a map against the simulator's ground truth: a SLAM run (slam_eval; docs/demos.md)
+/// and a mission team's map on /rescue/map (Mission; docs/missions.md):
 /// the true occupancy of a world rasterised from its WorldSpec, the occupied cells a laser could
 /// have seen from the true trajectory, occupied-cell precision and recall of a SLAM map within a
 /// tolerance, and the absolute trajectory error under a stated alignment. C++20, rescuesim's
@@ -13,7 +14,7 @@
 #include "core/pose.h"
 #include "world/world_spec.h"
 
-namespace rescuesim::slam_eval {
+namespace rescuesim::map_eval {
 
 /// A square-celled grid, axis-aligned in its frame. Cell (i, j) covers
 /// [origin.x + i*res, origin.x + (i+1)*res) x [origin.y + j*res, ...); stored row-major from j = 0.
@@ -67,6 +68,9 @@ struct LaserModel {
 /// 1 on each occupied cell of `truth` that some beam from some pose of `poses` (base_link in the
 /// world) hits first: the surface the robot could have mapped.
 Grid visible_surface(const Grid& truth, const std::vector<Pose2>& poses, const LaserModel& laser);
+/// Adds to `seen` (a grid like `truth`) the occupied cells of `truth` the laser hits first from
+/// base pose X_WB: visible_surface one pose at a time.
+void add_visible(Grid& seen, const Grid& truth, const Pose2& X_WB, const LaserModel& laser);
 
 /// Occupied-cell agreement of a SLAM map with the truth. X_WM places the map in the world.
 struct MapScore {
@@ -83,6 +87,17 @@ struct MapScore {
 /// with a tolerance of `tolerance_cells` cells (Chebyshev distance on the truth grid).
 MapScore score_map(const SlamMap& map, const Pose2& X_WM, const Grid& truth, const Grid& visible, const Grid& ignore,
                    int tolerance_cells = 1);
+/// The same for a map grid of MapCell values.
+MapScore score_map(const Grid& map, const Pose2& X_WM, const Grid& truth, const Grid& visible, const Grid& ignore,
+                   int tolerance_cells = 1);
+
+/// A nav_msgs/OccupancyGrid's cells as MapCell values (-1 unknown; 0 to free_max free; from
+/// occupied_min occupied; between: unknown), in the grid's own frame (origin at 0), and the
+/// pose of that frame in the message's frame (`X_WM`, from info.origin, planar). Throws
+/// rescuesim::Error for a grid that is not one: a resolution that is not a positive finite
+/// number, data of another size than width × height, a non-finite origin.
+Grid grid_from_occupancy(int width, int height, double resolution, const Pose2& origin, const std::vector<std::int8_t>& data,
+                         int free_max = 25, int occupied_min = 65);
 
 /// How an estimated trajectory is put into the world frame before comparing.
 enum class Alignment {
@@ -99,4 +114,4 @@ struct TrajectoryError {
 };
 TrajectoryError trajectory_error(const std::vector<Pose2>& truth, const std::vector<Pose2>& estimate, Alignment alignment);
 
-}  // namespace rescuesim::slam_eval
+}  // namespace rescuesim::map_eval
