@@ -6,7 +6,7 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 RUN_ARGS ?=
 
-.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean
+.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install
 
 all: build
 
@@ -27,6 +27,12 @@ build: deps $(BUILD)/CMakeCache.txt
 # only the CLI and what it links (not the tests, benchmarks and examples)
 cli: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) --target rescuesim -j $(JOBS)
+
+# installs the CLI, the demonstrations' programs, the worlds, examples, docs and the Python
+# package under PREFIX (docs/install.md); sudo for a system prefix
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # the default rescue scenario, headless; outputs go to runs/default/
 run: cli

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "app/commands.h"
+#include "app/data_dir.h"
 #include "robots/rescue_robot.h"
 #include "batch/batch_results.h"
 #include "batch/batch_runner.h"
@@ -221,7 +222,7 @@ void add_batch_command(CLI::App& app, Action& action) {
       "  rescuesim batch merge part0 part1 part2 --out all\n\n"
       "Exit codes: 0 all trials recorded and none failed, 1 some failed or the batch was\n"
       "interrupted, 2 bad input. See docs/batch.md (Slurm arrays, Dask).");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
+  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
   cmd->add_option("--trials,-n", c->trials, "number of trials in the batch (required)")->check(CLI::Range(1, 100000000));
   cmd->add_option("--jobs,-j", c->jobs, "trials at once (default: one per core)")->check(CLI::Range(1, 1024));
   cmd->add_option("--seed", c->seed, "base seed S: trial i uses S+i (default: the scenario's seed)");

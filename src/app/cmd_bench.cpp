@@ -16,6 +16,7 @@
 #include "app/bench_reset.h"
 #include "app/bench_ros.h"
 #include "app/bench_soak.h"
+#include "app/data_dir.h"
 #include "app/bench_mission.h"
 #include "app/bench_sdf.h"
 #include "app/bench_urdf.h"
@@ -264,7 +265,20 @@ json bench_recording([[maybe_unused]] const Scenario& def, [[maybe_unused]] cons
 #endif
 }
 
-int run_bench(const BenchOptions& o) {
+int run_bench(const BenchOptions& given) {
+  // the default figures' files are the shipped worlds: found from any folder once installed
+  BenchOptions o = given;
+  const auto installed = [](const std::string& f) {
+    try {
+      return locate_data_file(f);
+    } catch (const Error&) {
+      return f;  // the figure that needs it says what is missing
+    }
+  };
+  o.urdf_scenario = installed(o.urdf_scenario);
+  o.sdf_world = installed(o.sdf_world);
+  o.mission_scenario = installed(o.mission_scenario);
+  for (auto& p : o.sdf_resource_paths) p = installed(p);
   if (o.soak) {
     SoakOptions so;
     so.hours = o.soak_hours;

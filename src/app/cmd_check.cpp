@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/data_dir.h"
 #include "robots/rescue_robot.h"
 #include "world/scenario/scenario.h"
 #include "world/robot_lumping.h"
@@ -218,7 +219,15 @@ void add_check_command(CLI::App& app, Action& action) {
   cmd->final_callback([o, &action] {
     action = [o] {
       bool all_ok = true;
-      for (const auto& f : o->files) all_ok = check_one(f, *o) && all_ok;
+      for (const auto& f : o->files) {
+        // a relative name not found here may be one of the installed worlds; a missing file is check_one's to report
+        std::string path = f;
+        try {
+          path = locate_data_file(f);
+        } catch (const Error&) {
+        }
+        all_ok = check_one(path, *o) && all_ok;
+      }
       return all_ok ? kExitOk : kExitBadInput;
     };
   });

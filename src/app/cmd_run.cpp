@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/bridge_flags.h"
+#include "app/data_dir.h"
 #include "app/commands.h"
 #include "core/log.h"
 #include "robots/rescue_robot.h"
@@ -180,8 +181,8 @@ void add_run_command(CLI::App& app, Action& action) {
       "  rescuesim run --foxglove --keep-controllers     then open ws://127.0.0.1:8765\n"
       "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed\n"
       "  rescuesim recover runs/default.mcap.part        a killed recording, indexed again up to its last chunk");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
-  cmd->add_option("--world", c->world, "use this world instead of the scenario's: an SVG drawing, or an SDF world (.sdf, .world)");
+  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
+  cmd->add_option("--world", c->world, "use this world instead of the scenario's: an SVG drawing, or an SDF world (.sdf, .world)")->transform(data_file());
   cmd->add_option("--resource-path", c->resource_paths,
                   "a folder where package:// and model:// URIs are looked for first (repeatable; then the scenario's resource_paths, "
                   "then ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and, for model://, GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, "

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/data_dir.h"
 #include "app/figure.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -156,7 +157,7 @@ void add_snapshot_command(CLI::App& app, Action& action) {
       "  rescuesim snapshot --time 30 --out fig2.png\n"
       "  rescuesim snapshot worlds/arena.yaml --seed 3 --quality high --width 2400\n"
       "  xvfb-run -a rescuesim view            the same picture, live, in a window");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
+  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
   cmd->add_option("--time,-t", c->time, "sim time to run to, in seconds")->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--out,-o", c->out, "PNG file to write (atomically)")->capture_default_str();
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");

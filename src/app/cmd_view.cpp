@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/data_dir.h"
 #include "app/figure.h"
 #include "app/view_render_worker.h"
 #include "render/render_scene.h"
@@ -549,7 +550,7 @@ void add_view_command(CLI::App& app, Action& action) {
       "  rescuesim view\n"
       "  rescuesim view worlds/arena.yaml --seed 3 --quality medium\n"
       "  xvfb-run -a rescuesim view --screenshot view.png --after 5");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in)");
+  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
   cmd->add_option("--quality", c->quality, "main view quality: low, medium or high")
       ->capture_default_str()

@@ -2,9 +2,11 @@
 // input into a clear message with exit code 2.
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include "app/commands.h"
+#include "app/data_dir.h"
 #include "core/log.h"
 #include "core/memory.h"
 
@@ -49,6 +51,8 @@ int main(int argc, char** argv) {
   }
   log::set_level(log_level);
   try {
+    // a RESCUESIM_DATA_DIR that is not a data folder is a mistake worth stopping for at once
+    if (const char* d = std::getenv("RESCUESIM_DATA_DIR"); d && *d) app::data_dir();
     return action ? action() : app::kExitOk;
   } catch (const Error& e) {
     std::fprintf(stderr, "rescuesim: error: %s\n", e.what());

@@ -29,17 +29,19 @@ std::vector<Row> read_csv(const fs::path& csv) {
   std::istringstream in(testing::slurp(csv));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "sim_s,wall_s,rtf,resident_mb,peak_mb,heap_mb,messages,nans,recorded_bytes");
+  EXPECT_EQ(line, "sim_s,wall_s,rtf,resident_mb,peak_mb,heap_mb,arena_mb,arena_free_mb,messages,nans,recorded_bytes");
   std::vector<Row> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     std::istringstream cells(line);
     for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
-    if (f.size() != 9) {
+    if (f.size() != 11) {
       ADD_FAILURE() << "row '" << line << "' has " << f.size() << " fields";
       continue;
     }
-    rows.push_back({std::stod(f[0]), std::stod(f[3]), std::stod(f[5]), std::stoull(f[6]), std::stoull(f[7])});
+    // the arenas' free part is part of them
+    EXPECT_LE(std::stod(f[7]), std::stod(f[6])) << line;
+    rows.push_back({std::stod(f[0]), std::stod(f[3]), std::stod(f[5]), std::stoull(f[8]), std::stoull(f[9])});
   }
   return rows;
 }

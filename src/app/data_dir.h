@@ -1,0 +1,37 @@
+#pragma once
+/// Where an installed rescuesim finds what it ships (worlds, robots, examples, docs) and how
+/// a relative scenario or world argument is looked for there (issue 19).
+///
+/// The data folder is, in this order: $RESCUESIM_DATA_DIR when set (it must be a folder with a
+/// worlds/ folder inside, else an error naming it); <folder of the executable>/../share/rescuesim
+/// (an installed copy, wherever its prefix was moved); the source tree the program was built
+/// from (a build folder, when that tree is still there); the install prefix compiled in.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rescuesim::app {
+
+/// The data folder, or nullopt when none of the places exists (then `looked` lists them).
+/// Throws rescuesim::Error when RESCUESIM_DATA_DIR is set to something that is not a data folder.
+std::optional<std::filesystem::path> data_dir(std::vector<std::string>* looked = nullptr);
+
+/// `arg` itself when it exists (or is empty, or absolute); else, for a relative path, the same
+/// path under the data folder, or under its worlds/ folder, when there (`rescuesim run
+/// worlds/team.yaml` or `rescuesim run team.yaml` from any folder). Throws rescuesim::Error
+/// naming every place it looked when the file is nowhere.
+std::string locate_data_file(const std::string& arg);
+
+}  // namespace rescuesim::app
+
+#include <CLI/CLI.hpp>
+
+namespace rescuesim::app {
+
+/// A CLI11 transformer that applies locate_data_file to an option's value (an error becomes
+/// the option's validation message, exit code 2).
+CLI::Validator data_file();
+
+}  // namespace rescuesim::app

@@ -1,0 +1,100 @@
+// An installed rescuesim, as a new user meets it (issue 19): `cmake --install` of this build
+// into a fresh prefix under the system's temp folder, then, from a folder outside the source
+// and build trees and with an environment that names neither, the installed CLI runs the
+// default scenario, checks an installed world by its relative name, and Python imports the
+// installed package and runs a few steps. Bad set-ups: a RESCUESIM_DATA_DIR that is not a data
+// folder, and an installed copy whose data folder was removed, are refused with exit code 2
+// and say where they looked.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "support/command.h"
+
+namespace rescuesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Installed : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / ("rescuesim-install-test-" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "home");
+    const auto r = testing::run_command("cmake --install '" + std::string(RESCUESIM_BINARY_DIR) + "' --prefix '" + (root_ / "prefix").string() + "'");
+    install_exit_ = r.exit_code;
+    install_log_ = r.out + r.err;
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+
+  /// `command` in the home folder with only PATH (the prefix's bin first), HOME and `extra` set.
+  static testing::CommandResult as_user(const std::string& command, const std::string& extra = "") {
+    const std::string env = "env -i HOME='" + (root_ / "home").string() + "' PATH='" + (root_ / "prefix/bin").string() + ":/usr/bin:/bin' " + extra + " ";
+    return testing::run_command(env + command, root_ / "home");
+  }
+
+  static inline fs::path root_;
+  static inline int install_exit_ = -1;
+  static inline std::string install_log_;
+};
+
+TEST_F(Installed, TheCliRunsAndFindsItsWorldsFromAnyFolder) {
+  ASSERT_EQ(install_exit_, 0) << install_log_;
+  const fs::path prefix = root_ / "prefix";
+  EXPECT_TRUE(fs::exists(prefix / "bin/rescuesim"));
+  EXPECT_TRUE(fs::exists(prefix / "share/rescuesim/worlds/team.yaml"));
+  EXPECT_TRUE(fs::exists(prefix / "share/rescuesim/worlds/robots/turtlebot3_description/LICENSE"));  // licences stay with the data
+  EXPECT_TRUE(fs::exists(prefix / "share/doc/rescuesim/README.md"));
+  EXPECT_TRUE(fs::exists(prefix / "share/doc/rescuesim/missions.md"));
+
+  // the default scenario, 5 s: its outputs where asked
+  const auto run = as_user("rescuesim run --duration 5 --no-cameras --out out");
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_TRUE(fs::exists(root_ / "home/out/summary.json")) << run.out;
+  EXPECT_NE(run.out.find("5.0 s simulated"), std::string::npos) << run.out;
+
+  // a shipped world by the name the README uses, though there is no worlds/ folder here
+  const auto check = as_user("rescuesim check worlds/team.yaml");
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find((prefix / "share/rescuesim/worlds/team.yaml").string() + ": ok"), std::string::npos) << check.out;
+  // and a URDF robot world whose package:// meshes resolve inside the installed data
+  const auto urdf = as_user("rescuesim run worlds/turtlebot3_maze.yaml --duration 1 --no-cameras --out out2");
+  EXPECT_EQ(urdf.exit_code, 0) << urdf.out << urdf.err;
+}
+
+TEST_F(Installed, PythonImportsTheInstalledPackage) {
+  ASSERT_EQ(install_exit_, 0) << install_log_;
+  fs::path site;
+  for (const auto& e : fs::directory_iterator(root_ / "prefix/lib")) {
+    if (e.path().filename().string().rfind("python3", 0) == 0) site = e.path() / "dist-packages";
+  }
+  if (site.empty() || !fs::exists(site / "rescuesim")) GTEST_SKIP() << "the Python API is not built here (RESCUESIM_PYTHON)";
+  const auto py = as_user("/usr/bin/python3 -c \"import rescuesim; e = rescuesim.Env(rescuesim.default_scenario(), cameras=False); "
+                          "e.reset(seed=3); [e.step([0.2, 0.0]) for _ in range(10)]; print(rescuesim.__file__)\"",
+                          "PYTHONPATH='" + site.string() + "'");
+  EXPECT_EQ(py.exit_code, 0) << py.out << py.err;
+  EXPECT_NE(py.out.find(site.string()), std::string::npos) << py.out;  // this package, not the build tree's
+}
+
+TEST_F(Installed, AWrongDataFolderIsAClearError) {
+  ASSERT_EQ(install_exit_, 0) << install_log_;
+  const auto wrong = as_user("rescuesim run --duration 1", "RESCUESIM_DATA_DIR=/nonexistent/share/rescuesim");
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("RESCUESIM_DATA_DIR=/nonexistent/share/rescuesim is not a rescuesim data folder"), std::string::npos) << wrong.err;
+
+  // an installed copy whose data went: a shipped world cannot be found, and it says where it looked
+  if (fs::exists("/usr/local/share/rescuesim/worlds")) GTEST_SKIP() << "a rescuesim is installed in /usr/local: it would be found";
+  fs::rename(root_ / "prefix/share/rescuesim", root_ / "moved-away");
+  const auto missing = as_user("rescuesim run worlds/team.yaml --duration 1");
+  fs::rename(root_ / "moved-away", root_ / "prefix/share/rescuesim");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("worlds/team.yaml: no such file; looked in"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find((root_ / "prefix/share/rescuesim").string()), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("RESCUESIM_DATA_DIR"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace rescuesim
