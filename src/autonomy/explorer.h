@@ -61,7 +61,12 @@ struct ExplorerConfig {
   double stuck_distance = 0.3;       ///< m
   SlipDetectorConfig slip;           ///< odometry checked against the laser and the scan matcher: slipping wheels mean stuck
   bool scan_matching = true;         ///< false: the map frame stays the odom frame (X_MO the identity)
-  ScanMatcherConfig matcher;         ///< scan-to-map matching
+  /// scan-to-map matching; the likelihood field is rebuilt every 5 scans (0.5 s at 10 Hz)
+  ScanMatcherConfig matcher = [] {
+    ScanMatcherConfig c;
+    c.field_refresh = 5;
+    return c;
+  }();
   int blocked_limit = 3;             ///< this many blocked episodes (stop and turn on the spot) ...
   double blocked_window = 20.0;      ///< s ... within this long is stuck
   double novelty_window = 30.0;      ///< s; wall following this long while learning ...

@@ -11,6 +11,8 @@ namespace rescuesim::autonomy {
 void LikelihoodField::build(const OccupancyMapper& grid, Cell lo, Cell hi, double sigma, double reach) {
   resolution_ = grid.resolution();
   origin_M_ = grid.origin();
+  grid_w_ = grid.width();
+  grid_h_ = grid.height();
   lo = {std::max(lo.x, 0), std::max(lo.y, 0)};
   hi = {std::min(hi.x, grid.width() - 1), std::min(hi.y, grid.height() - 1)};
   lo_ = lo;
@@ -68,6 +70,17 @@ void LikelihoodField::build(const OccupancyMapper& grid, Cell lo, Cell hi, doubl
   }
 }
 
+bool LikelihoodField::covers(const OccupancyMapper& grid, Cell lo, Cell hi) const {
+  if (w_ == 0 || grid.resolution() != resolution_ || grid.origin() != origin_M_ || grid.width() != grid_w_ ||
+      grid.height() != grid_h_) {
+    return false;
+  }
+  // clipped to the grid as build clips it
+  lo = {std::max(lo.x, 0), std::max(lo.y, 0)};
+  hi = {std::min(hi.x, grid.width() - 1), std::min(hi.y, grid.height() - 1)};
+  return lo.x >= lo_.x && lo.y >= lo_.y && hi.x < lo_.x + w_ && hi.y < lo_.y + h_;
+}
+
 double LikelihoodField::interpolate(const Vec2& p_M, Vec2* grad_M) const {
   // continuous cell coordinates with cell centres at integers
   const Vec2 u = (p_M - origin_M_) / resolution_ - Vec2(0.5, 0.5);
@@ -122,7 +135,17 @@ ScanMatch ScanMatcher::match(const OccupancyMapper& grid, const std::vector<Vec2
     const Vec2 u = (q - grid.origin()) / res;
     return Cell{static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y()))};
   };
-  field_.build(grid, to_cell(lo - Vec2::Constant(pad)), to_cell(hi + Vec2::Constant(pad)), config_.field_sigma, config_.field_reach);
+  // the field is rebuilt for every match, or (field_refresh > 1) over a wider box kept for
+  // that many matches while the points stay inside it: the map changes little in a few scans
+  const Cell need_lo = to_cell(lo - Vec2::Constant(pad)), need_hi = to_cell(hi + Vec2::Constant(pad));
+  const bool inside = field_.covers(grid, need_lo, need_hi);
+  if (config_.field_refresh <= 1 || !inside || field_uses_ >= config_.field_refresh) {
+    const double margin = config_.field_refresh > 1 ? config_.field_margin : 0.0;
+    field_.build(grid, to_cell(lo - Vec2::Constant(pad + margin)), to_cell(hi + Vec2::Constant(pad + margin)), config_.field_sigma,
+                 config_.field_reach);
+    field_uses_ = 0;
+  }
+  ++field_uses_;
 
   // correlative search: every heading of the window, and for each every shift by whole cells;
   // per shift the best heading is kept for the spread of near-best candidates

@@ -36,6 +36,10 @@ struct ScanMatcherConfig {
   /// which that direction is ambiguous (not pinned down by the scan)
   double max_spread = 0.06;
   int refine_iterations = 6;        ///< Gauss-Newton steps after the search
+  /// the likelihood field is rebuilt every this many matches (1: every match, on the grid as
+  /// it is; more: cheaper, on a grid up to that many updates old) ...
+  int field_refresh = 1;
+  double field_margin = 2.0;        ///< m ... over the box the points need widened by this much (with field_refresh > 1)
 };
 
 /// What a match concluded.
@@ -67,6 +71,9 @@ class LikelihoodField {
   /// Builds the field over the grid's cells in [lo, hi] (inclusive, clipped to the grid);
   /// occupied cells up to `reach` outside the box count too.
   void build(const OccupancyMapper& grid, Cell lo, Cell hi, double sigma, double reach);
+  /// True when the field was built on a grid of the same geometry as `grid` and its box holds
+  /// the cells [lo, hi] (clipped to the grid).
+  bool covers(const OccupancyMapper& grid, Cell lo, Cell hi) const;
   /// The field at cell `c` (grid coordinates), zero outside the box.
   double at(Cell c) const {
     const int x = c.x - lo_.x, y = c.y - lo_.y;
@@ -79,6 +86,7 @@ class LikelihoodField {
  private:
   Cell lo_{0, 0};
   int w_ = 0, h_ = 0;
+  int grid_w_ = 0, grid_h_ = 0;  // the grid's size when built
   Vec2 origin_M_ = Vec2::Zero();  // lower-left corner of the grid's cell (0, 0)
   double resolution_ = 1;
   std::vector<float> values_;
@@ -103,6 +111,7 @@ class ScanMatcher {
 
   ScanMatcherConfig config_;
   LikelihoodField field_;
+  int field_uses_ = 0;  // matches on the field since it was built
 };
 
 }  // namespace rescuesim::autonomy
