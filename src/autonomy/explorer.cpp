@@ -37,7 +37,9 @@ Explorer::Explorer(const Pose2& X_BS, ExplorerConfig config)
       planner_(config_.planner),
       wall_(config_.wall),
       follower_(config_.path),
-      slip_(config_.slip) {
+      slip_(config_.slip),
+      match_slip_(config_.slip),
+      matcher_(config_.matcher) {
   path_msg_.header.frame_id = config_.frame_id;
 }
 
@@ -62,6 +64,32 @@ std::optional<Pose2> Explorer::pose_at(SimTime t) const {
   return Pose2{p.x + a * (q.x - p.x), p.y + a * (q.y - p.y), wrap_angle(p.yaw + a * wrap_angle(q.yaw - p.yaw))};
 }
 
+std::optional<Pose2> Explorer::pose_in_map(SimTime t) const {
+  const auto X_OB = pose_at(t);
+  if (!X_OB) return std::nullopt;
+  return X_MO_ * *X_OB;
+}
+
+bool Explorer::match_scan(const Pose2& X_OB) {
+  // the scan against the map so far, from odometry's prediction; a match pins down the pose
+  // (or, in a corridor, all but the shift along it) and so the correction X_MO
+  std::vector<Vec2> p_B;
+  p_B.reserve(points_B_.size());
+  for (const ScanPoint& p : points_B_) {
+    if (!p.too_close) p_B.push_back(p.p_B);
+  }
+  last_match_ = matcher_.match(mapper_, p_B, X_MO_ * X_OB);
+  if (last_match_.verdict == MatchVerdict::rejected) {
+    ++stats_.scans_unmatched;
+    return false;
+  }
+  ++(last_match_.verdict == MatchVerdict::good ? stats_.scans_matched : stats_.scans_ambiguous);
+  X_MO_ = last_match_.X_MB * X_OB.inverse();
+  // odometry's motion against the matched one: wheels that spin while the scans stay put
+  match_slip_.add_motion(X_OB, last_match_.X_MB);
+  return true;
+}
+
 void Explorer::on_scan(const msg::LaserScan& scan) {
   // the reactive controllers see every scan; the map only those with a pose
   points_B_ = scan_points_in_base(scan, X_BS_);
@@ -71,16 +99,20 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
                  looks_toward(scan, X_BS_, M_PI + 0.35);
   const auto X_OB = pose_at(scan.header.stamp);
   if (!X_OB) return;
-  // scans that contradict odometry (slipping wheels) would smear the map; the last pose where
-  // odometry and laser agreed is remembered for reversing blind
+  // scans that contradict odometry (slipping wheels) would smear the map, unless the map
+  // itself placed them; the last pose where odometry or the map and the laser agreed is
+  // remembered for reversing blind
   const bool compared = slip_.add(scan, *X_OB * X_BS_);
-  if (slip_.slipping() || slip_.last_misfit()) {
+  const bool matched = config_.scan_matching && stats_.scans > 0 && match_scan(*X_OB);
+  const bool pinned = matched && last_match_.verdict == MatchVerdict::good;
+  if ((slip_.slipping() || slip_.last_misfit()) && !pinned) {
     ++stats_.slipping_scans;
     return;
   }
-  if (compared || !have_trusted_) trusted_X_OB_ = *X_OB;
+  const Pose2 X_MB = X_MO_ * *X_OB;
+  if (compared || pinned || !have_trusted_) trusted_X_MB_ = X_MB;
   have_trusted_ = true;
-  const int learned = mapper_.integrate(scan, *X_OB * X_BS_);
+  const int learned = mapper_.integrate(scan, X_MB * X_BS_);
   ++stats_.scans;
   stats_.cells_learned += learned;
   novelty_.emplace_back(scan.header.stamp, learned);
@@ -98,8 +130,8 @@ msg::OccupancyGrid Explorer::map(SimTime stamp) const {
   return m;
 }
 
-void Explorer::set_goal(const Vec2& p_O) {
-  goal_O_ = p_O;
+void Explorer::set_goal(const Vec2& p_M) {
+  goal_M_ = p_M;
   goal_needs_plan_ = true;
   tries_ = 0;
   follower_.clear();
@@ -108,7 +140,7 @@ void Explorer::set_goal(const Vec2& p_O) {
 }
 
 void Explorer::clear_goal() {
-  goal_O_.reset();
+  goal_M_.reset();
   goal_needs_plan_ = false;
   follower_.clear();
   path_msg_.poses.clear();
@@ -116,8 +148,8 @@ void Explorer::clear_goal() {
   started_ = false;  // progress tracking restarts at the next command
 }
 
-void Explorer::reset_progress(const Pose2& X_OB, SimTime now) {
-  anchor_ = X_OB;
+void Explorer::reset_progress(const Pose2& X_MB, SimTime now) {
+  anchor_ = X_MB;
   anchor_time_ = now;
   mode_since_ = now;
   blocked_times_.clear();
@@ -125,27 +157,27 @@ void Explorer::reset_progress(const Pose2& X_OB, SimTime now) {
 
 msg::Twist Explorer::command(SimTime now) {
   if (odom_.empty() || !have_scan_) return {};
-  const Pose2 X_OB = odom_.back().second;
+  const Pose2 X_MB = X_MO_ * odom_.back().second;
   if (!started_) {
-    reset_progress(X_OB, now);
+    reset_progress(X_MB, now);
     started_ = true;
   }
   // progress: any move of stuck_distance from the anchor restarts the stuck clock
-  if ((X_OB.position() - anchor_.position()).norm() > config_.stuck_distance) {
-    anchor_ = X_OB;
+  if ((X_MB.position() - anchor_.position()).norm() > config_.stuck_distance) {
+    anchor_ = X_MB;
     anchor_time_ = now;
   }
   switch (mode_) {
-    case ExplorerMode::wall_following: return wall_follow(X_OB, now);
-    case ExplorerMode::to_frontier: return drive_to_frontier(X_OB, now);
-    case ExplorerMode::to_goal: return drive_to_goal(X_OB, now);
+    case ExplorerMode::wall_following: return wall_follow(X_MB, now);
+    case ExplorerMode::to_frontier: return drive_to_frontier(X_MB, now);
+    case ExplorerMode::to_goal: return drive_to_goal(X_MB, now);
     case ExplorerMode::at_goal: return {};
-    case ExplorerMode::backing_up: return back_up(X_OB, now);
+    case ExplorerMode::backing_up: return back_up(X_MB, now);
   }
   return {};
 }
 
-bool Explorer::wheels_slipping() const { return slip_.slipping(); }
+bool Explorer::wheels_slipping() const { return slip_.slipping() || match_slip_.slipping(); }
 
 StuckReason Explorer::stuck_reason(SimTime now) const {
   if ((now - anchor_time_).seconds() > config_.stuck_window || wheels_slipping()) return StuckReason::no_progress;
@@ -166,15 +198,15 @@ bool Explorer::may_plan(SimTime now) const {
   return !planned_ || (now - last_plan_).seconds() >= config_.replan_period;
 }
 
-std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_OB, SimTime now) {
+std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
-  return planner_.plan_to_nearest_frontier(mapper_, X_OB.position(), excluded_O_);
+  return planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_);
 }
 
-bool Explorer::still_frontier(const Vec2& p_O) const {
-  const auto c = mapper_.world_to_cell(p_O);
+bool Explorer::still_frontier(const Vec2& p_M) const {
+  const auto c = mapper_.world_to_cell(p_M);
   if (!c) return false;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
@@ -187,7 +219,7 @@ bool Explorer::still_frontier(const Vec2& p_O) const {
 
 void Explorer::start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now) {
   mode_ = mode;
-  target_O_ = path.back();
+  target_M_ = path.back();
   // the path message: each pose faces the next point
   path_msg_.header = {now, config_.frame_id};
   path_msg_.poses.clear();
@@ -207,10 +239,10 @@ void Explorer::start_wall_following(SimTime now) {
   path_msg_.poses.clear();
   path_msg_.header.stamp = now;
   tries_ = 0;
-  reset_progress(odom_.back().second, now);
+  reset_progress(X_MO_ * odom_.back().second, now);
 }
 
-msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
+msg::Twist Explorer::wall_follow(const Pose2& X_MB, SimTime now) {
   const msg::Twist twist = wall_.command(points_B_, scan_stamp_);
   // count blocked episodes (their starts) within the window
   if (wall_.state() == WallFollowerState::blocked && last_wall_state_ != WallFollowerState::blocked) {
@@ -228,9 +260,9 @@ msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
   if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
   if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
   if (reason == StuckReason::looping) ++stats_.stuck_looping;
-  if (reason == StuckReason::no_progress && start_backup(ExplorerMode::wall_following, now)) return back_up(X_OB, now);
-  std::vector<Vec2> path = plan_frontier(X_OB, now);
-  reset_progress(X_OB, now);
+  if (reason == StuckReason::no_progress && start_backup(ExplorerMode::wall_following, now)) return back_up(X_MB, now);
+  std::vector<Vec2> path = plan_frontier(X_MB, now);
+  reset_progress(X_MB, now);
   if (path.empty()) {
     ++stats_.no_frontier;
     complete_ = true;
@@ -240,46 +272,46 @@ msg::Twist Explorer::wall_follow(const Pose2& X_OB, SimTime now) {
   ++stats_.frontier_trips;
   tries_ = 0;
   start_path(std::move(path), ExplorerMode::to_frontier, now);
-  return follow_path(X_OB, now);
+  return follow_path(X_MB, now);
 }
 
-msg::Twist Explorer::drive_to_frontier(const Pose2& X_OB, SimTime now) {
+msg::Twist Explorer::drive_to_frontier(const Pose2& X_MB, SimTime now) {
   // arrived: new terrain is in view, back to wall following; a frontier that is still one
   // after arriving cannot be resolved from here and is not visited again
   if (follower_.status() == PathStatus::reached) {
     ++stats_.frontiers_reached;
-    if (still_frontier(target_O_)) excluded_O_.push_back(target_O_);
+    if (still_frontier(target_M_)) excluded_M_.push_back(target_M_);
     start_wall_following(now);
-    return wall_follow(X_OB, now);
+    return wall_follow(X_MB, now);
   }
   // replan (at most once per replan period) when stuck on the path, when the target was
   // explored on the way, or when the map shows an obstacle on what is left of the path;
   // a frontier whose paths got stuck max_tries times is given up
   const bool stuck = follower_.status() == PathStatus::stuck || wheels_slipping();
-  if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
+  if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_MB, now);
   if (stuck) {
     ++stats_.path_stuck;
     if (++tries_ >= config_.max_tries) {
       ++stats_.abandoned;
-      excluded_O_.push_back(target_O_);
+      excluded_M_.push_back(target_M_);
       start_wall_following(now);
-      return wall_follow(X_OB, now);
+      return wall_follow(X_MB, now);
     }
-    if (start_backup(ExplorerMode::to_frontier, now)) return back_up(X_OB, now);
-  } else if (still_frontier(target_O_)) {
-    if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
+    if (start_backup(ExplorerMode::to_frontier, now)) return back_up(X_MB, now);
+  } else if (still_frontier(target_M_)) {
+    if (!due_for_check(now) || !path_ahead_blocked(X_MB)) return follow_path(X_MB, now);
     ++stats_.path_blocked;
   }
-  std::vector<Vec2> path = plan_frontier(X_OB, now);
+  std::vector<Vec2> path = plan_frontier(X_MB, now);
   if (path.empty()) {
     start_wall_following(now);
-    return wall_follow(X_OB, now);
+    return wall_follow(X_MB, now);
   }
   start_path(std::move(path), ExplorerMode::to_frontier, now);
-  return follow_path(X_OB, now);
+  return follow_path(X_MB, now);
 }
 
-msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
+msg::Twist Explorer::drive_to_goal(const Pose2& X_MB, SimTime now) {
   if (follower_.status() == PathStatus::reached) {
     mode_ = ExplorerMode::at_goal;
     return {};
@@ -290,12 +322,12 @@ msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
   const bool stuck = follower_.status() == PathStatus::stuck || wheels_slipping();
   const bool no_path = follower_.status() == PathStatus::idle;
   if (!goal_needs_plan_) {
-    if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_OB, now);
+    if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_MB, now);
     if (stuck) {
       ++stats_.path_stuck;
-      if (start_backup(ExplorerMode::to_goal, now)) return back_up(X_OB, now);
+      if (start_backup(ExplorerMode::to_goal, now)) return back_up(X_MB, now);
     } else if (!no_path && (now - last_plan_).seconds() < config_.goal_replan_period) {
-      if (!due_for_check(now) || !path_ahead_blocked(X_OB)) return follow_path(X_OB, now);
+      if (!due_for_check(now) || !path_ahead_blocked(X_MB)) return follow_path(X_MB, now);
       ++stats_.path_blocked;
     }
   }
@@ -303,16 +335,16 @@ msg::Twist Explorer::drive_to_goal(const Pose2& X_OB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
-  std::vector<Vec2> path = planner_.plan(mapper_, X_OB.position(), *goal_O_);
+  std::vector<Vec2> path = planner_.plan(mapper_, X_MB.position(), *goal_M_);
   if (path.empty()) {
     // unreachable on the map so far: stand still and try again later
     follower_.clear();
     path_msg_.poses.clear();
     return {};
   }
-  path.back() = *goal_O_;  // end on the goal itself rather than its cell's centre
+  path.back() = *goal_M_;  // end on the goal itself rather than its cell's centre
   start_path(std::move(path), ExplorerMode::to_goal, now);
-  return follow_path(X_OB, now);
+  return follow_path(X_MB, now);
 }
 
 bool Explorer::due_for_check(SimTime now) {
@@ -321,8 +353,8 @@ bool Explorer::due_for_check(SimTime now) {
   return true;
 }
 
-bool Explorer::path_ahead_blocked(const Pose2& X_OB) const {
-  return path_blocked(mapper_, follower_.path(), follower_.next_index(), X_OB.position(),
+bool Explorer::path_ahead_blocked(const Pose2& X_MB) const {
+  return path_blocked(mapper_, follower_.path(), follower_.next_index(), X_MB.position(),
                       config_.blocked_clearance_factor * config_.robot_radius);
 }
 
@@ -332,14 +364,14 @@ bool Explorer::rear_clear(double distance) const {
   // else the map: every cell the robot would sweep reversing must be known free, seen from
   // the last pose odometry and laser agreed on, with room for the drift since then
   if (!mapper_.allocated() || !have_trusted_) return false;
-  const Pose2& X_OB = trusted_X_OB_;
+  const Pose2& X_MB = trusted_X_MB_;
   distance += config_.slip.min_motion;
   const double reach = config_.robot_radius + mapper_.resolution();
   for (double back = 0; back <= distance + 1e-9; back += mapper_.resolution()) {
     for (double side = -reach; side <= reach + 1e-9; side += mapper_.resolution()) {
       for (double ahead = -reach; ahead <= reach + 1e-9; ahead += mapper_.resolution()) {
         if (std::hypot(side, ahead) > reach) continue;
-        const auto c = mapper_.world_to_cell(X_OB.transform(Vec2(ahead - back, side)));
+        const auto c = mapper_.world_to_cell(X_MB.transform(Vec2(ahead - back, side)));
         if (!c || !mapper_.is_free(*c)) return false;
       }
     }
@@ -361,7 +393,7 @@ bool Explorer::start_backup(ExplorerMode resume, SimTime now) {
   return true;
 }
 
-msg::Twist Explorer::back_up(const Pose2& X_OB, SimTime now) {
+msg::Twist Explorer::back_up(const Pose2& X_MB, SimTime now) {
   // reverse for a moment (stopping short of anything the laser sees behind), then find a way
   // on: the goal again, or the nearest frontier (wall following when there is none)
   if (now < backup_until_ && (!sees_behind_ || free_distance_along(points_B_, M_PI, config_.robot_radius) > 0.1)) {
@@ -369,15 +401,16 @@ msg::Twist Explorer::back_up(const Pose2& X_OB, SimTime now) {
     twist.linear.x() = -config_.backup_speed;
     return twist;
   }
-  reset_progress(X_OB, now);
+  reset_progress(X_MB, now);
   slip_.reset();  // fresh evidence before calling it slipping again
+  match_slip_.reset();
   backup_until_ = now;
   if (resume_ == ExplorerMode::to_goal) {
     mode_ = ExplorerMode::to_goal;
     goal_needs_plan_ = true;
-    return drive_to_goal(X_OB, now);
+    return drive_to_goal(X_MB, now);
   }
-  std::vector<Vec2> path = plan_frontier(X_OB, now);
+  std::vector<Vec2> path = plan_frontier(X_MB, now);
   complete_ = path.empty();
   if (path.empty()) {
     ++stats_.no_frontier;
@@ -387,11 +420,11 @@ msg::Twist Explorer::back_up(const Pose2& X_OB, SimTime now) {
   ++stats_.frontier_trips;
   tries_ = resume_ == ExplorerMode::to_frontier ? tries_ : 0;
   start_path(std::move(path), ExplorerMode::to_frontier, now);
-  return follow_path(X_OB, now);
+  return follow_path(X_MB, now);
 }
 
-msg::Twist Explorer::follow_path(const Pose2& X_OB, SimTime now) {
-  msg::Twist twist = follower_.command(X_OB, now);
+msg::Twist Explorer::follow_path(const Pose2& X_MB, SimTime now) {
+  msg::Twist twist = follower_.command(X_MB, now);
   // the laser overrules the map: slow, then stop forward motion, when something is close ahead
   const double ahead = free_distance_ahead(points_B_, config_.robot_radius);
   const double span = std::max(config_.safety_slow_distance - config_.safety_stop_distance, 1e-6);

@@ -6,6 +6,12 @@
 /// first reverses a little if the way back is clear. A goal mode drives to a set point.
 /// It talks only in messages and reads time only from their stamps and the `now` it is
 /// given, so the same object runs in-process and inside a ROS node, deterministically.
+///
+/// Frames: odometry comes in the odom frame O. The explorer keeps its own map frame M, which
+/// coincides with O at the start; every scan after the first is matched against the map
+/// (ScanMatcher) from the odometry prediction, and a good match updates the correction X_MO
+/// (the odom frame in the map frame), so the map does not bend with odometry's drift. Scans
+/// are mapped, paths planned and followed, goals set and the robot's pose tracked in M.
 
 #include <deque>
 #include <optional>
@@ -16,6 +22,7 @@
 #include "autonomy/astar.h"
 #include "autonomy/occupancy_grid.h"
 #include "autonomy/path_follower.h"
+#include "autonomy/scan_matcher.h"
 #include "autonomy/scan_points.h"
 #include "autonomy/slip_detector.h"
 #include "autonomy/wall_follower.h"
@@ -44,7 +51,7 @@ enum class StuckReason {
 /// wall follower's settings.
 struct ExplorerConfig {
   double robot_radius = 0.35;        ///< m, the robot as a disc
-  std::string frame_id = "odom";     ///< frame of the map and paths
+  std::string frame_id = "map";      ///< name of the map frame M (of the map and paths); see X_MO()
   OccupancyMapperConfig map;         ///< mapping (auto-sized around the first scan by default)
   PlannerConfig planner;             ///< A* and frontier search
   WallFollowerConfig wall;           ///< the reactive controller (its X_BS is set by the constructor)
@@ -52,7 +59,14 @@ struct ExplorerConfig {
   bool frontier_trips = true;        ///< false: pure wall following, never stuck, never plans (goals still work)
   double stuck_window = 8.0;         ///< s; moving less than stuck_distance in this long is stuck
   double stuck_distance = 0.3;       ///< m
-  SlipDetectorConfig slip;           ///< odometry checked against the laser: slipping wheels mean stuck
+  SlipDetectorConfig slip;           ///< odometry checked against the laser and the scan matcher: slipping wheels mean stuck
+  bool scan_matching = true;         ///< false: the map frame stays the odom frame (X_MO the identity)
+  /// scan-to-map matching; the likelihood field is rebuilt every 5 scans (0.5 s at 10 Hz)
+  ScanMatcherConfig matcher = [] {
+    ScanMatcherConfig c;
+    c.field_refresh = 5;
+    return c;
+  }();
   int blocked_limit = 3;             ///< this many blocked episodes (stop and turn on the spot) ...
   double blocked_window = 20.0;      ///< s ... within this long is stuck
   double novelty_window = 30.0;      ///< s; wall following this long while learning ...
@@ -87,7 +101,10 @@ struct ExplorerStats {
   int path_stuck = 0;         ///< replans because the path follower made no progress
   int abandoned = 0;          ///< frontiers given up after max_tries
   int backups = 0;            ///< times it reversed to get unstuck
-  int slipping_scans = 0;     ///< scans that contradicted odometry (not mapped)
+  int slipping_scans = 0;     ///< scans that contradicted odometry and were not matched to the map (not mapped)
+  int scans_matched = 0;      ///< scans whose match to the map was good (X_MO updated)
+  int scans_ambiguous = 0;    ///< scans matched in one direction only (a corridor; X_MO updated across it)
+  int scans_unmatched = 0;    ///< scans whose match was rejected (X_MO kept)
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -96,9 +113,10 @@ class Explorer {
   /// `X_BS` is the laser's mounting pose (laser frame in base_link), used to place scans.
   explicit Explorer(const Pose2& X_BS, ExplorerConfig config = {});
 
-  /// Integrates a scan into the map at the odom pose interpolated to its stamp (scans before
-  /// the first odometry, and scans that contradict odometry, only feed the reactive
-  /// controller).
+  /// Matches a scan against the map, starting from the odom pose interpolated to its stamp
+  /// placed in the map frame by X_MO; a good match updates X_MO. The scan is then integrated
+  /// into the map at the corrected pose (scans before the first odometry, and scans that
+  /// contradict odometry and could not be matched, only feed the reactive controller).
   void on_scan(const msg::LaserScan& scan);
   /// Records the pose of base_link in the odom frame (header.frame_id) at the stamp.
   void on_odometry(const msg::Odometry& odom);
@@ -106,18 +124,27 @@ class Explorer {
   /// zero until both a scan and odometry have arrived.
   msg::Twist command(SimTime now);
 
-  /// Drives to `p_O` (m, odom frame) by A* over the map (unknown cells allowed per the
+  /// Drives to `p_M` (m, map frame) by A* over the map (unknown cells allowed per the
   /// planner settings), replanning as the map grows; stops there (mode at_goal).
-  void set_goal(const Vec2& p_O);
+  void set_goal(const Vec2& p_M);
   /// Drops the goal and goes back to exploring.
   void clear_goal();
 
-  /// The path being followed (odom frame), empty when wall following.
+  /// The path being followed (map frame), empty when wall following.
   const msg::Path& current_path() const { return path_msg_; }
-  /// The map so far (frame_id, `stamp`); an empty grid before the first scan.
+  /// The map so far (map frame, named frame_id; `stamp`); an empty grid before the first scan.
   msg::OccupancyGrid map(SimTime stamp) const;
-  /// The map itself (odom frame), for planners and plots in-process.
+  /// The map itself (map frame), for planners and plots in-process.
   const OccupancyMapper& mapper() const { return mapper_; }
+
+  /// The odom frame in the map frame: the correction scan matching has found so far (the
+  /// identity until the first good match, and always without scan matching).
+  const Pose2& X_MO() const { return X_MO_; }
+  /// The pose of base_link in the map frame at `t` (odometry at t, corrected by the current
+  /// X_MO); nothing before the first odometry.
+  std::optional<Pose2> pose_in_map(SimTime t) const;
+  /// The last scan match (verdict rejected before the first).
+  const ScanMatch& last_match() const { return last_match_; }
 
   /// What it is doing now.
   ExplorerMode mode() const { return mode_; }
@@ -131,24 +158,25 @@ class Explorer {
   const ExplorerConfig& config() const { return config_; }
 
  private:
-  std::optional<Pose2> pose_at(SimTime t) const;
-  msg::Twist wall_follow(const Pose2& X_OB, SimTime now);
-  msg::Twist drive_to_frontier(const Pose2& X_OB, SimTime now);
-  msg::Twist drive_to_goal(const Pose2& X_OB, SimTime now);
-  msg::Twist follow_path(const Pose2& X_OB, SimTime now);
-  msg::Twist back_up(const Pose2& X_OB, SimTime now);
+  std::optional<Pose2> pose_at(SimTime t) const;  // odometry (base_link in odom) at t
+  bool match_scan(const Pose2& X_OB);
+  msg::Twist wall_follow(const Pose2& X_MB, SimTime now);
+  msg::Twist drive_to_frontier(const Pose2& X_MB, SimTime now);
+  msg::Twist drive_to_goal(const Pose2& X_MB, SimTime now);
+  msg::Twist follow_path(const Pose2& X_MB, SimTime now);
+  msg::Twist back_up(const Pose2& X_MB, SimTime now);
   bool start_backup(ExplorerMode resume, SimTime now);
   bool rear_clear(double distance) const;
   bool wheels_slipping() const;
   StuckReason stuck_reason(SimTime now) const;
   bool may_plan(SimTime now) const;
   bool due_for_check(SimTime now);
-  bool path_ahead_blocked(const Pose2& X_OB) const;
-  std::vector<Vec2> plan_frontier(const Pose2& X_OB, SimTime now);
-  bool still_frontier(const Vec2& p_O) const;
+  bool path_ahead_blocked(const Pose2& X_MB) const;
+  std::vector<Vec2> plan_frontier(const Pose2& X_MB, SimTime now);
+  bool still_frontier(const Vec2& p_M) const;
   void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
   void start_wall_following(SimTime now);
-  void reset_progress(const Pose2& X_OB, SimTime now);
+  void reset_progress(const Pose2& X_MB, SimTime now);
 
   Pose2 X_BS_;
   ExplorerConfig config_;
@@ -162,10 +190,14 @@ class Explorer {
   SimTime scan_stamp_;
   bool have_scan_ = false;
   bool sees_behind_ = false;                      // the laser's fan covers the robot's rear
-  Pose2 trusted_X_OB_;                            // pose of the last scan that fitted odometry
+  Pose2 trusted_X_MB_;                            // pose of the last scan that fitted odometry or the map
   bool have_trusted_ = false;
   bool backed_up_ = false;                        // reversed at least once (backup_until_ is its end)
-  SlipDetector slip_;
+  SlipDetector slip_;                             // odometry against the laser, scan to scan
+  SlipDetector match_slip_;                       // odometry against scan matching
+  ScanMatcher matcher_;
+  ScanMatch last_match_;
+  Pose2 X_MO_;                                    // the odom frame in the map frame
   std::deque<std::pair<SimTime, int>> novelty_;  // cells learned per scan, by stamp
   std::deque<SimTime> blocked_times_;             // starts of blocked episodes
   WallFollowerState last_wall_state_ = WallFollowerState::no_data;
@@ -179,12 +211,12 @@ class Explorer {
   bool planned_ = false;
   SimTime last_check_;                            // last look for obstacles on the path
   bool goal_needs_plan_ = false;
-  std::optional<Vec2> goal_O_;
-  Vec2 target_O_ = Vec2::Zero();                  // end of the current path
+  std::optional<Vec2> goal_M_;                    // map frame, as everything below
+  Vec2 target_M_ = Vec2::Zero();                  // end of the current path
   SimTime backup_until_;                          // end of the current reversing
   ExplorerMode resume_ = ExplorerMode::wall_following;  // what reversing was for
   int tries_ = 0;
-  std::vector<Vec2> excluded_O_;                  // frontiers given up
+  std::vector<Vec2> excluded_M_;                  // frontiers given up
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;
   bool complete_ = false;

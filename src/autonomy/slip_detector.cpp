@@ -58,11 +58,34 @@ bool SlipDetector::add(const msg::LaserScan& scan, const Pose2& X_OS) {
   still_error_ = count > 0 ? still / count : 0.0;
 
   // remember the verdict; this scan is the next reference
-  history_.push_back(count > 0 && moved_error_ > config_.moved_misfit);
-  while (static_cast<int>(history_.size()) > std::max(config_.window, 1)) history_.pop_front();
+  record(count > 0 && moved_error_ > config_.moved_misfit);
   reference_ = scan;
   X_OS_reference_ = X_OS;
   return true;
+}
+
+bool SlipDetector::add_motion(const Pose2& X_OB, const Pose2& X_MB) {
+  if (!have_reference_) {
+    X_OB_reference_ = X_OB;
+    X_MB_reference_ = X_MB;
+    have_reference_ = true;
+    return false;
+  }
+  // wait until odometry claims a motion worth checking, then compare it with the matched one
+  const Pose2 odom = X_OB_reference_.inverse() * X_OB;
+  if (odom.position().norm() < config_.min_motion && std::abs(odom.yaw) < config_.min_turn) return false;
+  const Pose2 matched = X_MB_reference_.inverse() * X_MB;
+  moved_error_ = (odom.position() - matched.position()).norm();
+  still_error_ = matched.position().norm();
+  record(moved_error_ > config_.moved_misfit || std::abs(wrap_angle(odom.yaw - matched.yaw)) > 0.5 * config_.min_turn);
+  X_OB_reference_ = X_OB;
+  X_MB_reference_ = X_MB;
+  return true;
+}
+
+void SlipDetector::record(bool misfit) {
+  history_.push_back(misfit);
+  while (static_cast<int>(history_.size()) > std::max(config_.window, 1)) history_.pop_front();
 }
 
 bool SlipDetector::slipping() const {

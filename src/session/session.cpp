@@ -235,10 +235,11 @@ void Session::mission_step() {
     for (std::size_t v = 0; v < s.victims.size(); ++v) {
       if (c.known[r][v] || s.victims[v].first_seen.ns < 0 || s.victims[v].seen_by != name) continue;
       // where the robot believes the victim is: its offset from the robot (the victim sensor),
-      // placed at the robot's own pose estimate (odometry in its start frame)
+      // placed at the robot's own pose estimate: odometry corrected by the explorer's scan
+      // matching (X_MO), in its map frame, which starts on the odom frame at the start pose
       const Vec3 centre = sim_->world().victims[v].centre;
       const Vec2 p_B = rs.base.X_WB.to_pose2().inverse().transform(centre.head<2>());
-      const Vec2 p_W = (c.X_WO[r] * rs.odom).transform(p_B);
+      const Vec2 p_W = (c.X_WO[r] * ex->X_MO() * rs.odom).transform(p_B);
       c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z())});
       c.known[r][v] = true;
     }
@@ -254,7 +255,7 @@ void Session::mission_step() {
       c.next_report[r] = s.time + gap;
     }
     // out of contact for a while with reports to make: back towards the (first) base, in the
-    // robot's own odometry frame, until contact is back and the reports are made
+    // explorer's map frame (placed at the start pose like the odom frame), until contact is back and the reports are made
     if (!c.returning[r] && !c.pending[r].empty() && !contact && (s.time - c.lost_contact[r]).seconds() >= kReturnAfter) {
       const Vec3 base = net.node(mission_->base_nodes().front()).p_W;
       ex->set_goal(c.X_WO[r].inverse().transform(base.head<2>()));

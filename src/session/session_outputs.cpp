@@ -223,7 +223,7 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
   write_file_atomic(dir / "trajectory.csv", trajectory_csv(trajectory_, world));
   write_file_atomic(dir / "world.svg", world_to_svg(spec_));
 
-  // overview: the world, each robot's laser map (its odometry frame placed at its start), its
+  // overview: the world, each robot's laser map (its map frame placed at its start), its
   // path, and the victims found (green ring) or missed (red cross)
   WorldPlotOptions po;
   po.title = scenario_.name + " - " + spec_.name + ", seed " + std::to_string(scenario_.seed) + ", " +
@@ -235,13 +235,13 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
     const autonomy::Explorer* ex = controllers_->explorers[r].get();
     if (!ex) continue;
     const msg::OccupancyGrid map = ex->map(sim_->time());
-    const Pose2 X_WO = controllers_->X_WO[r];
-    const Pose2 X_OM = map.origin.to_pose2();
+    const Pose2 X_WM = controllers_->X_WO[r];  // the map frame starts on the odom frame
+    const Pose2 X_MG = map.origin.to_pose2();  // the grid's corner in the map frame
     for (std::uint32_t y = 0; y < map.height; ++y) {
       for (std::uint32_t x = 0; x < map.width; ++x) {
         const std::int8_t v = map.data[y * map.width + x];
         if (v < 65) continue;
-        const Vec2 p_W = (X_WO * X_OM).transform({(x + 0.5) * map.resolution, (y + 0.5) * map.resolution});
+        const Vec2 p_W = (X_WM * X_MG).transform({(x + 0.5) * map.resolution, (y + 0.5) * map.resolution});
         img.fill_circle(frame.to_px(p_W), std::max(1.0, 0.5 * map.resolution * frame.px_per_m), {90, 110, 200}, 0.6);
       }
     }

@@ -84,7 +84,7 @@ TEST(Explorer, StandsStillUntilItHasScanAndOdometry) {
   e.on_scan(sim.scan(SimTime{}));
   EXPECT_EQ(e.stats().scans, 1);
   EXPECT_GT(e.command(SimTime{}).linear.x(), 0.0);
-  EXPECT_EQ(e.map(SimTime{}).header.frame_id, "odom");
+  EXPECT_EQ(e.map(SimTime{}).header.frame_id, "map");
 }
 
 // a 6 x 6 maze of 1.5 m cells, carved from the given seed; the robot starts in a corner
@@ -203,6 +203,39 @@ TEST(Explorer, GoalModeDrivesAcrossTheMazeAndStops) {
   SCOPED_TRACE(describe("goal", run, sim, explorer));
   EXPECT_EQ(explorer.mode(), ExplorerMode::at_goal);
   EXPECT_LT((sim.pose().position() - goal).norm(), 0.3);
+  EXPECT_EQ(sim.collisions(), 0);
+}
+
+TEST(Explorer, ScanMatchingKeepsThePoseWhileOdometryHeadingDrifts) {
+  // odometry's heading runs off at 0.5 deg/s: after 120 s it is 60 deg off (by construction),
+  // and the odometry position far off with it; matched against its own map the explorer's
+  // pose stays within 0.15 m (3 cells) and 2 deg of the truth all along. The map frame starts
+  // on the odom frame, which starts on the world frame.
+  constexpr double kDrift = 0.5 * M_PI / 180;
+  KinematicSim sim(testing::carve_maze(6, 1.5, 7), {0.75, 0.75, 0.3}, kLaserMount, kRadius);
+  sim.set_heading_drift(kDrift);
+  Explorer explorer(kLaserMount);
+  double worst_position = 0, worst_heading = 0, odom_position = 0;
+  const RunLog run = drive(explorer, sim, 120.0, 1.5, [&](SimTime t) {
+    const auto X_MB = explorer.pose_in_map(t);
+    if (!X_MB || t.ns % SimTime::from_seconds(1).ns != 0) return;
+    // the explorer last heard odometry for t - 50 ms; the sim is at t: compare at the same instant
+    const Pose2 truth = sim.pose(), X_OB = sim.odometry_pose();
+    const Pose2 X_MB_now = explorer.X_MO() * X_OB;
+    worst_position = std::max(worst_position, (X_MB_now.position() - truth.position()).norm());
+    worst_heading = std::max(worst_heading, std::abs(wrap_angle(X_MB_now.yaw - truth.yaw)));
+    odom_position = (X_OB.position() - truth.position()).norm();
+  });
+  SCOPED_TRACE(describe("heading drift", run, sim, explorer) +
+               fmt::format("; worst map pose error {:.3f} m, {:.2f} deg; odometry {:.2f} m off at the end; matched {}, ambiguous {}, "
+                           "unmatched {}",
+                           worst_position, worst_heading * 180 / M_PI, odom_position, explorer.stats().scans_matched,
+                           explorer.stats().scans_ambiguous, explorer.stats().scans_unmatched));
+  EXPECT_NEAR(std::abs(wrap_angle(sim.odometry_pose().yaw - sim.pose().yaw)), 120 * kDrift, 1e-6);
+  EXPECT_LT(worst_position, 0.15);
+  EXPECT_LT(worst_heading, 2 * M_PI / 180);
+  EXPECT_GT(odom_position, 1.0);
+  EXPECT_GE(run.visited.size(), 10u);  // it explored meanwhile
   EXPECT_EQ(sim.collisions(), 0);
 }
 

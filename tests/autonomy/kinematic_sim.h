@@ -2,7 +2,7 @@
 // Test support: a tiny kinematic simulator for the autonomy tests. Walls are line segments
 // with a thickness (0.1 m, as in rescuesim worlds), the robot a disc driven as a unicycle from
 // Twist commands, the laser a planar fan of rays intersected with the walls' outlines,
-// odometry perfect. Mazes are carved by a seeded depth-first
+// odometry perfect unless told to slip or drift. Mazes are carved by a seeded depth-first
 // search on core's Rng, so every run sees the same world.
 
 #include <algorithm>
@@ -142,6 +142,8 @@ class KinematicSim {
     constexpr int kSub = 10;
     const double h = dt / kSub;
     for (int k = 0; k < kSub; ++k) {
+      // a heading drift turns the odom frame about the robot, so later motion is counted askew
+      if (drift_ != 0) X_OW_ = X_OW_ * X_WB_ * Pose2{0, 0, drift_ * h} * X_WB_.inverse();
       const double v = frozen_ ? 0.0 : cmd.linear.x(), w = frozen_ ? 0.0 : cmd.angular.z();
       if (slipping_) {
         // the wheels turn, the robot does not: odometry drifts away from the world
@@ -183,6 +185,10 @@ class KinematicSim {
   // while slipping the wheels spin without moving the robot (wedged on low debris), and
   // odometry counts the spinning
   void set_slipping(bool s) { slipping_ = s; }
+  // odometry's heading runs off at this rate (rad/s, a gyro bias), moving or not
+  void set_heading_drift(double rad_per_s) { drift_ = rad_per_s; }
+  // the odometry pose of base_link (odom frame) now
+  Pose2 odometry_pose() const { return X_OW_ * X_WB_; }
 
  private:
   std::vector<Segment> walls_;  // centre lines
@@ -194,6 +200,7 @@ class KinematicSim {
   Pose2 X_OW_;  // odometry's drift: the world frame in the odom frame
   bool frozen_ = false;
   bool slipping_ = false;
+  double drift_ = 0;  // rad/s
   double fov_deg_ = 360;
   int collisions_ = 0;
   double min_clearance_ = std::numeric_limits<double>::infinity();

@@ -91,6 +91,34 @@ TEST(SlipDetector, AFeaturelessCorridorIsNeverCalledSlipping) {
   EXPECT_LT(d.moved_error(), 0.05);
 }
 
+TEST(SlipDetector, OdometryAgainstScanMatching) {
+  // matched poses that follow odometry up to a fixed correction (a drifted odom frame, X_MO =
+  // (0.5 m, -0.2 m, 0.1 rad)) agree with it: the same motion, only expressed elsewhere
+  const Pose2 X_MO{0.5, -0.2, 0.1};
+  SlipDetector agree;
+  int comparisons = 0;
+  for (int k = 0; k <= 12; ++k) {
+    const Pose2 X_OB{0.1 * k, 0.02 * k, 0.05 * k};
+    comparisons += agree.add_motion(X_OB, X_MO * X_OB) ? 1 : 0;
+    EXPECT_FALSE(agree.last_misfit()) << k;
+  }
+  EXPECT_EQ(comparisons, 4);  // every 0.306 m of odometry travel (every 3 steps of 0.102 m)
+  EXPECT_LT(agree.moved_error(), 1e-9);
+  EXPECT_FALSE(agree.slipping());
+  // odometry runs on 0.11 m a step while the map keeps the robot in place: every comparison
+  // (0.33 m claimed, none matched) is a misfit, and two of them are slipping
+  SlipDetector spin;
+  const Pose2 X_MB{2.0, 1.0, 0.4};
+  for (int k = 0; k <= 3; ++k) spin.add_motion({0.11 * k, 0, 0}, X_MB);
+  EXPECT_TRUE(spin.last_misfit());
+  EXPECT_NEAR(spin.moved_error(), 0.33, 1e-9);
+  EXPECT_FALSE(spin.slipping());
+  for (int k = 4; k <= 6; ++k) spin.add_motion({0.11 * k, 0, 0}, X_MB);
+  EXPECT_TRUE(spin.slipping());
+  spin.reset();
+  EXPECT_FALSE(spin.slipping());
+}
+
 TEST(SlipDetector, ResetAndANewLaserSetupStartAfresh) {
   SlipDetector d;
   const Pose2 X{1.0, 1.0, 0.0};

@@ -56,9 +56,9 @@ const char* kUsage =
     "\n"
     "Subscribes  /scan (sensor_msgs/LaserScan), /odom (nav_msgs/Odometry), /tf_static (the laser's\n"
     "            mounting on the base frame).\n"
-    "Publishes   /cmd_vel (geometry_msgs/Twist) once per scan, /nav/path (nav_msgs/Path, odom frame,\n"
-    "            latched) whenever it plans, /nav/map (nav_msgs/OccupancyGrid) every --map-period s\n"
-    "            of sim time.\n"
+    "Publishes   /cmd_vel (geometry_msgs/Twist) once per scan, /nav/path (nav_msgs/Path, map frame,\n"
+    "            latched) whenever it plans, /nav/map (nav_msgs/OccupancyGrid, map frame) every\n"
+    "            --map-period s of sim time, /tf map -> odom (its scan-matching correction) per scan.\n"
     "It is the same rescuesim::autonomy::Explorer, with the same settings, that drives the robot\n"
     "in-process in 'rescuesim run'; all its time comes from message stamps (sim time).\n"
     "\n"
@@ -142,7 +142,7 @@ const msg::TypeSupport& type(const char* name) {
 struct PlannedPath {
   double t = 0;                  ///< s, sim time of the plan
   std::string mode;              ///< to_frontier or to_goal
-  std::vector<Vec2> points_O;    ///< m, odom frame
+  std::vector<Vec2> points_O;    ///< m, the explorer's map frame (the odom frame at the start, corrected by scan matching)
 };
 
 class NavNode {
@@ -158,6 +158,7 @@ class NavNode {
     cmd_pub_ = advertise(nh, "/cmd_vel", twist_t_, false);
     path_pub_ = advertise(nh, "/nav/path", path_t_, true);
     map_pub_ = advertise(nh, "/nav/map", grid_t_, true);
+    tf_pub_ = advertise(nh, "/tf", tf_t_, false);
     // laser and odometry in, and the laser's mounting from the latched /tf_static
     subs_.push_back(subscribe(nh, "/scan", scan_t_, 5, [this](const msg::Message& m) { on_scan(std::get<msg::LaserScan>(m)); }));
     subs_.push_back(subscribe(nh, "/odom", odom_t_, 50, [this](const msg::Message& m) { on_odom(std::get<msg::Odometry>(m)); }));
@@ -170,7 +171,7 @@ class NavNode {
     nlohmann::ordered_json j;
     j["node"] = "rescuesim_nav";
     j["controller"] = options_.controller;
-    j["frame_id"] = "odom";
+    j["frame_id"] = explorer_ ? explorer_->config().frame_id : std::string("map");
     j["scans"] = scans_;
     j["odometry"] = odoms_;
     j["commands"] = commands_;
@@ -189,7 +190,11 @@ class NavNode {
                     {"stuck_blocked", s.stuck_blocked}, {"stuck_looping", s.stuck_looping},
                     {"no_frontier", s.no_frontier},     {"path_blocked", s.path_blocked},
                     {"path_stuck", s.path_stuck},       {"abandoned", s.abandoned},
-                    {"backups", s.backups},             {"slipping_scans", s.slipping_scans}};
+                    {"backups", s.backups},             {"slipping_scans", s.slipping_scans},
+                    {"scans_matched", s.scans_matched}, {"scans_ambiguous", s.scans_ambiguous},
+                    {"scans_unmatched", s.scans_unmatched}};
+      const Pose2& X_MO = explorer_->X_MO();
+      j["X_MO"] = {X_MO.x, X_MO.y, X_MO.yaw};
     }
     auto paths = nlohmann::json::array();
     for (const PlannedPath& p : paths_) {
@@ -308,6 +313,7 @@ class NavNode {
   void on_odom(const msg::Odometry& odom) {
     ++odoms_;
     last_odom_ = odom.header.stamp;
+    odom_frame_ = odom.header.frame_id;
     if (explorer_) explorer_->on_odometry(odom);
     // a scan that came in before the odometry of its own instant is answered now
     if (held_scan_ && last_odom_ >= held_scan_->header.stamp) {
@@ -358,6 +364,12 @@ class NavNode {
     const msg::Twist cmd = explorer_->command(scan.header.stamp);
     publish(cmd_pub_, cmd);
     ++commands_;
+    // the map frame's correction of odometry, for anyone drawing the map over /odom
+    msg::TransformStamped X_MO;
+    X_MO.header = {scan.header.stamp, explorer_->config().frame_id};
+    X_MO.child_frame_id = odom_frame_;
+    X_MO.transform = Pose3::from_pose2(explorer_->X_MO());
+    publish(tf_pub_, msg::TFMessage{{X_MO}});
     record_path(scan.header.stamp);
     if (options_.map_period > 0 && scan.header.stamp >= next_map_) {
       next_map_ = scan.header.stamp + SimTime::from_seconds(options_.map_period);
@@ -394,7 +406,8 @@ class NavNode {
 
   Options options_;
   const msg::TypeSupport &scan_t_, &odom_t_, &tf_t_, &twist_t_, &path_t_, &grid_t_;
-  ros::Publisher cmd_pub_, path_pub_, map_pub_;
+  ros::Publisher cmd_pub_, path_pub_, map_pub_, tf_pub_;
+  std::string odom_frame_ = "odom";  // header.frame_id of the odometry heard
   std::vector<ros::Subscriber> subs_;
   std::map<std::string, std::pair<std::string, Pose3>> parent_of_;  // static frames: child -> (parent, pose in parent)
   bool waiting_reported_ = false;
