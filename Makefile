@@ -6,7 +6,7 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 RUN_ARGS ?=
 
-.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install
+.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install deb
 
 all: build
 
@@ -33,6 +33,11 @@ cli: deps $(BUILD)/CMakeCache.txt
 PREFIX ?= /usr/local
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# a Debian package of the same files under /usr, in $(BUILD)/packages (docs/install.md)
+deb: build
+	cpack --config $(BUILD)/CPackConfig.cmake -G DEB -B $(BUILD)/packages
+	@ls $(BUILD)/packages/*.deb
 
 # the default rescue scenario, headless; outputs go to runs/default/
 run: cli

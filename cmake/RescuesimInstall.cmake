@@ -29,17 +29,43 @@ install(FILES ${RESCUESIM_SOURCE_DIR}/README.md ${RESCUESIM_SOURCE_DIR}/LICENSE 
 install(DIRECTORY ${RESCUESIM_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 
 # the Python package: Debian's python3 reads /usr/lib/python3/dist-packages and
-# /usr/local/lib/python3.X/dist-packages; elsewhere set PYTHONPATH to <prefix>/<this>
+# /usr/local/lib/python3.X/dist-packages. The folder is chosen when installing, from the prefix
+# of that install (make install PREFIX=..., or /usr for the Debian package), so one build serves
+# both: lib/python3/dist-packages under a .../usr prefix, lib/python3.X/dist-packages elsewhere
+# (then PYTHONPATH=<prefix>/lib/python3.X/dist-packages); RESCUESIM_PYTHON_INSTALL_DIR fixes it.
 if(RESCUESIM_PYTHON_BUILT)
-  if(CMAKE_INSTALL_PREFIX STREQUAL "/usr")
-    set(default_python_dir lib/python3/dist-packages)
-  else()
-    execute_process(COMMAND ${RESCUESIM_PYTHON_EXECUTABLE} -c "import sys; print(f'{sys.version_info[0]}.{sys.version_info[1]}')"
-                    OUTPUT_VARIABLE python_xy OUTPUT_STRIP_TRAILING_WHITESPACE)
-    set(default_python_dir lib/python${python_xy}/dist-packages)
-  endif()
-  set(RESCUESIM_PYTHON_INSTALL_DIR ${default_python_dir} CACHE STRING "where the Python package goes, relative to the prefix")
-  install(TARGETS _rescuesim LIBRARY DESTINATION ${RESCUESIM_PYTHON_INSTALL_DIR}/rescuesim COMPONENT runtime)
+  execute_process(COMMAND ${RESCUESIM_PYTHON_EXECUTABLE} -c "import sys; print(f'{sys.version_info[0]}.{sys.version_info[1]}')"
+                  OUTPUT_VARIABLE python_xy OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(RESCUESIM_PYTHON_INSTALL_DIR "" CACHE STRING "where the Python package goes, relative to the prefix (empty: chosen by prefix)")
   file(GLOB py_sources ${RESCUESIM_SOURCE_DIR}/python/rescuesim/*.py)
-  install(FILES ${py_sources} DESTINATION ${RESCUESIM_PYTHON_INSTALL_DIR}/rescuesim COMPONENT runtime)
+  install(CODE "
+    if(NOT \"${RESCUESIM_PYTHON_INSTALL_DIR}\" STREQUAL \"\")
+      set(rescuesim_py_dir \"${RESCUESIM_PYTHON_INSTALL_DIR}\")
+    elseif(CMAKE_INSTALL_PREFIX MATCHES \"/usr/?$\")
+      set(rescuesim_py_dir lib/python3/dist-packages)
+    else()
+      set(rescuesim_py_dir lib/python${python_xy}/dist-packages)
+    endif()
+    file(INSTALL ${py_sources} \"$<TARGET_FILE:_rescuesim>\" DESTINATION \"\${CMAKE_INSTALL_PREFIX}/\${rescuesim_py_dir}/rescuesim\")
+  " COMPONENT runtime)
 endif()
+
+# make deb: a Debian package of the same install with the prefix /usr; its Depends line is
+# computed by dpkg-shlibdeps from the libraries the programs link, not listed by hand
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME rescuesim)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
+set(CPACK_PACKAGE_CONTACT "rescuesim developers <rescuesim@users.noreply.github.com>")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy")
+set(CPACK_PACKAGE_DESCRIPTION "Bullet physics, worlds drawn as SVG or generated as random mazes, URDF robots and
+Gazebo SDF worlds, laser, sonar, cameras (headless EGL), ROS 1 and ROS 2 without a
+bridge process, Foxglove and MCAP, rescue missions with a radio model and a referee,
+batches and a Python API.")
+set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "https://github.com/rescuesim/rescuesim")
+set(CPACK_RESOURCE_FILE_LICENSE ${RESCUESIM_SOURCE_DIR}/LICENSE)
+include(CPack)

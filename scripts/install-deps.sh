@@ -33,6 +33,8 @@ packages=(
   cyclonedds-dev cyclonedds-tools libfastrtps-dev fastddsgen
   # Python API and scale-out
   python3 python3-dev pybind11-dev python3-numpy python3-distributed
+  # packaging: make deb (CPack runs dpkg-shlibdeps, which needs file)
+  dpkg-dev file
 )
 
 # npm: the machine's Node.js may come from NodeSource (which bundles npm and

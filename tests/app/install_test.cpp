@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <sstream>
 
 #include "support/command.h"
 
@@ -94,6 +95,58 @@ TEST_F(Installed, AWrongDataFolderIsAClearError) {
   EXPECT_NE(missing.err.find("worlds/team.yaml: no such file; looked in"), std::string::npos) << missing.err;
   EXPECT_NE(missing.err.find((root_ / "prefix/share/rescuesim").string()), std::string::npos) << missing.err;
   EXPECT_NE(missing.err.find("RESCUESIM_DATA_DIR"), std::string::npos) << missing.err;
+}
+
+TEST(DebPackage, HoldsTheProgramItsDataAndComputedDepends) {
+  // what `make deb` does, into a folder of the test's own
+  const fs::path dir = fs::temp_directory_path() / ("rescuesim-deb-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto pack = testing::run_command("cpack --config '" + std::string(RESCUESIM_BINARY_DIR) + "/CPackConfig.cmake' -G DEB -B '" + dir.string() + "'");
+  ASSERT_EQ(pack.exit_code, 0) << pack.out << pack.err;
+  fs::path deb;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() == ".deb") deb = e.path();
+  }
+  ASSERT_FALSE(deb.empty()) << pack.out;
+  EXPECT_EQ(deb.filename().string().rfind("rescuesim_", 0), 0u) << deb;
+
+  const auto info = testing::run_command("dpkg-deb --info '" + deb.string() + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("Package: rescuesim"), std::string::npos) << info.out;
+  // Depends comes from dpkg-shlibdeps: the runtime packages of the libraries linked
+  const auto depends = testing::run_command("dpkg-deb --field '" + deb.string() + "' Depends");
+  for (const char* lib : {"libbullet", "libembree3", "libyaml-cpp"}) {
+    EXPECT_NE(depends.out.find(lib), std::string::npos) << lib << " is not in: " << depends.out;
+  }
+  // and every package it names exists: installed here, where it was built, or provided by an
+  // installed package (dpkg's shlibs name virtual packages such as libspdlog1.10-fmt9)
+  const std::string provided = testing::run_command("dpkg-query -W -f='${Provides}, '").out;
+  std::string names = depends.out;
+  for (char& c : names) {
+    if (c == ',') c = ' ';
+  }
+  std::istringstream words(names);
+  int checked = 0;
+  for (std::string w; words >> w;) {
+    if (w.front() == '(' || w.back() == ')' || w == "|") continue;  // version constraints
+    const auto q = testing::run_command("dpkg-query -W -f='${Status}' '" + w + "'");
+    const bool installed = q.out.find("install ok installed") != std::string::npos;
+    const bool virtual_provided = (", " + provided).find(", " + w + " ") != std::string::npos || (", " + provided).find(", " + w + ",") != std::string::npos;
+    EXPECT_TRUE(installed || virtual_provided) << "Depends names " << w << ", which nothing installed here is or provides";
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
+
+  const auto contents = testing::run_command("dpkg-deb --contents '" + deb.string() + "'");
+  for (const char* f : {"./usr/bin/rescuesim", "./usr/share/rescuesim/worlds/team.yaml", "./usr/share/doc/rescuesim/LICENSE",
+                        "./usr/share/rescuesim/worlds/robots/turtlebot3_description/LICENSE"}) {
+    EXPECT_NE(contents.out.find(f), std::string::npos) << f;
+  }
+  // Debian's python3 reads /usr/lib/python3/dist-packages
+  if (fs::exists(fs::path(RESCUESIM_BINARY_DIR) / "python/rescuesim")) {
+    EXPECT_NE(contents.out.find("./usr/lib/python3/dist-packages/rescuesim/__init__.py"), std::string::npos);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
