@@ -6,7 +6,7 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 RUN_ARGS ?=
 
-.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install deb
+.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install deb wheel
 
 all: build
 
@@ -38,6 +38,10 @@ install: build
 deb: build
 	cpack --config $(BUILD)/CPackConfig.cmake -G DEB -B $(BUILD)/packages
 	@ls $(BUILD)/packages/*.deb
+
+# a Python wheel of the extension and package, in $(BUILD)/packages (docs/install.md)
+wheel: build
+	scripts/make-wheel.sh $(BUILD) $(BUILD)/packages
 
 # the default rescue scenario, headless; outputs go to runs/default/
 run: cli

@@ -33,8 +33,9 @@ packages=(
   cyclonedds-dev cyclonedds-tools libfastrtps-dev fastddsgen
   # Python API and scale-out
   python3 python3-dev pybind11-dev python3-numpy python3-distributed
-  # packaging: make deb (CPack runs dpkg-shlibdeps, which needs file)
-  dpkg-dev file
+  # packaging: make deb (CPack runs dpkg-shlibdeps, which needs file); make wheel (python3-build,
+  # setuptools and wheel, offline) and its test (a venv)
+  dpkg-dev file python3-build python3-setuptools python3-wheel python3-venv
 )
 
 # npm: the machine's Node.js may come from NodeSource (which bundles npm and

@@ -149,5 +149,41 @@ TEST(DebPackage, HoldsTheProgramItsDataAndComputedDepends) {
   fs::remove_all(dir);
 }
 
+TEST(Wheel, PipInstallsItIntoAVenvAndTheExamplesRun) {
+  if (!fs::exists(fs::path(RESCUESIM_BINARY_DIR) / "python/rescuesim")) GTEST_SKIP() << "the Python API is not built here (RESCUESIM_PYTHON)";
+  const fs::path dir = fs::temp_directory_path() / ("rescuesim-wheel-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "home");
+  // what `make wheel` does, into a folder of the test's own
+  const auto made = testing::run_command("'" + std::string(RESCUESIM_SOURCE_DIR) + "/scripts/make-wheel.sh' '" + RESCUESIM_BINARY_DIR + "' '" +
+                                         (dir / "dist").string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.out << made.err;
+  fs::path wheel;
+  for (const auto& e : fs::directory_iterator(dir / "dist")) {
+    if (e.path().extension() == ".whl") wheel = e.path();
+  }
+  ASSERT_FALSE(wheel.empty()) << made.out;
+  // tagged for this interpreter and platform, not "none-any": it holds a compiled module
+  EXPECT_NE(wheel.filename().string().find("-linux_"), std::string::npos) << wheel;
+
+  // a venv that sees Debian's numpy; pip offline
+  const auto venv = testing::run_command("/usr/bin/python3 -m venv --system-site-packages '" + (dir / "venv").string() + "'");
+  ASSERT_EQ(venv.exit_code, 0) << venv.err;
+  const auto pip = testing::run_command("'" + (dir / "venv/bin/pip").string() + "' install --no-index '" + wheel.string() + "'");
+  ASSERT_EQ(pip.exit_code, 0) << pip.out << pip.err;
+
+  // the examples, from a folder outside both trees, with an environment that names neither
+  const std::string env = "env -i HOME='" + (dir / "home").string() + "' PATH=/usr/bin:/bin '" + (dir / "venv/bin/python").string() + "' ";
+  const std::string examples = std::string(RESCUESIM_SOURCE_DIR) + "/examples/python/";
+  const auto agent = testing::run_command(env + "'" + examples + "random_agent.py' --episodes 1 --max-time 3", dir / "home");
+  EXPECT_EQ(agent.exit_code, 0) << agent.out << agent.err;
+  EXPECT_NE(agent.out.find("episode 0 (seed 1)"), std::string::npos) << agent.out;
+  const auto team = testing::run_command(env + "'" + examples + "mission_team.py' --max-time 5", dir / "home");
+  EXPECT_EQ(team.exit_code, 0) << team.out << team.err;
+  const auto where = testing::run_command(env + "-c 'import rescuesim; print(rescuesim.__file__)'", dir / "home");
+  EXPECT_NE(where.out.find((dir / "venv").string()), std::string::npos) << where.out;  // the wheel's, not the build tree's
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rescuesim
