@@ -61,7 +61,10 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy")
+# beside what dpkg-shlibdeps finds: what is loaded at run time rather than linked. libepoxy
+# dlopens libEGL (libglvnd), which loads Mesa's EGL vendor and its software rasteriser for the
+# headless cameras; the Python package needs python3 and numpy
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy, libegl1, libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_PACKAGE_DESCRIPTION "Bullet physics, worlds drawn as SVG or generated as random mazes, URDF robots and
 Gazebo SDF worlds, laser, sonar, cameras (headless EGL), ROS 1 and ROS 2 without a
 bridge process, Foxglove and MCAP, rescue missions with a radio model and a referee,
