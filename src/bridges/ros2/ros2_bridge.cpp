@@ -2,8 +2,9 @@
 // carrying msgs/serialize.h's XCDR1 bytes (latched ones, /tf_static and robot_description,
 // transient local); /cmd_vel, /head/command and (for robots with commandable joints)
 // /joint_command of each robot, and the host's own inputs (a mission's reports, datagrams, relay
-// drops), become readers whose samples are decoded, checked and queued into the simulation; the participant announces a node (rescuesim, namespace /) on
-// ros_discovery_info so `ros2 node list` sees it.
+// drops), become readers whose samples are decoded, checked and queued into the simulation; the
+// participant announces a node (rescuesim, namespace /) on ros_discovery_info so `ros2 node list`
+// sees it.
 //
 // Threads: the Bus callback (simulation thread) only queues the shared message (no copy) in the
 // Outbox (bridges/common/outbox.h: one bounded queue per topic, so a burst of /clock at 200 Hz
