@@ -172,7 +172,7 @@ std::vector<Vec2> AStarPlanner::plan(const OccupancyMapper& grid, const Vec2& st
 }
 
 std::vector<Vec2> AStarPlanner::plan_to_nearest_frontier(const OccupancyMapper& grid, const Vec2& start_O,
-                                                         const std::vector<Vec2>& excluded_O) {
+                                                         const std::vector<Vec2>& excluded_O, const std::vector<Vec2>& claimed_O) {
   expansions_ = 0;
   const auto start = grid.world_to_cell(start_O);
   if (!start) return {};
@@ -207,6 +207,9 @@ std::vector<Vec2> AStarPlanner::plan_to_nearest_frontier(const OccupancyMapper& 
     if ((p - grid.cell_to_world(*start)).norm() < config_.min_frontier_distance) return false;
     for (const Vec2& q : excluded_O) {
       if ((p - q).norm() < config_.excluded_radius) return false;
+    }
+    for (const Vec2& q : claimed_O) {
+      if ((p - q).norm() < config_.claimed_radius) return false;
     }
     return is_frontier(grid, c) && cluster_of(c) >= config_.min_frontier_cells;
   };

@@ -19,6 +19,7 @@ struct PlannerConfig {
   int min_frontier_cells = 12;       ///< a frontier cluster (8-connected) needs this many cells
   double min_frontier_distance = 0.5;  ///< m; frontier cells nearer the start are skipped
   double excluded_radius = 1.0;      ///< m; frontier cells this near an excluded point are skipped
+  double claimed_radius = 3.0;       ///< m; frontier cells this near a point teammates claimed are skipped
   /// m; when the start lies in lethal space (robot pressed against a wall), lethal but
   /// unoccupied cells this near the start may be crossed to get out.
   double escape_radius = 0.5;
@@ -37,10 +38,11 @@ class AStarPlanner {
 
   /// The path (as `plan`) to the nearest frontier cell, by path cost through known free
   /// space, whose 8-connected frontier cluster has at least `min_frontier_cells` cells;
-  /// frontier cells within `excluded_radius` of any point of `excluded_O` (m, odom frame)
-  /// are ignored. Empty when no such frontier is reachable.
+  /// frontier cells within `excluded_radius` of any point of `excluded_O` (m, odom frame),
+  /// or within `claimed_radius` of any point of `claimed_O` (where teammates are and are
+  /// going), are ignored. Empty when no such frontier is reachable.
   std::vector<Vec2> plan_to_nearest_frontier(const OccupancyMapper& grid, const Vec2& start_O,
-                                             const std::vector<Vec2>& excluded_O = {});
+                                             const std::vector<Vec2>& excluded_O = {}, const std::vector<Vec2>& claimed_O = {});
 
   /// Cells expanded by the last search (a cost measure for tests and benches).
   int last_expansions() const { return expansions_; }

@@ -202,6 +202,11 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
+  // frontiers teammates have not claimed first; any frontier when they claimed them all
+  if (!claims_M_.empty()) {
+    std::vector<Vec2> path = planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims_M_);
+    if (!path.empty()) return path;
+  }
   return planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_);
 }
 

@@ -130,6 +130,15 @@ class Explorer {
   /// Drops the goal and goes back to exploring.
   void clear_goal();
 
+  /// Points (m, map frame) where teammates are or are going: frontier trips skip frontiers
+  /// within the planner's claimed_radius of them, unless no other frontier is left. Replaces
+  /// the previous set; empty for a robot alone.
+  void set_claims(std::vector<Vec2> claims_M) { claims_M_ = std::move(claims_M); }
+  /// The end of the frontier trip under way (map frame), if one is.
+  std::optional<Vec2> frontier_target() const {
+    return mode_ == ExplorerMode::to_frontier ? std::optional<Vec2>(target_M_) : std::nullopt;
+  }
+
   /// The path being followed (map frame), empty when wall following.
   const msg::Path& current_path() const { return path_msg_; }
   /// The map so far (map frame, named frame_id; `stamp`); an empty grid before the first scan.
@@ -217,6 +226,7 @@ class Explorer {
   ExplorerMode resume_ = ExplorerMode::wall_following;  // what reversing was for
   int tries_ = 0;
   std::vector<Vec2> excluded_M_;                  // frontiers given up
+  std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;
   bool complete_ = false;

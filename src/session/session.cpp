@@ -5,6 +5,8 @@
 #include <limits>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "core/log.h"
 #include "core/memory.h"
 #include "sensors/camera/render_camera_service.h"
@@ -124,6 +126,8 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   controllers_->next_report.assign(robots, SimTime{});
   controllers_->lost_contact.assign(robots, SimTime{-1});
   controllers_->returning.assign(robots, 0);
+  controllers_->heard.assign(robots, std::vector<std::optional<TeamClaim>>(robots));
+  controllers_->next_share.assign(robots, SimTime{});
 
   // the coverage grid: cells of free floor
   grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
@@ -215,6 +219,37 @@ namespace {
 constexpr double kReturnAfter = 10.0;     // s out of contact with reports to make before heading back
 constexpr double kRelayMargin = 3.0;      // dB: drop a relay when the route's weakest link is this close to the threshold
 constexpr double kRelaySpacing = 3.0;     // m: ... and no base or relay is nearer than this
+constexpr double kShareEvery = 2.0;       // s between a built-in robot's team datagrams
+constexpr double kClaimAge = 10.0;        // s a teammate's word counts for
+
+/// A team datagram: {"team": {"at": [x, y], "going": [x, y] | null}}, world frame.
+std::vector<std::uint8_t> team_datagram(const Vec2& at_W, const std::optional<Vec2>& going_W) {
+  nlohmann::json j;
+  j["team"]["at"] = {at_W.x(), at_W.y()};
+  j["team"]["going"] = going_W ? nlohmann::json{going_W->x(), going_W->y()} : nlohmann::json(nullptr);
+  const std::string text = j.dump();
+  return {text.begin(), text.end()};
+}
+
+/// The claim in a team datagram, or nothing for any other bytes.
+std::optional<TeamClaim> read_team_datagram(const std::vector<std::uint8_t>& bytes, SimTime sent) {
+  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("team")) return std::nullopt;
+  const nlohmann::json& t = j["team"];
+  const auto point = [](const nlohmann::json& p) -> std::optional<Vec2> {
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) return std::nullopt;
+    const Vec2 v(p[0].get<double>(), p[1].get<double>());
+    return v.allFinite() ? std::optional<Vec2>(v) : std::nullopt;
+  };
+  if (!t.is_object() || !t.contains("at")) return std::nullopt;
+  const auto at = point(t["at"]);
+  if (!at) return std::nullopt;
+  TeamClaim c;
+  c.at = *at;
+  if (t.contains("going")) c.going = point(t["going"]);
+  c.stamp = sent;
+  return c;
+}
 }  // namespace
 
 void Session::mission_step() {
@@ -283,6 +318,47 @@ void Session::mission_step() {
       }
       if (margin < kRelayMargin && !near) mission_->drop_relay(ri);
     }
+  }
+
+  // the built-in team's radio talk (Controllers::heard)
+  const std::size_t n = c.explorers.size();
+  // what each built-in robot heard since the last step
+  for (std::size_t r = 0; r < n; ++r) {
+    if (!c.explorers[r]) continue;
+    for (const Datagram& d : mission_->take_inbox(static_cast<int>(r))) {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (k == r || mission_->robot_node(static_cast<int>(k)) != d.from) continue;
+        if (auto claim = read_team_datagram(d.bytes, d.sent)) c.heard[r][k] = claim;
+      }
+    }
+  }
+  for (std::size_t r = 0; r < n; ++r) {
+    autonomy::Explorer* ex = c.explorers[r].get();
+    if (!ex) continue;
+    const int ri = static_cast<int>(r);
+    // tell the teammates where it is and where it goes (its map frame placed at its start)
+    if (s.time >= c.next_share[r]) {
+      c.next_share[r] = s.time + SimTime::from_seconds(kShareEvery);
+      const std::optional<Pose2> X_MB = ex->pose_in_map(s.time);
+      if (X_MB) {
+        const Vec2 at_W = c.X_WO[r].transform(X_MB->position());
+        const std::optional<Vec2> going = ex->frontier_target();
+        const std::optional<Vec2> going_W = going ? std::optional<Vec2>(c.X_WO[r].transform(*going)) : std::nullopt;
+        for (std::size_t k = 0; k < n; ++k) {
+          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, team_datagram(at_W, going_W));
+        }
+      }
+    }
+    // what it heard lately becomes its claims, in its own map frame
+    std::vector<Vec2> claims_M;
+    const Pose2 X_MW = c.X_WO[r].inverse();
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& h = c.heard[r][k];
+      if (!h || (s.time - h->stamp).seconds() > kClaimAge) continue;
+      claims_M.push_back(X_MW.transform(h->at));
+      if (h->going) claims_M.push_back(X_MW.transform(*h->going));
+    }
+    ex->set_claims(std::move(claims_M));
   }
 }
 

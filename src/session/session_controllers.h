@@ -16,6 +16,13 @@ struct PendingReport {
   Vec3 p_W = Vec3::Zero();  ///< where the robot believes the victim is
 };
 
+/// What a teammate last said over the radio (Session::mission_step's team rule), world frame.
+struct TeamClaim {
+  Vec2 at = Vec2::Zero();        ///< where it was
+  std::optional<Vec2> going;     ///< the frontier it was driving to, if any
+  SimTime stamp;                 ///< when it was sent
+};
+
 /// The built-in controllers, one per robot that asked for one, fed from the Bus.
 struct Session::Controllers {
   std::vector<std::unique_ptr<autonomy::Explorer>> explorers;  // per robot, null when none
@@ -36,6 +43,12 @@ struct Session::Controllers {
   std::vector<SimTime> lost_contact;                // per robot: when it last lost contact (-1: in contact)
   std::vector<std::uint8_t> returning;              // per robot: driving back towards the base to report
   std::uint64_t relay_check = 0;                    // link update the relay rule last looked at (it changes only with the links)
+  /// The team rule: every kShareEvery each built-in robot tells each built-in teammate, by
+  /// datagram through the mission's radio, where it is and which frontier it is driving to;
+  /// what a robot has heard (and only that: a teammate out of radio contact goes unheard) and
+  /// is younger than kClaimAge becomes its explorer's claims, so frontier trips spread out.
+  std::vector<std::vector<std::optional<TeamClaim>>> heard;  // per robot, per teammate
+  std::vector<SimTime> next_share;                           // per robot
 };
 
 }  // namespace rescuesim

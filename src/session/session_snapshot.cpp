@@ -24,6 +24,8 @@ struct SessionExtras {
   std::vector<SimTime> next_report;
   std::vector<SimTime> lost_contact;
   std::vector<std::uint8_t> returning;
+  std::vector<std::vector<std::optional<TeamClaim>>> heard;
+  std::vector<SimTime> next_share;
 };
 
 SessionSnapshot Session::snapshot() {
@@ -45,6 +47,8 @@ SessionSnapshot Session::snapshot() {
   extras->next_report = controllers_->next_report;
   extras->lost_contact = controllers_->lost_contact;
   extras->returning = controllers_->returning;
+  extras->heard = controllers_->heard;
+  extras->next_share = controllers_->next_share;
   return SessionSnapshot{sim_->snapshot(), std::move(extras)};
 }
 
@@ -76,6 +80,8 @@ void Session::restore(const SessionSnapshot& snapshot) {
   controllers_->next_report = x.next_report;
   controllers_->lost_contact = x.lost_contact;
   controllers_->returning = x.returning;
+  controllers_->heard = x.heard;
+  controllers_->next_share = x.next_share;
 }
 
 }  // namespace rescuesim

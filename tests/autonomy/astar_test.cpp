@@ -142,6 +142,25 @@ TEST(AStar, FrontierIsFoundInTheOpenDirection) {
   EXPECT_TRUE(planner.plan_to_nearest_frontier(map, {1.6, 2.0}, {path.back()}).empty());
 }
 
+TEST(AStar, FrontiersTeammatesClaimedAreLeftToThem) {
+  // a known corridor from x = 0.5 to 5 m, open at both ends onto unknown ground; from x = 4 the
+  // east end (1 m) is nearer than the west (3.5 m)
+  OccupancyMapper map = grid(CellState::unknown);
+  paint(map, 0.5, 2.0, 5.0, 4.0, CellState::free);
+  paint(map, 0.5, 1.9, 5.0, 2.0, CellState::occupied);
+  paint(map, 0.5, 4.0, 5.0, 4.1, CellState::occupied);
+  AStarPlanner planner;
+  ASSERT_EQ(planner.config().claimed_radius, 3.0);
+  const std::vector<Vec2> east = planner.plan_to_nearest_frontier(map, {4.0, 3.0});
+  ASSERT_FALSE(east.empty());
+  EXPECT_GT(east.back().x(), 4.9);
+  // a teammate is going to the east end: every frontier cell within 3 m of (5, 3) is its, so
+  // the west end (4.5 m from the claim) is next
+  const std::vector<Vec2> west = planner.plan_to_nearest_frontier(map, {4.0, 3.0}, {}, {{5.0, 3.0}});
+  ASSERT_FALSE(west.empty());
+  EXPECT_LT(west.back().x(), 0.6);
+}
+
 TEST(AStar, SmallFrontierClustersAreSkippedForBigOnes) {
   // a long known corridor open at its east end, with a one-cell hole in the map near the
   // start (8 frontier cells round it, fewer than the 12 a frontier needs)

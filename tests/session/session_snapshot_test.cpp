@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <map>
 #include <string>
 #include <utility>
@@ -123,6 +125,37 @@ TEST(SessionMission, RestoreReplaysReportsScoreAndRadioBitwise) {
   int status = 0;
   for (const auto& [topic, d] : first) status += topic.find("comms/status") != std::string::npos;
   EXPECT_EQ(status, 2 * 35);
+}
+
+TEST(SessionMission, TeammatesTellEachOtherWhereTheyAreOverTheRadio) {
+  // the team rule: every 2 s each built-in robot sends each teammate where it is and which
+  // frontier it drives to; with an ideal radio, in 10 s b hears a at 0, 2, 4, 6 and 8 s (the
+  // one sent at 10 s goes at the next link update, after the run)
+  const ModelMap models = builtin_models();
+  SessionOptions so;
+  so.cameras = false;
+  Scenario s = mission_scenario();
+  s.duration = 10;
+  s.mission->radio.model = radio_model("ideal");
+  Session session(s, models, so);
+  const Vec2 start_a = session.sim().world().robots[0].X_W_start.p.head<2>();
+  std::vector<nlohmann::json> heard;
+  session.sim().bus().subscribe("/b/rescue/comms/inbox", [&](const Topic&, const msg::Message& m) {
+    heard.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
+  session.run();
+  ASSERT_EQ(heard.size(), 5u);
+  for (std::size_t i = 0; i < heard.size(); ++i) {
+    EXPECT_EQ(heard[i]["from"], "a");
+    EXPECT_NEAR(heard[i]["sent"].get<double>(), 2.0 * static_cast<double>(i), 0.11) << heard[i];
+    const auto team = nlohmann::json::parse(heard[i]["text"].get<std::string>())["team"];
+    ASSERT_TRUE(team["at"].is_array()) << heard[i];
+    if (i == 0) {  // at the start: where a starts, in the world frame
+      EXPECT_NEAR(team["at"][0].get<double>(), start_a.x(), 0.02);
+      EXPECT_NEAR(team["at"][1].get<double>(), start_a.y(), 0.02);
+    }
+  }
+  EXPECT_EQ(session.result().mission->datagrams_dropped, 0u);
 }
 
 TEST(SessionMission, TheFinderReportsWhatItSawWhereItBelievesItIs) {
