@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <system_error>
 
@@ -28,14 +29,31 @@ bool is_data_dir(const fs::path& p) {
   return !p.empty() && fs::is_directory(p / "worlds", ec);
 }
 
-/// The running executable's own path (/proc/self/exe), or "" when it cannot be read.
+std::string g_argv0;  // set_program_path
+
+/// The running executable's own path (/proc/self/exe; else argv[0] as the shell resolved it),
+/// or "" when neither tells.
 fs::path executable() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe;
+  if (!ec) return exe;
+  if (g_argv0.empty()) return {};
+  if (g_argv0.find('/') != std::string::npos) return fs::weakly_canonical(fs::absolute(g_argv0, ec), ec);
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / g_argv0;
+    if (end > start && ::access(candidate.c_str(), X_OK) == 0) return fs::weakly_canonical(candidate, ec);
+    start = end + 1;
+  }
+  return {};
 }
 
 }  // namespace
+
+void set_program_path(const char* argv0) { g_argv0 = argv0 ? argv0 : ""; }
 
 std::optional<fs::path> data_dir(std::vector<std::string>* looked) {
   if (const char* env = std::getenv("RESCUESIM_DATA_DIR"); env && *env) {

@@ -14,6 +14,11 @@
 
 namespace rescuesim::app {
 
+/// Records argv[0], the program's path when /proc/self/exe cannot be read (a chroot or
+/// container without /proc): a path with a slash is taken as it is, a bare name is looked up
+/// in PATH as the shell did. Call first thing in main().
+void set_program_path(const char* argv0);
+
 /// The data folder, or nullopt when none of the places exists (then `looked` lists them).
 /// Throws rescuesim::Error when RESCUESIM_DATA_DIR is set to something that is not a data folder.
 std::optional<std::filesystem::path> data_dir(std::vector<std::string>* looked = nullptr);

@@ -14,6 +14,7 @@ using namespace rescuesim;
 
 int main(int argc, char** argv) {
   tune_allocator_for_long_runs();
+  app::set_program_path(argc > 0 ? argv[0] : nullptr);
   CLI::App app{
       "rescuesim — a simulator for mobile rescue robots: Bullet physics, worlds drawn as SVG or\n"
       "generated as random mazes, a wheeled robot with a sensor head, ROS and Foxglove output.\n\n"
