@@ -14,7 +14,6 @@
 #include <fstream>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -103,16 +102,15 @@ double resident_mb() {
 /// core) and arenas rarely shrink, so a step in resident memory with a flat heap is a high-water
 /// mark (the soak's recorder thread, restarted every segment, fills one arena after another),
 /// while a heap that climbs is a leak.
-double heap_mb() {
+/// Also what the arenas hold: all their memory from the system (mallinfo2 arena) and the free
+/// part of it (fordblks); freed memory is resident until it is given back. One mallinfo2
+/// call (it walks every arena under its lock).
+struct HeapMb {
+  double in_use = 0, arenas = 0, arenas_free = 0;
+};
+HeapMb heap_mb() {
   const struct mallinfo2 m = ::mallinfo2();
-  return static_cast<double>(m.uordblks + m.hblkhd) / 1e6;
-}
-
-/// What the arenas hold (MB): all their memory from the system (mallinfo2 arena) and the free
-/// part of it (fordblks); freed memory is resident until it is given back.
-std::pair<double, double> arena_mb() {
-  const struct mallinfo2 m = ::mallinfo2();
-  return {static_cast<double>(m.arena) / 1e6, static_cast<double>(m.fordblks) / 1e6};
+  return {static_cast<double>(m.uordblks + m.hblkhd) / 1e6, static_cast<double>(m.arena) / 1e6, static_cast<double>(m.fordblks) / 1e6};
 }
 
 /// Set by SIGINT/SIGTERM: the soak stops at the next step and still writes its files.
@@ -317,8 +315,10 @@ json bench_soak(const SoakOptions& o) {
     x.rtf = x.wall_s > last_wall ? (sim_s - last_sim) / (x.wall_s - last_wall) : 0;
     x.resident_mb = resident_mb();
     x.peak_mb = peak_mb();
-    x.heap_mb = heap_mb();
-    std::tie(x.arena_mb, x.arena_free_mb) = arena_mb();
+    const HeapMb heap = heap_mb();
+    x.heap_mb = heap.in_use;
+    x.arena_mb = heap.arenas;
+    x.arena_free_mb = heap.arenas_free;
     x.messages = messages;
     x.nans = nan.nans;
 #ifdef RESCUESIM_HAS_MCAP

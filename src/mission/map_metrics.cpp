@@ -175,13 +175,12 @@ Grid visible_surface(const Grid& truth, const std::vector<Pose2>& poses, const L
   return seen;
 }
 
-Grid grid_from_occupancy(int width, int height, double resolution, const Pose2& origin, const std::vector<std::int8_t>& data,
+Grid grid_from_occupancy(int width, int height, double resolution, const std::vector<std::int8_t>& data,
                          int free_max, int occupied_min) {
   if (!(resolution > 0) || !std::isfinite(resolution)) throw Error("map: resolution " + std::to_string(resolution) + " m is not a positive number");
   if (width < 0 || height < 0 || static_cast<std::size_t>(width) * static_cast<std::size_t>(height) != data.size()) {
     throw Error("map: " + std::to_string(data.size()) + " cells of data for " + std::to_string(width) + " x " + std::to_string(height));
   }
-  if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(origin.yaw)) throw Error("map: the origin is not finite");
   Grid g;
   g.resolution = resolution;
   g.width = width;

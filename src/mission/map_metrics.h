@@ -92,11 +92,10 @@ MapScore score_map(const Grid& map, const Pose2& X_WM, const Grid& truth, const 
                    int tolerance_cells = 1);
 
 /// A nav_msgs/OccupancyGrid's cells as MapCell values (-1 unknown; 0 to free_max free; from
-/// occupied_min occupied; between: unknown), in the grid's own frame (origin at 0), and the
-/// pose of that frame in the message's frame (`X_WM`, from info.origin, planar). Throws
-/// rescuesim::Error for a grid that is not one: a resolution that is not a positive finite
-/// number, data of another size than width × height, a non-finite origin.
-Grid grid_from_occupancy(int width, int height, double resolution, const Pose2& origin, const std::vector<std::int8_t>& data,
+/// occupied_min occupied; between: unknown), in the grid's own frame (origin at 0; the caller
+/// places it with info.origin). Throws rescuesim::Error for a grid that is not one: a
+/// resolution that is not a positive finite number, data of another size than width × height.
+Grid grid_from_occupancy(int width, int height, double resolution, const std::vector<std::int8_t>& data,
                          int free_max = 25, int occupied_min = 65);
 
 /// How an estimated trajectory is put into the world frame before comparing.

@@ -388,7 +388,8 @@ MapScoreResult Mission::score_map(const msg::OccupancyGrid& map) {
       throw Error("map: frame_id '" + map.header.frame_id + "': maps are scored in the map frame (\"map\", or empty)");
     }
     const Pose2 X_WM = map.origin.to_pose2();
-    const map_eval::Grid grid = map_eval::grid_from_occupancy(static_cast<int>(map.width), static_cast<int>(map.height), map.resolution, X_WM, map.data);
+    if (!std::isfinite(X_WM.x) || !std::isfinite(X_WM.y) || !std::isfinite(X_WM.yaw)) throw Error("map: the origin is not finite");
+    const map_eval::Grid grid = map_eval::grid_from_occupancy(static_cast<int>(map.width), static_cast<int>(map.height), map.resolution, map.data);
     const map_eval::MapScore sc = map_eval::score_map(grid, X_WM, map_truth_->truth, visible_, map_truth_->ignore);
     out.precision = sc.precision;
     out.recall = sc.recall;
