@@ -173,6 +173,15 @@ std::vector<Vec2> AStarPlanner::plan(const OccupancyMapper& grid, const Vec2& st
 
 std::vector<Vec2> AStarPlanner::plan_to_nearest_frontier(const OccupancyMapper& grid, const Vec2& start_O,
                                                          const std::vector<Vec2>& excluded_O, const std::vector<Vec2>& claimed_O) {
+  return plan_to_nearest_target(
+      grid, start_O, [&grid](Cell c) { return is_frontier(grid, c); }, [this](Cell) { return config_.min_frontier_cells; },
+      excluded_O, claimed_O);
+}
+
+std::vector<Vec2> AStarPlanner::plan_to_nearest_target(const OccupancyMapper& grid, const Vec2& start_O,
+                                                       const std::function<bool(Cell)>& is_target,
+                                                       const std::function<int(Cell)>& min_cells,
+                                                       const std::vector<Vec2>& excluded_O, const std::vector<Vec2>& claimed_O) {
   expansions_ = 0;
   const auto start = grid.world_to_cell(start_O);
   if (!start) return {};
@@ -194,7 +203,7 @@ std::vector<Vec2> AStarPlanner::plan_to_nearest_frontier(const OccupancyMapper& 
       const Cell c = costs.cell_at(members[k]);
       for (int d = 0; d < 8; ++d) {
         const Cell n{c.x + kDx[d], c.y + kDy[d]};
-        if (!costs.in_window(n) || cluster_size[costs.local(n)] != 0 || !is_frontier(grid, n)) continue;
+        if (!costs.in_window(n) || cluster_size[costs.local(n)] != 0 || !grid.contains(n) || !is_target(n)) continue;
         cluster_size[costs.local(n)] = -1;
         members.push_back(costs.local(n));
       }
@@ -211,7 +220,7 @@ std::vector<Vec2> AStarPlanner::plan_to_nearest_frontier(const OccupancyMapper& 
     for (const Vec2& q : claimed_O) {
       if ((p - q).norm() < config_.claimed_radius) return false;
     }
-    return is_frontier(grid, c) && cluster_of(c) >= config_.min_frontier_cells;
+    return is_target(c) && cluster_of(c) >= min_cells(c);
   };
 
   // Dijkstra through known free space until the first wanted frontier cell is settled

@@ -4,6 +4,7 @@
 /// 8-connected cells with costs from a CostMap and break ties by (f, h, cell index), so the
 /// same map and query always give the same path.
 
+#include <functional>
 #include <vector>
 
 #include "autonomy/cost_map.h"
@@ -43,6 +44,15 @@ class AStarPlanner {
   /// going), are ignored. Empty when no such frontier is reachable.
   std::vector<Vec2> plan_to_nearest_frontier(const OccupancyMapper& grid, const Vec2& start_O,
                                              const std::vector<Vec2>& excluded_O = {}, const std::vector<Vec2>& claimed_O = {});
+
+  /// The same search for any kind of target: the nearest cell for which `is_target` holds,
+  /// whose 8-connected cluster of target cells has at least `min_cells(cell)` cells (asked of
+  /// the first cell of each cluster reached). plan_to_nearest_frontier is this with is_frontier
+  /// and min_frontier_cells; the explorer adds ground its camera has not looked at.
+  std::vector<Vec2> plan_to_nearest_target(const OccupancyMapper& grid, const Vec2& start_O,
+                                           const std::function<bool(Cell)>& is_target,
+                                           const std::function<int(Cell)>& min_cells,
+                                           const std::vector<Vec2>& excluded_O = {}, const std::vector<Vec2>& claimed_O = {});
 
   /// Cells expanded by the last search (a cost measure for tests and benches).
   int last_expansions() const { return expansions_; }

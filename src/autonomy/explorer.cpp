@@ -39,8 +39,27 @@ Explorer::Explorer(const Pose2& X_BS, ExplorerConfig config)
       follower_(config_.path),
       slip_(config_.slip),
       match_slip_(config_.slip),
-      matcher_(config_.matcher) {
+      matcher_(config_.matcher),
+      camera_yaw_(config_.look.fixed_yaw) {
   path_msg_.header.frame_id = config_.frame_id;
+}
+
+void Explorer::on_joint_state(const msg::JointState& joints) {
+  const ExplorerLookConfig& look = config_.look;
+  if (look.yaw_joint.empty()) return;
+  for (std::size_t i = 0; i < joints.name.size() && i < joints.position.size(); ++i) {
+    if (joints.name[i] == look.yaw_joint && std::isfinite(joints.position[i])) {
+      camera_yaw_ = look.fixed_yaw + look.yaw_sign * joints.position[i];
+    }
+  }
+}
+
+std::optional<double> Explorer::look_command(SimTime now) const {
+  const ExplorerLookConfig& look = config_.look;
+  if (!look.enabled || look.yaw_joint.empty() || look.sweep_amplitude == 0 || !(look.sweep_period > 0)) return std::nullopt;
+  // a sine swing: slow at its ends, where the camera lingers on the sides of a corridor
+  const double phase = 2 * M_PI * now.seconds() / look.sweep_period;
+  return look.yaw_sign * look.sweep_amplitude * std::sin(phase);
 }
 
 void Explorer::on_odometry(const msg::Odometry& odom) {
@@ -113,6 +132,12 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   if (compared || pinned || !have_trusted_) trusted_X_MB_ = X_MB;
   have_trusted_ = true;
   const int learned = mapper_.integrate(scan, X_MB * X_BS_);
+  if (config_.look.enabled) {
+    CameraFan fan = config_.look.fan;
+    fan.near = std::max(fan.near, config_.robot_radius);
+    looked_.look(mapper_, X_MB.position(), X_MB.yaw + camera_yaw_, fan);
+    looked_.cover_disc(mapper_, X_MB.position(), config_.robot_radius);
+  }
   ++stats_.scans;
   stats_.cells_learned += learned;
   novelty_.emplace_back(scan.header.stamp, learned);
@@ -202,13 +227,27 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
-  // frontiers teammates have not claimed first; any frontier when they claimed them all
-  if (!claims_M_.empty()) {
-    std::vector<Vec2> path = planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims_M_);
-    if (!path.empty()) return path;
+  // the targets: frontiers, and with the camera's view tracked, free ground it has not seen
+  const auto is_target = [this](Cell c) { return is_frontier(mapper_, c) || unseen(c); };
+  const auto min_cells = [this](Cell c) {
+    return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
+  };
+  const auto plan = [&](const std::vector<Vec2>& claims) {
+    return config_.look.enabled ? planner_.plan_to_nearest_target(mapper_, X_MB.position(), is_target, min_cells, excluded_M_, claims)
+                                : planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims);
+  };
+  // targets teammates have not claimed first; any target when they claimed them all
+  std::vector<Vec2> path;
+  if (!claims_M_.empty()) path = plan(claims_M_);
+  if (path.empty()) path = plan({});
+  if (!path.empty()) {
+    const auto end = mapper_.world_to_cell(path.back());
+    if (end && !is_frontier(mapper_, *end)) ++stats_.look_trips;
   }
-  return planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_);
+  return path;
 }
+
+bool Explorer::unseen(Cell c) const { return config_.look.enabled && mapper_.is_free(c) && !looked_.looked(c); }
 
 bool Explorer::still_frontier(const Vec2& p_M) const {
   const auto c = mapper_.world_to_cell(p_M);
@@ -216,7 +255,7 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
-      if (mapper_.contains(n) && is_frontier(mapper_, n)) return true;
+      if (mapper_.contains(n) && (is_frontier(mapper_, n) || unseen(n))) return true;
     }
   }
   return false;
@@ -225,6 +264,10 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
 void Explorer::start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now) {
   mode_ = mode;
   target_M_ = path.back();
+  // a new path is judged on fresh evidence: a slip verdict only changes while odometry claims
+  // motion, so one kept from before would hold a robot that stopped for it still for good
+  slip_.reset();
+  match_slip_.reset();
   // the path message: each pose faces the next point
   path_msg_.header = {now, config_.frame_id};
   path_msg_.poses.clear();
@@ -259,17 +302,22 @@ msg::Twist Explorer::wall_follow(const Pose2& X_MB, SimTime now) {
   }
 
   // stuck: plan a trip to new terrain (at most once per replan period)
+  // frontier first: look for a trip whenever the planner may run
   const StuckReason reason = config_.frontier_trips ? stuck_reason(now) : StuckReason::none;
-  if (reason == StuckReason::none || !may_plan(now)) return twist;
-  last_stuck_ = reason;
-  if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
-  if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
-  if (reason == StuckReason::looping) ++stats_.stuck_looping;
-  if (reason == StuckReason::no_progress && start_backup(ExplorerMode::wall_following, now)) return back_up(X_MB, now);
+  const bool eager = config_.frontier_trips && config_.frontier_first;
+  if ((reason == StuckReason::none && !eager) || !may_plan(now)) return twist;
+  if (reason != StuckReason::none) {
+    last_stuck_ = reason;
+    if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
+    if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
+    if (reason == StuckReason::looping) ++stats_.stuck_looping;
+    if (reason == StuckReason::no_progress && start_backup(ExplorerMode::wall_following, now)) return back_up(X_MB, now);
+  }
   std::vector<Vec2> path = plan_frontier(X_MB, now);
-  reset_progress(X_MB, now);
+  // an eager look that found nothing leaves the stuck clocks of wall following running
+  if (reason != StuckReason::none || !path.empty()) reset_progress(X_MB, now);
   if (path.empty()) {
-    ++stats_.no_frontier;
+    if (reason != StuckReason::none) ++stats_.no_frontier;
     complete_ = true;
     return twist;
   }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "autonomy/astar.h"
+#include "autonomy/look_coverage.h"
 #include "autonomy/occupancy_grid.h"
 #include "autonomy/path_follower.h"
 #include "autonomy/scan_matcher.h"
@@ -47,6 +48,21 @@ enum class StuckReason {
   looping,      ///< a novelty_window of wall following added under novelty_min_area of new map
 };
 
+/// Where the explorer's victim camera looks (ExplorerConfig::look). With it enabled, the
+/// explorer keeps a LookCoverage of the ground the camera has seen, counts free ground it has
+/// not seen as worth a trip as much as a frontier, and swings the camera from side to side
+/// when a joint turns it (look_command).
+struct ExplorerLookConfig {
+  bool enabled = false;           ///< track the camera's view and explore towards ground it has not seen
+  CameraFan fan;                  ///< the camera's horizontal fan
+  std::string yaw_joint;          ///< the joint (in joint_states) that turns the camera about the vertical; empty: none
+  double yaw_sign = 1.0;          ///< +1 when that joint's axis points up, -1 when down
+  double fixed_yaw = 0.0;         ///< rad; the camera's yaw in base_link when no joint turns it
+  double sweep_amplitude = 1.05;  ///< rad the camera swings either side of ahead (0: it looks ahead)
+  double sweep_period = 4.0;      ///< s for one swing there and back
+  int min_cells = 40;             ///< unseen free cells (8-connected) worth a trip
+};
+
 /// Settings of an Explorer. The constructor copies robot_radius into the planner's and the
 /// wall follower's settings.
 struct ExplorerConfig {
@@ -57,6 +73,10 @@ struct ExplorerConfig {
   WallFollowerConfig wall;           ///< the reactive controller (its X_BS is set by the constructor)
   PathFollowerConfig path;           ///< pure pursuit
   bool frontier_trips = true;        ///< false: pure wall following, never stuck, never plans (goals still work)
+  /// true: drive from one frontier to the next and follow walls only while none is reachable
+  /// (re-planned every replan_period); false: follow walls and plan a frontier trip when stuck
+  bool frontier_first = false;
+  ExplorerLookConfig look;           ///< the victim camera (disabled by default)
   double stuck_window = 8.0;         ///< s; moving less than stuck_distance in this long is stuck
   double stuck_distance = 0.3;       ///< m
   SlipDetectorConfig slip;           ///< odometry checked against the laser and the scan matcher: slipping wheels mean stuck
@@ -105,6 +125,7 @@ struct ExplorerStats {
   int scans_matched = 0;      ///< scans whose match to the map was good (X_MO updated)
   int scans_ambiguous = 0;    ///< scans matched in one direction only (a corridor; X_MO updated across it)
   int scans_unmatched = 0;    ///< scans whose match was rejected (X_MO kept)
+  int look_trips = 0;         ///< trips started to ground the camera has not seen (not a frontier)
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -123,6 +144,16 @@ class Explorer {
   /// The velocity command (base_link: linear.x m/s, angular.z rad/s) at sim time `now`;
   /// zero until both a scan and odometry have arrived.
   msg::Twist command(SimTime now);
+
+  /// Records where the camera's yaw joint stands (ExplorerLookConfig::yaw_joint); other
+  /// joints are ignored.
+  void on_joint_state(const msg::JointState& joints);
+  /// The position (rad) to command the camera's yaw joint to at sim time `now`: a swing of
+  /// sweep_amplitude either side of ahead; nothing when looking is disabled, no joint turns
+  /// the camera or the amplitude is zero.
+  std::optional<double> look_command(SimTime now) const;
+  /// Where the camera has looked (map frame cells; empty while looking is disabled).
+  const LookCoverage& looked() const { return looked_; }
 
   /// Drives to `p_M` (m, map frame) by A* over the map (unknown cells allowed per the
   /// planner settings), replanning as the map grows; stops there (mode at_goal).
@@ -183,6 +214,7 @@ class Explorer {
   bool path_ahead_blocked(const Pose2& X_MB) const;
   std::vector<Vec2> plan_frontier(const Pose2& X_MB, SimTime now);
   bool still_frontier(const Vec2& p_M) const;
+  bool unseen(Cell c) const;
   void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
   void start_wall_following(SimTime now);
   void reset_progress(const Pose2& X_MB, SimTime now);
@@ -205,6 +237,8 @@ class Explorer {
   SlipDetector slip_;                             // odometry against the laser, scan to scan
   SlipDetector match_slip_;                       // odometry against scan matching
   ScanMatcher matcher_;
+  LookCoverage looked_;
+  double camera_yaw_ = 0;                         // the camera's yaw in base_link (rad)
   ScanMatch last_match_;
   Pose2 X_MO_;                                    // the odom frame in the map frame
   std::deque<std::pair<SimTime, int>> novelty_;  // cells learned per scan, by stamp

@@ -21,6 +21,11 @@ autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller);
 /// builtin_explorer_config(controller).
 autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller, const RobotSpec& robot);
 
+/// How the explorer models a robot's victim camera (its last thermal camera, rendered or not: line-of-sight detection looks through it too): its fan,
+/// and the nearest position-controlled joint above it turning about the vertical, which the
+/// explorer swings to look from side to side. Disabled for a robot without a thermal camera.
+autonomy::ExplorerLookConfig victim_camera_look(const RobotSpec& robot);
+
 /// The radius of a robot's footprint: the farthest collision point from the root link's
 /// vertical axis, at the starting joint positions (m).
 double footprint_radius(const RobotSpec& robot);

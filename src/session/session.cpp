@@ -81,11 +81,15 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     controllers_->X_WO.push_back(robot.X_W_start.to_pose2());
     controllers_->explorers.emplace_back();
     controllers_->queued.emplace_back();
+    controllers_->queued_look.emplace_back();
+    controllers_->pans.emplace_back();
     const SensorSpec* laser = nullptr;
     const SensorSpec* odom = nullptr;
+    const SensorSpec* joints = nullptr;
     for (const auto& s : robot.spec.sensors) {
       if (s.enabled && s.type == SensorSpec::Type::lidar && s.lidar.layers == 1 && !laser) laser = &s;
       if (s.enabled && s.type == SensorSpec::Type::odometry && !odom) odom = &s;
+      if (s.enabled && s.type == SensorSpec::Type::joint_states && !joints) joints = &s;
     }
     const int ri = static_cast<int>(r);
     if (laser) {
@@ -111,12 +115,30 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
       ex->on_odometry(std::get<msg::Odometry>(m));
     });
+    // the victim camera's pan: where it stands, and the swing the explorer asks for (a head
+    // joint is commanded with the whole head, the others held at their starting positions)
+    if (!ec.look.yaw_joint.empty()) {
+      Controllers::Pan& pan = controllers_->pans[r];
+      pan.joint.name = {ec.look.yaw_joint};
+      pan.joint.position = {0.0};
+      const auto& hj = robot.spec.head_joints;
+      for (std::size_t k = 0; k < hj.size(); ++k) {
+        pan.head.push_back(robot.spec.joints[static_cast<std::size_t>(robot.spec.joint_index(hj[k]))].initial);
+        if (hj[k] == ec.look.yaw_joint) pan.in_head = static_cast<int>(k);
+      }
+      if (joints) {
+        sim_->bus().subscribe(sim_->topic_name(ri, joints->topic), [ex](const Topic&, const msg::Message& m) {
+          ex->on_joint_state(std::get<msg::JointState>(m));
+        });
+      }
+    }
     sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), [this, ex, ri](const Topic&, const msg::Message& m) {
       const auto& scan = std::get<msg::LaserScan>(m);
       ex->on_scan(scan);
       const msg::Twist cmd = ex->command(scan.header.stamp);
       sim_->command_velocity(ri, cmd);
       controllers_->queued[static_cast<std::size_t>(ri)] = cmd;
+      if (const auto yaw = ex->look_command(scan.header.stamp)) command_look(ri, *yaw);
     });
   }
 
@@ -362,9 +384,22 @@ void Session::mission_step() {
   }
 }
 
+void Session::command_look(int robot, double yaw) {
+  Controllers::Pan& pan = controllers_->pans[static_cast<std::size_t>(robot)];
+  if (pan.in_head >= 0) {
+    pan.head[static_cast<std::size_t>(pan.in_head)] = yaw;
+    sim_->command_head(robot, pan.head);
+  } else {
+    pan.joint.position[0] = yaw;
+    sim_->command_joints(robot, pan.joint);
+  }
+  controllers_->queued_look[static_cast<std::size_t>(robot)] = yaw;
+}
+
 void Session::step_once() {
   // what the controllers queue during this step is for the next one
   for (auto& q : controllers_->queued) q.reset();
+  for (auto& q : controllers_->queued_look) q.reset();
   sim_->step();
   record();
   if (mission_) mission_step();
@@ -399,6 +434,9 @@ RunResult Session::result() const {
   }
   r.victim_detection = std::string(sim_->victim_detector().name());
   r.coverage = coverage();
+  for (std::size_t k = 0; k < controllers_->explorers.size(); ++k) {
+    if (controllers_->explorers[k]) r.explorers.emplace_back(sim_->world().robots[k].name, controllers_->explorers[k]->stats());
+  }
   for (const auto& rs : s.robots) {
     r.collisions += rs.collisions;
     r.distance += rs.distance;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "autonomy/explorer.h"
 #include "mission/mission.h"
 #include "sim/simulation.h"
 #include "world/scenario/scenario.h"
@@ -45,6 +46,8 @@ struct RunResult {
   std::vector<std::pair<std::string, std::uint64_t>> message_counts;  ///< per topic
   std::uint64_t state_hash = 0; ///< of the final State (determinism checks)
   std::optional<MissionResult> mission;  ///< the referee's score and the radio's figures, with a mission
+  /// What each built-in explorer did (robot name, its counters), for the robots that have one.
+  std::vector<std::pair<std::string, autonomy::ExplorerStats>> explorers;
 };
 
 /// One trajectory sample.
@@ -140,6 +143,7 @@ class Session {
   struct Controllers;
   /// One Simulation step with what a run does around it: the trajectory, the mission.
   void step_once();
+  void command_look(int robot, double yaw);  // the explorer's camera swing, through the head or the joint
   void record();
   /// Drops every other sample time from the trajectory and doubles the interval; true when the
   /// sample due now falls on the new grid.

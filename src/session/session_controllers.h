@@ -30,6 +30,15 @@ struct Session::Controllers {
   /// Per robot: the cmd_vel its controller queued during the step that ran last, which the next
   /// step applies; a snapshot carries it, since the Simulation's command queue is not State.
   std::vector<std::optional<msg::Twist>> queued;
+  /// Per robot: how its explorer's camera swing is commanded (ExplorerLookConfig::yaw_joint),
+  /// and the yaw it queued during the last step (carried by snapshots like `queued`).
+  struct Pan {
+    msg::JointState joint;      ///< the yaw joint alone, when it is not a head joint
+    std::vector<double> head;   ///< every head joint's target, when it is one (the others at their start)
+    int in_head = -1;           ///< its index among the head joints, or -1
+  };
+  std::vector<Pan> pans;
+  std::vector<std::optional<double>> queued_look;
 
   /// With a mission: what the built-in controllers report. A robot that has seen a victim
   /// reports it where it believes it is (its odometry pose, placed at its start, plus the

@@ -130,6 +130,28 @@ nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
   j["state_hash"] = hash;
   if (r.mission) j["mission"] = mission_json(*r.mission);
+  if (!r.explorers.empty()) {
+    auto& ex = j["explorers"] = nlohmann::ordered_json::object();
+    for (const auto& [name, st] : r.explorers) {
+      ex[name] = {{"scans", st.scans},
+                  {"plans", st.plans},
+                  {"frontier_trips", st.frontier_trips},
+                  {"frontiers_reached", st.frontiers_reached},
+                  {"look_trips", st.look_trips},
+                  {"stuck_no_progress", st.stuck_no_progress},
+                  {"stuck_blocked", st.stuck_blocked},
+                  {"stuck_looping", st.stuck_looping},
+                  {"no_frontier", st.no_frontier},
+                  {"path_blocked", st.path_blocked},
+                  {"path_stuck", st.path_stuck},
+                  {"abandoned", st.abandoned},
+                  {"backups", st.backups},
+                  {"slipping_scans", st.slipping_scans},
+                  {"scans_matched", st.scans_matched},
+                  {"scans_ambiguous", st.scans_ambiguous},
+                  {"scans_unmatched", st.scans_unmatched}};
+    }
+  }
   return j;
 }
 

@@ -13,6 +13,7 @@ struct SessionExtras {
   RenderCameraService::InFlight cameras;                    // frames sampled, not yet delivered
   std::vector<std::optional<autonomy::Explorer>> explorers;  // per robot: its controller's memory
   std::vector<std::optional<msg::Twist>> queued;             // per robot: its controller's command for the next step
+  std::vector<std::optional<double>> queued_look;            // per robot: its camera swing for the next step
   std::vector<TrajectoryPoint> trajectory;
   SimTime next_record, record_interval;
   std::vector<msg::LaserScan> last_scans;
@@ -35,6 +36,7 @@ SessionSnapshot Session::snapshot() {
     extras->explorers.push_back(ex ? std::optional<autonomy::Explorer>(*ex) : std::nullopt);
   }
   extras->queued = controllers_->queued;
+  extras->queued_look = controllers_->queued_look;
   extras->trajectory = trajectory_;
   extras->next_record = next_record_;
   extras->record_interval = record_interval_;
@@ -63,6 +65,9 @@ void Session::restore(const SessionSnapshot& snapshot) {
   controllers_->queued = x.queued;
   for (std::size_t r = 0; r < controllers_->queued.size(); ++r) {
     if (controllers_->queued[r]) sim_->command_velocity(static_cast<int>(r), *controllers_->queued[r]);
+  }
+  for (std::size_t r = 0; r < x.queued_look.size() && r < controllers_->pans.size(); ++r) {
+    if (x.queued_look[r]) command_look(static_cast<int>(r), *x.queued_look[r]);
   }
   // controllers are fed through the Bus by pointer: their objects stay, their memory goes back
   for (std::size_t r = 0; r < controllers_->explorers.size() && r < x.explorers.size(); ++r) {

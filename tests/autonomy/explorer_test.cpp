@@ -194,6 +194,93 @@ TEST(Explorer, WithoutFrontierTripsItOnlyFollowsWalls) {
   EXPECT_EQ(sim.collisions(), 0);
 }
 
+// the explorer with a forward camera of 60 degrees and 4 m modelled (no joint turns it)
+ExplorerConfig with_camera() {
+  ExplorerConfig config;
+  config.frontier_first = true;
+  config.look.enabled = true;
+  config.look.fan.hfov = M_PI / 3;
+  config.look.fan.range = 4.0;
+  return config;
+}
+
+// the share of the map's free cells the camera has looked at
+double looked_share(const Explorer& e) {
+  const OccupancyMapper& map = e.mapper();
+  long free = 0, looked = 0;
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      if (!map.is_free({x, y})) continue;
+      ++free;
+      looked += e.looked().looked({x, y});
+    }
+  }
+  return free > 0 ? static_cast<double>(looked) / free : 0.0;
+}
+
+TEST(Explorer, GroundItsCameraHasNotSeenSendsItLookingRoundAnOpenRoom) {
+  // a 6 m room the 360-degree laser maps at once: no frontier is ever left, so without the
+  // camera modelled it never plans; with a forward camera it must turn and drive to look at
+  // the ground behind it and round it
+  {
+    KinematicSim sim(testing::box(0, 0, 6, 6), {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+    ExplorerConfig config;
+    config.frontier_first = true;
+    Explorer explorer(kLaserMount, config);
+    drive(explorer, sim, 10.0, 1.5);
+    EXPECT_EQ(explorer.stats().look_trips, 0);
+    EXPECT_EQ(explorer.looked().count(), 0);
+  }
+  KinematicSim sim(testing::box(0, 0, 6, 6), {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+  Explorer explorer(kLaserMount, with_camera());
+  explorer.on_odometry(sim.odometry(SimTime{}));
+  explorer.on_scan(sim.scan(SimTime{}));
+  const OccupancyMapper& map = explorer.mapper();
+  // the map frame is the odom frame, here the simulator's world
+  EXPECT_LT(explorer.X_MO().position().norm(), 1e-9);
+  // after the first scan: 2 m ahead seen, 1 m behind not
+  EXPECT_TRUE(explorer.looked().looked(*map.world_to_cell({3.5, 3.0})));
+  EXPECT_FALSE(explorer.looked().looked(*map.world_to_cell({0.5, 3.0})));
+  const double first = looked_share(explorer);
+  EXPECT_LT(first, 0.5);
+  const RunLog run = drive(explorer, sim, 90.0, 1.5);
+  SCOPED_TRACE(describe("look round", run, sim, explorer));
+  EXPECT_GE(explorer.stats().look_trips, 1);
+  EXPECT_GT(looked_share(explorer), 0.9);
+  EXPECT_TRUE(explorer.looked().looked(*map.world_to_cell({0.5, 3.0})));
+  EXPECT_EQ(sim.collisions(), 0);
+}
+
+TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
+  ExplorerConfig config = with_camera();
+  config.look.yaw_joint = "pan";
+  config.look.sweep_amplitude = 0.8;
+  config.look.sweep_period = 4.0;
+  Explorer explorer(kLaserMount, config);
+  // a sine of 0.8 rad and 4 s: a quarter period in, at the left end; three quarters, the right
+  EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(1.0)), 0.8, 1e-12);
+  EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(3.0)), -0.8, 1e-12);
+  EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(2.0)), 0.0, 1e-12);
+  // no joint, no amplitude or looking disabled: nothing to command
+  EXPECT_FALSE(Explorer(kLaserMount, with_camera()).look_command(SimTime::from_seconds(1.0)));
+  ExplorerConfig still = config;
+  still.look.sweep_amplitude = 0;
+  EXPECT_FALSE(Explorer(kLaserMount, still).look_command(SimTime::from_seconds(1.0)));
+  EXPECT_FALSE(Explorer(kLaserMount).look_command(SimTime::from_seconds(1.0)));
+
+  // the joint turned the camera half round: the first scan looks behind the robot
+  KinematicSim sim(testing::box(0, 0, 6, 6), {3.0, 3.0, 0.0}, kLaserMount, kRadius);
+  msg::JointState js;
+  js.name = {"wheel", "pan"};
+  js.position = {5.0, M_PI};
+  explorer.on_joint_state(js);
+  explorer.on_odometry(sim.odometry(SimTime{}));
+  explorer.on_scan(sim.scan(SimTime{}));
+  const OccupancyMapper& map = explorer.mapper();
+  EXPECT_TRUE(explorer.looked().looked(*map.world_to_cell({1.0, 3.0})));   // 2 m behind
+  EXPECT_FALSE(explorer.looked().looked(*map.world_to_cell({5.0, 3.0})));  // 2 m ahead
+}
+
 TEST(Explorer, GoalModeDrivesAcrossTheMazeAndStops) {
   KinematicSim sim(testing::carve_maze(6, 1.5, 7), {0.75, 0.75, 0.0}, kLaserMount, kRadius);
   Explorer explorer(kLaserMount);

@@ -11,6 +11,7 @@
 
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
+#include "session/explorer_settings.h"
 #include "support/command.h"
 
 namespace rescuesim {
@@ -46,6 +47,63 @@ TEST(Session, TheExplorerFindsVictimsInTheDefaultScenario) {
   // trajectory at 10 Hz: a header and 1801 rows
   const std::string csv = testing::slurp(dir / "trajectory.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1802);
+}
+
+TEST(Session, TheExplorerSwingsTheRescueRobotsCameraFromSideToSide) {
+  // the built-in explorer swings the mast (the thermal camera's yaw joint) by +-60 degrees
+  // every 4 s; the joint moves at most 1.5 rad/s, less than the sine's 1.65 at its middle, so
+  // the swing comes out a little smaller but still well past +-45 degrees either way
+  const ModelMap models = builtin_models();
+  Scenario s = default_scenario(models);
+  s.duration = 8.0;
+  Session session(s, models, no_cameras());
+  double lo = 0, hi = 0;
+  session.sim().bus().subscribe("/joint_states", [&](const Topic&, const msg::Message& m) {
+    const auto& js = std::get<msg::JointState>(m);
+    for (std::size_t i = 0; i < js.name.size(); ++i) {
+      if (js.name[i] != "mast_yaw") continue;
+      lo = std::min(lo, js.position[i]);
+      hi = std::max(hi, js.position[i]);
+    }
+  });
+  const RunResult r = session.run();
+  EXPECT_GT(hi, 45 * M_PI / 180);
+  EXPECT_LT(lo, -45 * M_PI / 180);
+  EXPECT_LT(hi, 61 * M_PI / 180);
+  EXPECT_GT(lo, -61 * M_PI / 180);
+  // what the explorer did is in the summary
+  ASSERT_EQ(r.explorers.size(), 1u);
+  EXPECT_EQ(r.explorers[0].first, "robot");
+  // 10 Hz for 8 s and t = 0, less any that came before the first odometry or contradicted it
+  EXPECT_LE(r.explorers[0].second.scans, 81);
+  EXPECT_GE(r.explorers[0].second.scans, 75);
+  const auto dir = testing::temp_dir("session-explorer");
+  session.write_outputs(dir, r);
+  const auto j = nlohmann::json::parse(testing::slurp(dir / "summary.json"));
+  EXPECT_EQ(j["explorers"]["robot"]["scans"].get<int>(), r.explorers[0].second.scans);
+}
+
+TEST(Session, TheRescueRobotsVictimCameraIsModelledWithItsMast) {
+  const autonomy::ExplorerLookConfig look = victim_camera_look(rescue_robot());
+  EXPECT_TRUE(look.enabled);
+  EXPECT_EQ(look.yaw_joint, "mast_yaw");
+  EXPECT_EQ(look.yaw_sign, 1.0);
+  EXPECT_NEAR(look.fixed_yaw, 0.0, 1e-9);       // the head looks ahead at the start
+  EXPECT_NEAR(look.fan.hfov, 0.85 * 57 * M_PI / 180, 1e-9);
+  EXPECT_NEAR(look.fan.range, 0.8 * 6.0, 1e-9);
+  EXPECT_NEAR(look.sweep_amplitude, 1.05, 1e-12);  // well inside the mast's +-170 degrees
+  // a robot without a thermal camera has nothing to model
+  RobotSpec blind = rescue_robot();
+  std::erase_if(blind.sensors, [](const SensorSpec& x) { return x.type == SensorSpec::Type::thermal_camera; });
+  EXPECT_FALSE(victim_camera_look(blind).enabled);
+  // a camera fixed to the body: modelled, but nothing to swing
+  RobotSpec fixed = rescue_robot();
+  for (auto& x : fixed.sensors) {
+    if (x.type == SensorSpec::Type::thermal_camera) x.link = "base_link";
+  }
+  const autonomy::ExplorerLookConfig f = victim_camera_look(fixed);
+  EXPECT_TRUE(f.enabled);
+  EXPECT_TRUE(f.yaw_joint.empty());
 }
 
 TEST(Session, StopsWhenAllVictimsAreFoundIfAsked) {

@@ -4,12 +4,15 @@
 # Usage: nav_demo_test.sh SOURCE_DIR BUILD_DIR OUT_DIR
 #
 # Why these numbers: with the same explorer in-process ('rescuesim batch', lockstep), such mazes
-# were searched fully within 150 s in 19 of seeds 1..20 (median 63 s), seeds 2..4 included; over
-# ROS the run is not bit-for-bit repeatable (message timing), so the test asks for 2 of 3.
+# were searched fully within 150 s in 19 of seeds 1..20 (median 63 s) when it followed walls
+# first; over ROS the run is not bit-for-bit repeatable (message timing), so the test asks for
+# 2 of 3. Mazes 3-5: since the explorer drives to frontiers first, maze 2's two victims come into
+# view as it turns at the start (both found at 1.2 s, 0.1 m driven), too short a trial to check
+# the driving and the node's share of the scans.
 set -euo pipefail
 src=$1 build=$2 out=$3
 rm -rf "$out"
-seed=2        # mazes 2, 3, 4
+seed=3        # mazes 3, 4, 5
 duration=150  # s of sim time per maze
 # synchronous (the default with --trials): lockstep with the node, so a trial repeats exactly
 BUILD="$build" "$src/scripts/demo-nav.sh" --seed $seed --trials 3 --size 4 --victims 2 --loops 0 \
@@ -31,7 +34,7 @@ def check(cond, what):
 check(t["trials"] == 3 and t["ran"] == 3, "all three trials ran: %s" % t)
 check(t["successes"] >= 2, "at least 2 of 3 mazes fully searched, got %d" % t["successes"])
 check(os.path.exists(os.path.join(out, "nav_trials.md")), "nav_trials.md written")
-for seed in (2, 3, 4):
+for seed in (3, 4, 5):
     d = os.path.join(out, "seed-%d" % seed)
     m = json.load(open(os.path.join(d, "nav_metrics.json")))
     tag = "seed %d: " % seed
