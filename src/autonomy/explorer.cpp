@@ -228,7 +228,8 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   last_plan_ = now;
   ++stats_.plans;
   // the targets: frontiers, and with the camera's view tracked, free ground it has not seen
-  const auto is_target = [this](Cell c) { return is_frontier(mapper_, c) || unseen(c); };
+  // (frontiers where a teammate has looked are its to follow)
+  const auto is_target = [this](Cell c) { return (is_frontier(mapper_, c) && !looked_.looked_by_team(c)) || unseen(c); };
   const auto min_cells = [this](Cell c) {
     return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
   };
@@ -249,13 +250,18 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
 
 bool Explorer::unseen(Cell c) const { return config_.look.enabled && mapper_.is_free(c) && !looked_.looked(c); }
 
+void Explorer::add_team_seen(const std::vector<Vec2>& centres_M, double cell) {
+  if (!config_.look.enabled || !mapper_.allocated() || !(cell > 0)) return;
+  for (const Vec2& p : centres_M) looked_.mark_team_square(mapper_, p, cell / 2);
+}
+
 bool Explorer::still_frontier(const Vec2& p_M) const {
   const auto c = mapper_.world_to_cell(p_M);
   if (!c) return false;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
-      if (mapper_.contains(n) && (is_frontier(mapper_, n) || unseen(n))) return true;
+      if (mapper_.contains(n) && ((is_frontier(mapper_, n) && !looked_.looked_by_team(n)) || unseen(n))) return true;
     }
   }
   return false;

@@ -152,8 +152,13 @@ class Explorer {
   /// sweep_amplitude either side of ahead; nothing when looking is disabled, no joint turns
   /// the camera or the amplitude is zero.
   std::optional<double> look_command(SimTime now) const;
-  /// Where the camera has looked (map frame cells; empty while looking is disabled).
+  /// Where the camera has looked (map frame cells; empty while looking is disabled), and
+  /// where teammates said theirs have.
   const LookCoverage& looked() const { return looked_; }
+  /// Ground a teammate's camera has looked at (squares of side `cell` m centred on `centres_M`,
+  /// map frame), as it said over the radio: not worth a trip of this robot's, neither as
+  /// unseen ground nor as a frontier. Ignored while looking is disabled or before the first scan.
+  void add_team_seen(const std::vector<Vec2>& centres_M, double cell);
 
   /// Drives to `p_M` (m, map frame) by A* over the map (unknown cells allowed per the
   /// planner settings), replanning as the map grows; stops there (mode at_goal).

@@ -15,15 +15,39 @@ void LookCoverage::fit(const OccupancyMapper& map) {
 
 int LookCoverage::mark(const OccupancyMapper& map, Cell c) {
   std::uint8_t& f = looked_[static_cast<std::size_t>(map.index(c))];
-  if (f) return 0;
-  f = 1;
+  if (f & kSelf) return 0;
+  const int added = f == 0 ? 1 : 0;
+  f |= kSelf;
   ++count_;
-  return 1;
+  return added;
 }
 
-bool LookCoverage::looked(Cell c) const {
-  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
-  return looked_[static_cast<std::size_t>(c.y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(c.x)] != 0;
+std::uint8_t LookCoverage::flags(Cell c) const {
+  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return 0;
+  return looked_[static_cast<std::size_t>(c.y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(c.x)];
+}
+
+int LookCoverage::mark_team_square(const OccupancyMapper& map, const Vec2& p_M, double half) {
+  if (!map.allocated() || !(half > 0)) return 0;
+  fit(map);
+  int added = 0;
+  // the square's cell range, clipped to the grid
+  const Vec2 lo = (p_M - Vec2(half, half) - map.origin()) / map.resolution();
+  const Vec2 hi = (p_M + Vec2(half, half) - map.origin()) / map.resolution();
+  if (!lo.allFinite() || !hi.allFinite()) return 0;
+  const int x0 = static_cast<int>(std::max(0.0, std::floor(lo.x()))), y0 = static_cast<int>(std::max(0.0, std::floor(lo.y())));
+  const int x1 = static_cast<int>(std::min<double>(width_ - 1, std::floor(hi.x())));
+  const int y1 = static_cast<int>(std::min<double>(height_ - 1, std::floor(hi.y())));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const Vec2 q = map.cell_to_world({x, y}) - p_M;
+      if (std::abs(q.x()) > half || std::abs(q.y()) > half) continue;
+      std::uint8_t& f = looked_[static_cast<std::size_t>(map.index({x, y}))];
+      added += f == 0 ? 1 : 0;
+      f |= kTeam;
+    }
+  }
+  return added;
 }
 
 int LookCoverage::look(const OccupancyMapper& map, const Vec2& p_M, double yaw, const CameraFan& fan) {

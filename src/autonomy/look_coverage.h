@@ -37,14 +37,25 @@ class LookCoverage {
   /// Marks every cell whose centre lies within `radius` of `p_M` (ground the robot itself
   /// covers: nothing lies hidden under it). Returns the cells marked for the first time.
   int cover_disc(const OccupancyMapper& map, const Vec2& p_M, double radius);
-  /// True when the camera has looked at cell `c` (false outside the grid or before any look).
-  bool looked(Cell c) const;
-  /// Cells looked at so far.
+  /// Marks the cells whose centre lies in the square of half-side `half` (m) around `p_M` as
+  /// seen by a teammate's camera (what a teammate said over the radio). Returns how many cells
+  /// were new to either kind of seeing.
+  int mark_team_square(const OccupancyMapper& map, const Vec2& p_M, double half);
+  /// True when this robot's camera, or a teammate's (mark_team_square), has looked at cell `c`
+  /// (false outside the grid or before any look).
+  bool looked(Cell c) const { return flags(c) != 0; }
+  /// True when this robot's own camera has looked at cell `c`.
+  bool looked_self(Cell c) const { return (flags(c) & kSelf) != 0; }
+  /// True when a teammate said it has looked at cell `c`.
+  bool looked_by_team(Cell c) const { return (flags(c) & kTeam) != 0; }
+  /// Cells this robot's own camera has looked at so far.
   long count() const { return count_; }
 
  private:
+  static constexpr std::uint8_t kSelf = 1, kTeam = 2;
   void fit(const OccupancyMapper& map);
   int mark(const OccupancyMapper& map, Cell c);
+  std::uint8_t flags(Cell c) const;
 
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> looked_;

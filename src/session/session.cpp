@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "core/log.h"
 #include "core/memory.h"
+#include "msgs/base64.h"
 #include "sensors/camera/render_camera_service.h"
 #include "session/explorer_settings.h"
 #include "session/session_controllers.h"
@@ -150,6 +152,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   controllers_->returning.assign(robots, 0);
   controllers_->heard.assign(robots, std::vector<std::optional<TeamClaim>>(robots));
   controllers_->next_share.assign(robots, SimTime{});
+  controllers_->next_seen.assign(robots, SimTime{});
 
   // the coverage grid: cells of free floor
   grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
@@ -243,6 +246,73 @@ constexpr double kRelayMargin = 3.0;      // dB: drop a relay when the route's w
 constexpr double kRelaySpacing = 3.0;     // m: ... and no base or relay is nearer than this
 constexpr double kShareEvery = 2.0;       // s between a built-in robot's team datagrams
 constexpr double kClaimAge = 10.0;        // s a teammate's word counts for
+constexpr double kSeenEvery = 6.0;        // s between a built-in robot's "where my camera looked" datagrams
+constexpr double kSeenCell = 0.5;         // m, the squares that datagram is counted in (world frame)
+constexpr int kSeenMinCells = 25;         // a square counts as seen when the camera looked at this many of its map cells
+
+/// The squares (kSeenCell, world frame) where an explorer's own camera has looked, as a
+/// datagram: {"seen": {"cell": 0.5, "origin": [i, j], "size": [w, h], "bits": base64}}, the
+/// bits row-major from square (i, j), least significant bit first. About 450 bytes for a
+/// 30 m maze; nothing when it has looked nowhere yet.
+std::optional<std::vector<std::uint8_t>> seen_datagram(const autonomy::Explorer& ex, const Pose2& X_WM) {
+  const autonomy::OccupancyMapper& map = ex.mapper();
+  const auto box = map.observed_box();
+  if (!box) return std::nullopt;
+  std::map<std::pair<int, int>, int> counts;
+  for (int y = box->first.y; y <= box->second.y; ++y) {
+    for (int x = box->first.x; x <= box->second.x; ++x) {
+      if (!ex.looked().looked_self({x, y})) continue;
+      const Vec2 p_W = X_WM.transform(map.cell_to_world({x, y}));
+      ++counts[{static_cast<int>(std::floor(p_W.x() / kSeenCell)), static_cast<int>(std::floor(p_W.y() / kSeenCell))}];
+    }
+  }
+  int i0 = std::numeric_limits<int>::max(), j0 = i0, i1 = std::numeric_limits<int>::min(), j1 = i1;
+  for (const auto& [ij, n] : counts) {
+    if (n < kSeenMinCells) continue;
+    i0 = std::min(i0, ij.first), j0 = std::min(j0, ij.second), i1 = std::max(i1, ij.first), j1 = std::max(j1, ij.second);
+  }
+  if (i0 > i1) return std::nullopt;
+  const int w = i1 - i0 + 1, h = j1 - j0 + 1;
+  std::vector<std::uint8_t> bits(static_cast<std::size_t>((w * h + 7) / 8), 0);
+  for (const auto& [ij, n] : counts) {
+    if (n < kSeenMinCells) continue;
+    const int k = (ij.second - j0) * w + (ij.first - i0);
+    bits[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint8_t>(1u << (k % 8));
+  }
+  std::string b64;
+  msg::append_base64(b64, bits.data(), bits.size());
+  nlohmann::json j;
+  j["seen"] = {{"cell", kSeenCell}, {"origin", {i0, j0}}, {"size", {w, h}}, {"bits", b64}};
+  const std::string text = j.dump();
+  return std::vector<std::uint8_t>(text.begin(), text.end());
+}
+
+/// The centres (world frame) of the squares a "seen" datagram lists, and their side; nothing
+/// for any other bytes or a malformed one.
+std::optional<std::pair<std::vector<Vec2>, double>> read_seen_datagram(const std::vector<std::uint8_t>& bytes) {
+  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("seen") || !j["seen"].is_object()) return std::nullopt;
+  const nlohmann::json& s = j["seen"];
+  const auto pair = [&](const char* key) -> std::optional<std::pair<int, int>> {
+    if (!s.contains(key) || !s[key].is_array() || s[key].size() != 2 || !s[key][0].is_number_integer() || !s[key][1].is_number_integer()) {
+      return std::nullopt;
+    }
+    return std::pair<int, int>(s[key][0].get<int>(), s[key][1].get<int>());
+  };
+  const auto origin = pair("origin"), size = pair("size");
+  if (!origin || !size || !s.contains("cell") || !s["cell"].is_number() || !s.contains("bits") || !s["bits"].is_string()) return std::nullopt;
+  const double cell = s["cell"].get<double>();
+  const auto [w, h] = *size;
+  if (!(cell > 0 && cell < 100) || w <= 0 || h <= 0 || w > 10000 || h > 10000) return std::nullopt;
+  const auto bits = msg::decode_base64(s["bits"].get<std::string>());
+  if (!bits || bits->size() != static_cast<std::size_t>((static_cast<long>(w) * h + 7) / 8)) return std::nullopt;
+  std::vector<Vec2> centres;
+  for (int k = 0; k < w * h; ++k) {
+    if (!((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8) & 1u)) continue;
+    centres.emplace_back((origin->first + k % w + 0.5) * cell, (origin->second + k / w + 0.5) * cell);
+  }
+  return std::pair(std::move(centres), cell);
+}
 
 /// A team datagram: {"team": {"at": [x, y], "going": [x, y] | null}}, world frame.
 std::vector<std::uint8_t> team_datagram(const Vec2& at_W, const std::optional<Vec2>& going_W) {
@@ -351,6 +421,12 @@ void Session::mission_step() {
       for (std::size_t k = 0; k < n; ++k) {
         if (k == r || mission_->robot_node(static_cast<int>(k)) != d.from) continue;
         if (auto claim = read_team_datagram(d.bytes, d.sent)) c.heard[r][k] = claim;
+        if (auto seen = read_seen_datagram(d.bytes)) {
+          // where the teammate's camera looked, placed in this robot's map frame
+          const Pose2 X_MW = c.X_WO[r].inverse();
+          for (Vec2& p : seen->first) p = X_MW.transform(p);
+          c.explorers[r]->add_team_seen(seen->first, seen->second);
+        }
       }
     }
   }
@@ -368,6 +444,16 @@ void Session::mission_step() {
         const std::optional<Vec2> going_W = going ? std::optional<Vec2>(c.X_WO[r].transform(*going)) : std::nullopt;
         for (std::size_t k = 0; k < n; ++k) {
           if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, team_datagram(at_W, going_W));
+        }
+      }
+    }
+    // and where its camera has looked, less often
+    if (s.time >= c.next_seen[r]) {
+      // (nothing to say before its first look: it tries again at the next step)
+      if (const auto bytes = seen_datagram(*ex, c.X_WO[r])) {
+        c.next_seen[r] = s.time + SimTime::from_seconds(kSeenEvery);
+        for (std::size_t k = 0; k < n; ++k) {
+          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, *bytes);
         }
       }
     }

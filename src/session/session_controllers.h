@@ -58,6 +58,10 @@ struct Session::Controllers {
   /// is younger than kClaimAge becomes its explorer's claims, so frontier trips spread out.
   std::vector<std::vector<std::optional<TeamClaim>>> heard;  // per robot, per teammate
   std::vector<SimTime> next_share;                           // per robot
+  /// Every kSeenEvery each built-in robot also tells them where its own camera has looked
+  /// (squares of the world); a teammate's explorer then leaves that ground to it
+  /// (Explorer::add_team_seen). A robot out of contact catches up with the next one it hears.
+  std::vector<SimTime> next_seen;                            // per robot
 };
 
 }  // namespace rescuesim

@@ -27,6 +27,7 @@ struct SessionExtras {
   std::vector<std::uint8_t> returning;
   std::vector<std::vector<std::optional<TeamClaim>>> heard;
   std::vector<SimTime> next_share;
+  std::vector<SimTime> next_seen;
 };
 
 SessionSnapshot Session::snapshot() {
@@ -51,6 +52,7 @@ SessionSnapshot Session::snapshot() {
   extras->returning = controllers_->returning;
   extras->heard = controllers_->heard;
   extras->next_share = controllers_->next_share;
+  extras->next_seen = controllers_->next_seen;
   return SessionSnapshot{sim_->snapshot(), std::move(extras)};
 }
 
@@ -87,6 +89,7 @@ void Session::restore(const SessionSnapshot& snapshot) {
   controllers_->returning = x.returning;
   controllers_->heard = x.heard;
   controllers_->next_share = x.next_share;
+  controllers_->next_seen = x.next_seen;
 }
 
 }  // namespace rescuesim

@@ -251,6 +251,23 @@ TEST(Explorer, GroundItsCameraHasNotSeenSendsItLookingRoundAnOpenRoom) {
   EXPECT_EQ(sim.collisions(), 0);
 }
 
+TEST(Explorer, GroundATeammateHasLookedAtIsLeftToIt) {
+  // the open room again, but a teammate said it has looked at all of it: nothing to look for
+  KinematicSim sim(testing::box(0, 0, 6, 6), {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+  Explorer explorer(kLaserMount, with_camera());
+  explorer.on_odometry(sim.odometry(SimTime{}));
+  explorer.on_scan(sim.scan(SimTime{}));
+  std::vector<Vec2> squares;
+  for (double y = 0.25; y < 6; y += 0.5) {
+    for (double x = 0.25; x < 6; x += 0.5) squares.emplace_back(x, y);
+  }
+  explorer.add_team_seen(squares, 0.5);
+  const RunLog run = drive(explorer, sim, 20.0, 1.5);
+  SCOPED_TRACE(describe("team saw it", run, sim, explorer));
+  EXPECT_EQ(explorer.stats().look_trips, 0);
+  EXPECT_TRUE(explorer.looked().looked_by_team(*explorer.mapper().world_to_cell({0.5, 3.0})));
+}
+
 TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   ExplorerConfig config = with_camera();
   config.look.yaw_joint = "pan";

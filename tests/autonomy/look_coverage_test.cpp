@@ -78,6 +78,20 @@ TEST(LookCoverage, UnknownCellsStopTheViewAndTheRobotCoversItsOwnFootprint) {
   EXPECT_FALSE(looked_at(disc, map, 1.35, 1.0));
 }
 
+TEST(LookCoverage, WhatATeammateSawIsLookedAtButNotByThisRobot) {
+  const OccupancyMapper map = room_with_wall();
+  LookCoverage look;
+  // a 0.5 m square round (1.25, 1.25): cell centres 1.025 .. 1.475, 10 x 10
+  EXPECT_EQ(look.mark_team_square(map, {1.25, 1.25}, 0.25), 100);
+  EXPECT_TRUE(look.looked(*map.world_to_cell({1.1, 1.4})));
+  EXPECT_TRUE(look.looked_by_team(*map.world_to_cell({1.1, 1.4})));
+  EXPECT_FALSE(look.looked_self(*map.world_to_cell({1.1, 1.4})));
+  EXPECT_FALSE(look.looked(*map.world_to_cell({1.55, 1.25})));
+  EXPECT_EQ(look.count(), 0);  // count() is this robot's own looking
+  // a square half off the grid is clipped to it: 5 columns of 10
+  EXPECT_EQ(look.mark_team_square(map, {0.0, 3.0}, 0.25), 50);
+}
+
 TEST(LookCoverage, ThePlannerDrivesToTheNearestUnseenPocketBigEnoughToMatter) {
   const OccupancyMapper map = room_with_wall();
   LookCoverage look;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "msgs/base64.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
@@ -144,6 +145,32 @@ TEST(SessionMission, TeammatesTellEachOtherWhereTheyAreOverTheRadio) {
     heard.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
   });
   session.run();
+  // and every 6 s where its camera has looked: at 0 and 6 s
+  std::vector<nlohmann::json> seen;
+  std::erase_if(heard, [&](const nlohmann::json& d) {
+    const auto body = nlohmann::json::parse(d["text"].get<std::string>());
+    if (!body.contains("seen")) return false;
+    seen.push_back(d);
+    return true;
+  });
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_NEAR(seen[0]["sent"].get<double>(), 0.0, 0.11);
+  EXPECT_NEAR(seen[1]["sent"].get<double>(), 6.0, 0.11);
+  {
+    // the first: the 0.5 m square of the world holding a's start is seen (the robot's own
+    // footprint, a disc of 0.41 m round it, covers every map cell of it)
+    const auto sq = nlohmann::json::parse(seen[0]["text"].get<std::string>())["seen"];
+    EXPECT_EQ(sq["cell"].get<double>(), 0.5);
+    const int i = static_cast<int>(std::floor(start_a.x() / 0.5)) - sq["origin"][0].get<int>();
+    const int j = static_cast<int>(std::floor(start_a.y() / 0.5)) - sq["origin"][1].get<int>();
+    const int w = sq["size"][0].get<int>();
+    ASSERT_TRUE(i >= 0 && j >= 0 && i < w && j < sq["size"][1].get<int>()) << sq;
+    const std::string b64 = sq["bits"].get<std::string>();
+    const auto bits = msg::decode_base64(b64);
+    ASSERT_TRUE(bits.has_value());
+    const int k = j * w + i;
+    EXPECT_TRUE(((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8)) & 1) << sq;
+  }
   ASSERT_EQ(heard.size(), 5u);
   for (std::size_t i = 0; i < heard.size(); ++i) {
     EXPECT_EQ(heard[i]["from"], "a");
