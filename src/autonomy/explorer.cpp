@@ -57,9 +57,10 @@ void Explorer::on_joint_state(const msg::JointState& joints) {
 std::optional<double> Explorer::look_command(SimTime now) const {
   const ExplorerLookConfig& look = config_.look;
   if (!look.enabled || look.yaw_joint.empty() || look.sweep_amplitude == 0 || !(look.sweep_period > 0)) return std::nullopt;
-  // a sine swing: slow at its ends, where the camera lingers on the sides of a corridor
+  // a sine swing about ahead (camera yaw 0 in base_link): slow at its ends, where the camera
+  // lingers on the sides of a corridor; the joint position giving camera yaw y is sign (y - fixed_yaw)
   const double phase = 2 * M_PI * now.seconds() / look.sweep_period;
-  return look.yaw_sign * look.sweep_amplitude * std::sin(phase);
+  return look.yaw_sign * (look.sweep_amplitude * std::sin(phase) - look.fixed_yaw);
 }
 
 void Explorer::on_odometry(const msg::Odometry& odom) {

@@ -149,7 +149,7 @@ class Explorer {
   /// joints are ignored.
   void on_joint_state(const msg::JointState& joints);
   /// The position (rad) to command the camera's yaw joint to at sim time `now`: a swing of
-  /// sweep_amplitude either side of ahead; nothing when looking is disabled, no joint turns
+  /// sweep_amplitude either side of ahead (the camera's yaw in base_link swings about 0); nothing when looking is disabled, no joint turns
   /// the camera or the amplitude is zero.
   std::optional<double> look_command(SimTime now) const;
   /// Where the camera has looked (map frame cells; empty while looking is disabled), and

@@ -278,6 +278,12 @@ TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(1.0)), 0.8, 1e-12);
   EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(3.0)), -0.8, 1e-12);
   EXPECT_NEAR(*explorer.look_command(SimTime::from_seconds(2.0)), 0.0, 1e-12);
+  // a camera that looks 0.5 rad left when the joint is at 0 swings about joint -0.5
+  ExplorerConfig offset = config;
+  offset.look.fixed_yaw = 0.5;
+  EXPECT_NEAR(*Explorer(kLaserMount, offset).look_command(SimTime::from_seconds(1.0)), 0.3, 1e-12);
+  offset.look.yaw_sign = -1;  // and with the axis pointing down, the joint turns the other way
+  EXPECT_NEAR(*Explorer(kLaserMount, offset).look_command(SimTime::from_seconds(1.0)), -0.3, 1e-12);
   // no joint, no amplitude or looking disabled: nothing to command
   EXPECT_FALSE(Explorer(kLaserMount, with_camera()).look_command(SimTime::from_seconds(1.0)));
   ExplorerConfig still = config;
