@@ -35,6 +35,8 @@ int LookCoverage::mark_team_square(const OccupancyMapper& map, const Vec2& p_M, 
   const Vec2 lo = (p_M - Vec2(half, half) - map.origin()) / map.resolution();
   const Vec2 hi = (p_M + Vec2(half, half) - map.origin()) / map.resolution();
   if (!lo.allFinite() || !hi.allFinite()) return 0;
+  // off the grid altogether (a teammate's word can be anything): nothing, and no integer overflow
+  if (hi.x() < 0 || hi.y() < 0 || lo.x() >= width_ || lo.y() >= height_) return 0;
   const int x0 = static_cast<int>(std::max(0.0, std::floor(lo.x()))), y0 = static_cast<int>(std::max(0.0, std::floor(lo.y())));
   const int x1 = static_cast<int>(std::min<double>(width_ - 1, std::floor(hi.x())));
   const int y1 = static_cast<int>(std::min<double>(height_ - 1, std::floor(hi.y())));

@@ -90,6 +90,9 @@ TEST(LookCoverage, WhatATeammateSawIsLookedAtButNotByThisRobot) {
   EXPECT_EQ(look.count(), 0);  // count() is this robot's own looking
   // a square half off the grid is clipped to it: 5 columns of 10
   EXPECT_EQ(look.mark_team_square(map, {0.0, 3.0}, 0.25), 50);
+  // far off the grid, however far: nothing
+  EXPECT_EQ(look.mark_team_square(map, {1e12, -1e12}, 0.25), 0);
+  EXPECT_EQ(look.mark_team_square(map, {-7.0, 3.0}, 0.25), 0);
 }
 
 TEST(LookCoverage, ThePlannerDrivesToTheNearestUnseenPocketBigEnoughToMatter) {
