@@ -126,5 +126,8 @@ function stream(file, decompressHandlers) {
   } catch (e) {
     out = { error: String(e.message ?? e) };
   }
-  process.stdout.write(JSON.stringify(out, (k, v) => (typeof v === "bigint" ? Number(v) : v)) + "\n");
+  // Exit as soon as the line is out. Left to end on its own, node waited for something it still
+  // held (most likely the wasm decompressors' background compilation). One CI run on a busy
+  // 2-core machine printed the right answer and then sat there until `timeout 120` killed it.
+  process.stdout.write(JSON.stringify(out, (k, v) => (typeof v === "bigint" ? Number(v) : v)) + "\n", () => process.exit(0));
 })();
