@@ -24,7 +24,7 @@ autonomy::ExplorerConfig builtin_explorer_config(const std::string& controller) 
   return ec;
 }
 
-autonomy::ExplorerLookConfig victim_camera_look(const RobotSpec& robot) {
+autonomy::ExplorerLookConfig victim_camera_look(const RobotSpec& robot, bool swing) {
   autonomy::ExplorerLookConfig look;
   // the camera victims are found with: the last thermal camera, as the victim detectors take
   const SensorSpec* cam = nullptr;
@@ -44,6 +44,7 @@ autonomy::ExplorerLookConfig victim_camera_look(const RobotSpec& robot) {
   const Pose3 X_BC = X_BL[static_cast<std::size_t>(link)] * cam->X_LS;
   const double yaw0 = X_BC.to_pose2().yaw;
   look.fixed_yaw = yaw0;
+  if (!swing) return look;
   std::string child = robot.links[static_cast<std::size_t>(link)].name;
   for (std::size_t hop = 0; hop < robot.joints.size(); ++hop) {
     const auto j = std::find_if(robot.joints.begin(), robot.joints.end(), [&](const JointSpec& js) { return js.child == child; });

@@ -104,6 +104,19 @@ TEST(Session, TheRescueRobotsVictimCameraIsModelledWithItsMast) {
   const autonomy::ExplorerLookConfig f = victim_camera_look(fixed);
   EXPECT_TRUE(f.enabled);
   EXPECT_TRUE(f.yaw_joint.empty());
+  // without a swing (the ROS navigation node cannot command the mast) the camera stays where it
+  // starts: with the mast started 0.3 rad to the left, the camera looks 0.3 rad to the left
+  RobotSpec turned = rescue_robot();
+  turned.joints[static_cast<std::size_t>(turned.joint_index("mast_yaw"))].initial = 0.3;
+  const autonomy::ExplorerLookConfig still = victim_camera_look(turned, /*swing=*/false);
+  EXPECT_TRUE(still.enabled);
+  EXPECT_TRUE(still.yaw_joint.empty());
+  EXPECT_NEAR(still.fixed_yaw, 0.3, 1e-9);
+  EXPECT_NEAR(still.fan.range, 0.8 * 6.0, 1e-9);
+  // with it, the swing is about the body's ahead whatever the mast's start
+  const autonomy::ExplorerLookConfig swung = victim_camera_look(turned);
+  EXPECT_EQ(swung.yaw_joint, "mast_yaw");
+  EXPECT_NEAR(swung.fixed_yaw, 0.0, 1e-9);
 }
 
 TEST(Session, StopsWhenAllVictimsAreFoundIfAsked) {

@@ -34,6 +34,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "bridges/ros1/ros1_raw_message.h"
+#include "robots/rescue_robot.h"
 #include "session/explorer_settings.h"
 
 namespace rescuesim::nav {
@@ -52,7 +53,7 @@ const char* kUsage =
     "rescuesim_nav: the simulator's built-in explorer as a ROS 1 node (docs/demos.md, Demonstration 2)\n"
     "\n"
     "Usage: rescuesim_nav [--out FILE] [--controller explorer|wall_follower] [--map-period S]\n"
-    "                     [--master-timeout S] [--base-frame NAME]\n"
+    "                     [--master-timeout S] [--base-frame NAME] [--look on|off]\n"
     "\n"
     "Subscribes  /scan (sensor_msgs/LaserScan), /odom (nav_msgs/Odometry), /tf_static (the laser's\n"
     "            mounting on the base frame).\n"
@@ -60,7 +61,10 @@ const char* kUsage =
     "            latched) whenever it plans, /nav/map (nav_msgs/OccupancyGrid, map frame) every\n"
     "            --map-period s of sim time, /tf map -> odom (its scan-matching correction) per scan.\n"
     "It is the same rescuesim::autonomy::Explorer, with the same settings, that drives the robot\n"
-    "in-process in 'rescuesim run'; all its time comes from message stamps (sim time).\n"
+    "in-process in 'rescuesim run'; all its time comes from message stamps (sim time). One\n"
+    "difference: in-process the explorer swings the mast to look from side to side; this node\n"
+    "leaves the head where it starts (a head command on its own topic would race the cmd_vel a\n"
+    "synchronous run waits for) and turns the whole robot to look at ground its camera missed.\n"
     "\n"
     "Options:\n"
     "  --out FILE          write what it did (counters, every planned path, its map) as JSON\n"
@@ -69,6 +73,10 @@ const char* kUsage =
     "  --map-period S      sim seconds between /nav/map messages (default 1; 0: never)\n"
     "  --master-timeout S  give up when no ROS master answers within S wall seconds (default 10)\n"
     "  --base-frame NAME   the robot's base frame in /tf_static (default base_link)\n"
+    "  --look on|off       on (default): besides frontiers, drive to free ground the victim camera\n"
+    "                      has not looked at yet: the built-in rescue robot's thermal camera, 85 %\n"
+    "                      of its 57 deg field of view and 80 % of its 6 m range, looking where the\n"
+    "                      head starts (ahead); off: frontiers only\n"
     "\n"
     "The master is ROS_MASTER_URI (default http://localhost:11311). Ctrl-C or SIGTERM ends it.\n"
     "Exit codes: 0 stopped, 2 bad arguments or no master.\n";
@@ -79,6 +87,7 @@ struct Options {
   double map_period = 1.0;
   double master_timeout = 10.0;
   std::string base_frame = "base_link";
+  bool look = true;
 };
 
 /// Parses the command line; prints the problem and returns nothing for bad arguments.
@@ -124,6 +133,12 @@ std::optional<Options> parse(int argc, char** argv, bool* help) {
       o.master_timeout = *x;
     } else if (a == "--base-frame") {
       o.base_frame = v;
+    } else if (a == "--look") {
+      if (v != "on" && v != "off") {
+        std::fprintf(stderr, "rescuesim_nav: --look is on or off, not '%s'\n", v.c_str());
+        return std::nullopt;
+      }
+      o.look = v == "on";
     } else {
       std::fprintf(stderr, "rescuesim_nav: unknown argument '%s' (see --help)\n", a.c_str());
       return std::nullopt;
@@ -192,7 +207,8 @@ class NavNode {
                     {"path_stuck", s.path_stuck},       {"abandoned", s.abandoned},
                     {"backups", s.backups},             {"slipping_scans", s.slipping_scans},
                     {"scans_matched", s.scans_matched}, {"scans_ambiguous", s.scans_ambiguous},
-                    {"scans_unmatched", s.scans_unmatched}};
+                    {"scans_unmatched", s.scans_unmatched}, {"look_trips", s.look_trips}};
+      j["look"] = explorer_->config().look.enabled;
       const Pose2& X_MO = explorer_->X_MO();
       j["X_MO"] = {X_MO.x, X_MO.y, X_MO.yaw};
     }
@@ -254,6 +270,14 @@ class NavNode {
     return j;
   }
 
+
+  /// The in-process explorer's settings; the victim camera is the built-in rescue robot's,
+  /// fixed where the head starts (the node commands no joints).
+  static autonomy::ExplorerConfig explorer_config(const Options& o) {
+    autonomy::ExplorerConfig ec = builtin_explorer_config(o.controller);
+    if (o.look && ec.frontier_trips) ec.look = victim_camera_look(rescue_robot(), /*swing=*/false);
+    return ec;
+  }
 
   static const char* mode_name(autonomy::ExplorerMode m) {
 
@@ -352,7 +376,7 @@ class NavNode {
         return;
       }
       X_BS_ = X_BS->to_pose2();
-      explorer_ = std::make_unique<autonomy::Explorer>(X_BS_, builtin_explorer_config(options_.controller));
+      explorer_ = std::make_unique<autonomy::Explorer>(X_BS_, explorer_config(options_));
       log::info("rescuesim_nav: laser '{}' at ({:.3f}, {:.3f}) m, {:.3f} rad on '{}'; {} started", scan.header.frame_id, X_BS_.x,
                 X_BS_.y, X_BS_.yaw, options_.base_frame, options_.controller);
     }
