@@ -1,19 +1,53 @@
-/// libFuzzer target for the datagram request reader: every input is the text of a
-/// std_msgs/String on /<robot>/rescue/comms/send going through parse_send_request.
-/// rescuesim::Error is the only failure it may report; a request that parses must write back
-/// with send_request_json to a request that parses to the same destination and bytes.
+/// libFuzzer target for the readers of datagram bytes from outside: every input is the text of
+/// a std_msgs/String on /<robot>/rescue/comms/send going through parse_send_request, and the
+/// bytes of a delivered datagram going through the built-in team's readers (read_team_datagram,
+/// read_seen_datagram: any node may send a built-in robot anything).
+/// rescuesim::Error is the only failure parse_send_request may report, and the team readers
+/// none. Whatever reads must write back to bytes that read the same.
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
+#include <vector>
 
 #include "core/error.h"
 #include "mission/datagram_json.h"
 
+namespace {
+
+[[noreturn]] void fail(const char* what) {
+  std::fprintf(stderr, "datagram: %s\n", what);
+  std::abort();
+}
+
+void check_team_readers(const std::vector<std::uint8_t>& bytes) {
+  using namespace rescuesim;
+  if (const auto p = read_team_datagram(bytes)) {
+    if (!p->at.allFinite() || (p->going && !p->going->allFinite())) fail("a team position that is not finite");
+    const auto again = read_team_datagram(team_datagram(*p));
+    if (!again || again->at != p->at || again->going.has_value() != p->going.has_value() || (p->going && *again->going != *p->going)) {
+      fail("a team position written back reads as another");
+    }
+  }
+  if (const auto s = read_seen_datagram(bytes)) {
+    if (!(s->cell > 0 && s->cell < 100)) fail("a seen datagram with a cell out of (0, 100)");
+    for (const auto& [i, j] : s->squares) {
+      if (std::abs(i) > kMaxSeenSide || std::abs(j) > kMaxSeenSide) fail("a seen square beyond kMaxSeenSide");
+    }
+    if (!s->squares.empty()) {
+      const auto again = read_seen_datagram(seen_datagram(*s));
+      if (!again || again->cell != s->cell || again->squares != s->squares) fail("seen squares written back read as others");
+    }
+  }
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace rescuesim;
+  check_team_readers(std::vector<std::uint8_t>(data, data + size));
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   SendRequest r;
   try {
@@ -22,15 +56,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const SendRequest again = parse_send_request(send_request_json(r));
-  if (again.to != r.to || again.bytes != r.bytes) {
-    std::fprintf(stderr, "datagram request: written back it reads as another request\n");
-    std::abort();
-  }
+  if (again.to != r.to || again.bytes != r.bytes) fail("a request written back reads as another request");
   // the inbox side of the same bytes must always be valid JSON
   InboxEntry e;
   e.from = r.to;
   e.to = r.to;
   e.bytes = &r.bytes;
   (void)inbox_json(e);
+  // and what a request carries is what a built-in robot's inbox would be handed
+  check_team_readers(r.bytes);
   return 0;
 }

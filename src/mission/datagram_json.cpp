@@ -1,5 +1,8 @@
 #include "mission/datagram_json.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -82,6 +85,85 @@ std::string inbox_json(const InboxEntry& e) {
   if (is_text(b)) j["text"] = std::string(b.begin(), b.end());
   // is_text does not rule out every sequence JSON refuses (surrogates, overlong forms): replace those
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::vector<std::uint8_t> team_datagram(const TeamPosition& position) {
+  nlohmann::json j;
+  j["team"]["at"] = {position.at.x(), position.at.y()};
+  j["team"]["going"] = position.going ? nlohmann::json{position.going->x(), position.going->y()} : nlohmann::json(nullptr);
+  const std::string text = j.dump();
+  return {text.begin(), text.end()};
+}
+
+std::optional<TeamPosition> read_team_datagram(const std::vector<std::uint8_t>& bytes) {
+  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("team")) return std::nullopt;
+  const nlohmann::json& t = j["team"];
+  const auto point = [](const nlohmann::json& p) -> std::optional<Vec2> {
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) return std::nullopt;
+    const Vec2 v(p[0].get<double>(), p[1].get<double>());
+    return v.allFinite() ? std::optional<Vec2>(v) : std::nullopt;
+  };
+  if (!t.is_object() || !t.contains("at")) return std::nullopt;
+  const auto at = point(t["at"]);
+  if (!at) return std::nullopt;
+  TeamPosition p;
+  p.at = *at;
+  if (t.contains("going")) p.going = point(t["going"]);
+  return p;
+}
+
+std::vector<std::uint8_t> seen_datagram(const SeenSquares& seen) {
+  RS_DEMAND(!seen.squares.empty(), "seen_datagram: no squares");
+  int i0 = kMaxSeenSide, j0 = kMaxSeenSide, i1 = -kMaxSeenSide, j1 = -kMaxSeenSide;
+  for (const auto& [i, j] : seen.squares) {
+    RS_DEMAND(std::abs(i) <= kMaxSeenSide && std::abs(j) <= kMaxSeenSide, "seen_datagram: a square beyond kMaxSeenSide");
+    i0 = std::min(i0, i), j0 = std::min(j0, j), i1 = std::max(i1, i), j1 = std::max(j1, j);
+  }
+  const int w = i1 - i0 + 1, h = j1 - j0 + 1;
+  std::vector<std::uint8_t> bits(static_cast<std::size_t>((static_cast<long>(w) * h + 7) / 8), 0);
+  for (const auto& [i, j] : seen.squares) {
+    const long k = static_cast<long>(j - j0) * w + (i - i0);
+    bits[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint8_t>(1u << (k % 8));
+  }
+  std::string b64;
+  msg::append_base64(b64, bits.data(), bits.size());
+  nlohmann::json j;
+  j["seen"] = {{"cell", seen.cell}, {"origin", {i0, j0}}, {"size", {w, h}}, {"bits", b64}};
+  const std::string text = j.dump();
+  return {text.begin(), text.end()};
+}
+
+std::optional<SeenSquares> read_seen_datagram(const std::vector<std::uint8_t>& bytes) {
+  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("seen") || !j["seen"].is_object()) return std::nullopt;
+  const nlohmann::json& s = j["seen"];
+  // two whole numbers within the world's reach (get<int> of a larger one would not be exact)
+  const auto pair = [&](const char* key, int lo, int hi) -> std::optional<std::pair<int, int>> {
+    if (!s.contains(key) || !s[key].is_array() || s[key].size() != 2) return std::nullopt;
+    for (const auto& v : s[key]) {
+      if (!v.is_number_integer()) return std::nullopt;
+      const bool in = v.is_number_unsigned() ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(hi)
+                                             : v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi;
+      if (!in) return std::nullopt;
+    }
+    return std::pair<int, int>(s[key][0].get<int>(), s[key][1].get<int>());
+  };
+  const auto origin = pair("origin", -kMaxSeenSide, kMaxSeenSide), size = pair("size", 1, 2 * kMaxSeenSide + 1);
+  if (!origin || !size || !s.contains("cell") || !s["cell"].is_number() || !s.contains("bits") || !s["bits"].is_string()) return std::nullopt;
+  SeenSquares out;
+  out.cell = s["cell"].get<double>();
+  const auto [w, h] = *size;
+  if (!(out.cell > 0 && out.cell < 100)) return std::nullopt;
+  if (origin->first + w - 1 > kMaxSeenSide || origin->second + h - 1 > kMaxSeenSide) return std::nullopt;
+  const auto bits = msg::decode_base64(s["bits"].get_ref<const std::string&>());
+  const long n = static_cast<long>(w) * h;
+  if (!bits || bits->size() != static_cast<std::size_t>((n + 7) / 8)) return std::nullopt;
+  for (long k = 0; k < n; ++k) {
+    if (!((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8) & 1u)) continue;
+    out.squares.emplace_back(origin->first + static_cast<int>(k % w), origin->second + static_cast<int>(k / w));
+  }
+  return out;
 }
 
 }  // namespace rescuesim

@@ -4,14 +4,21 @@
 ///                                or {"to": ..., "text": "<UTF-8 text>"} (one of data / text)
 ///   /<robot>/rescue/comms/inbox  {"seq", "from", "to", "hops", "sent", "delivered", "bytes",
 ///                                 "data": "<base64>", "text": "..." when the bytes are text}
-/// Plain functions, no Bus and no network, so the parser of outside bytes is fuzzed on its own
-/// (fuzz/datagram_request_fuzz.cpp).
+/// and the built-in team's own datagrams (docs/missions.md, "The built-in team"):
+///   {"team": {"at": [x, y], "going": [x, y] | null}}      where a robot is and the frontier it drives to
+///   {"seen": {"cell": c, "origin": [i, j], "size": [w, h], "bits": "<base64>"}}   where its camera looked
+/// Plain functions, no Bus and no network, so the parsers of outside bytes are fuzzed on their
+/// own (fuzz/datagram_request_fuzz.cpp): any node may send a built-in robot any bytes.
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
+
+#include "core/pose.h"
 
 namespace rescuesim {
 
@@ -45,5 +52,32 @@ std::string inbox_json(const InboxEntry& entry);
 /// True when `bytes` are printable UTF-8 text (no control characters but tab, CR and LF), as
 /// inbox_json decides whether to add "text".
 bool is_text(const std::vector<std::uint8_t>& bytes);
+
+/// A built-in robot's word to its teammates: where it is and the frontier it drives to (world
+/// frame, m).
+struct TeamPosition {
+  Vec2 at = Vec2::Zero();
+  std::optional<Vec2> going;
+};
+std::vector<std::uint8_t> team_datagram(const TeamPosition& position);
+/// The position in a team datagram; nothing for any other bytes, or a malformed or non-finite one.
+std::optional<TeamPosition> read_team_datagram(const std::vector<std::uint8_t>& bytes);
+
+/// Squares of the world (side `cell`, m; square (i, j) spans [i c, (i + 1) c) x [j c, (j + 1) c))
+/// where a robot's camera has looked.
+struct SeenSquares {
+  double cell = 0.5;
+  std::vector<std::pair<int, int>> squares;  ///< (i, j), in row-major order from the lowest j
+};
+/// Most squares a "seen" datagram spans on a side, and farthest square index from the origin
+/// it may name: a 5 km world of 0.5 m squares.
+inline constexpr int kMaxSeenSide = 10000;
+/// A "seen" datagram: the bounding box of the squares as origin and size, then one bit per
+/// square of the box (row-major from the origin, least significant bit first) in base64. About
+/// 450 bytes for a 30 m maze. The squares must not be empty, and lie within kMaxSeenSide of 0.
+std::vector<std::uint8_t> seen_datagram(const SeenSquares& seen);
+/// The squares of a "seen" datagram, row-major; nothing for any other bytes, or a malformed one
+/// (cell not in (0, 100) m, a box reaching beyond kMaxSeenSide, bits of the wrong length).
+std::optional<SeenSquares> read_seen_datagram(const std::vector<std::uint8_t>& bytes);
 
 }  // namespace rescuesim

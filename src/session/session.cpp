@@ -10,7 +10,7 @@
 
 #include "core/log.h"
 #include "core/memory.h"
-#include "msgs/base64.h"
+#include "mission/datagram_json.h"
 #include "sensors/camera/render_camera_service.h"
 #include "session/explorer_settings.h"
 #include "session/session_controllers.h"
@@ -251,9 +251,7 @@ constexpr double kSeenCell = 0.5;         // m, the squares that datagram is cou
 constexpr int kSeenMinCells = 25;         // a square counts as seen when the camera looked at this many of its map cells
 
 /// The squares (kSeenCell, world frame) where an explorer's own camera has looked, as a
-/// datagram: {"seen": {"cell": 0.5, "origin": [i, j], "size": [w, h], "bits": base64}}, the
-/// bits row-major from square (i, j), least significant bit first. About 450 bytes for a
-/// 30 m maze; nothing when it has looked nowhere yet.
+/// "seen" datagram (mission/datagram_json); nothing when it has looked nowhere yet.
 std::optional<std::vector<std::uint8_t>> seen_datagram(const autonomy::Explorer& ex, const Pose2& X_WM) {
   const autonomy::OccupancyMapper& map = ex.mapper();
   const auto box = map.observed_box();
@@ -262,85 +260,18 @@ std::optional<std::vector<std::uint8_t>> seen_datagram(const autonomy::Explorer&
   for (int y = box->first.y; y <= box->second.y; ++y) {
     for (int x = box->first.x; x <= box->second.x; ++x) {
       if (!ex.looked().looked_self({x, y})) continue;
-      const Vec2 p_W = X_WM.transform(map.cell_to_world({x, y}));
-      ++counts[{static_cast<int>(std::floor(p_W.x() / kSeenCell)), static_cast<int>(std::floor(p_W.y() / kSeenCell))}];
+      const Vec2 q = X_WM.transform(map.cell_to_world({x, y})) / kSeenCell;
+      if (!(q.cwiseAbs().maxCoeff() < kMaxSeenSide)) continue;  // a map run far away says nothing
+      ++counts[{static_cast<int>(std::floor(q.x())), static_cast<int>(std::floor(q.y()))}];
     }
   }
-  int i0 = std::numeric_limits<int>::max(), j0 = i0, i1 = std::numeric_limits<int>::min(), j1 = i1;
+  SeenSquares seen;
+  seen.cell = kSeenCell;
   for (const auto& [ij, n] : counts) {
-    if (n < kSeenMinCells) continue;
-    i0 = std::min(i0, ij.first), j0 = std::min(j0, ij.second), i1 = std::max(i1, ij.first), j1 = std::max(j1, ij.second);
+    if (n >= kSeenMinCells) seen.squares.push_back(ij);
   }
-  if (i0 > i1) return std::nullopt;
-  const int w = i1 - i0 + 1, h = j1 - j0 + 1;
-  std::vector<std::uint8_t> bits(static_cast<std::size_t>((w * h + 7) / 8), 0);
-  for (const auto& [ij, n] : counts) {
-    if (n < kSeenMinCells) continue;
-    const int k = (ij.second - j0) * w + (ij.first - i0);
-    bits[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint8_t>(1u << (k % 8));
-  }
-  std::string b64;
-  msg::append_base64(b64, bits.data(), bits.size());
-  nlohmann::json j;
-  j["seen"] = {{"cell", kSeenCell}, {"origin", {i0, j0}}, {"size", {w, h}}, {"bits", b64}};
-  const std::string text = j.dump();
-  return std::vector<std::uint8_t>(text.begin(), text.end());
-}
-
-/// The centres (world frame) of the squares a "seen" datagram lists, and their side; nothing
-/// for any other bytes or a malformed one.
-std::optional<std::pair<std::vector<Vec2>, double>> read_seen_datagram(const std::vector<std::uint8_t>& bytes) {
-  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("seen") || !j["seen"].is_object()) return std::nullopt;
-  const nlohmann::json& s = j["seen"];
-  const auto pair = [&](const char* key) -> std::optional<std::pair<int, int>> {
-    if (!s.contains(key) || !s[key].is_array() || s[key].size() != 2 || !s[key][0].is_number_integer() || !s[key][1].is_number_integer()) {
-      return std::nullopt;
-    }
-    return std::pair<int, int>(s[key][0].get<int>(), s[key][1].get<int>());
-  };
-  const auto origin = pair("origin"), size = pair("size");
-  if (!origin || !size || !s.contains("cell") || !s["cell"].is_number() || !s.contains("bits") || !s["bits"].is_string()) return std::nullopt;
-  const double cell = s["cell"].get<double>();
-  const auto [w, h] = *size;
-  if (!(cell > 0 && cell < 100) || w <= 0 || h <= 0 || w > 10000 || h > 10000) return std::nullopt;
-  const auto bits = msg::decode_base64(s["bits"].get<std::string>());
-  if (!bits || bits->size() != static_cast<std::size_t>((static_cast<long>(w) * h + 7) / 8)) return std::nullopt;
-  std::vector<Vec2> centres;
-  for (int k = 0; k < w * h; ++k) {
-    if (!((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8) & 1u)) continue;
-    centres.emplace_back((origin->first + k % w + 0.5) * cell, (origin->second + k / w + 0.5) * cell);
-  }
-  return std::pair(std::move(centres), cell);
-}
-
-/// A team datagram: {"team": {"at": [x, y], "going": [x, y] | null}}, world frame.
-std::vector<std::uint8_t> team_datagram(const Vec2& at_W, const std::optional<Vec2>& going_W) {
-  nlohmann::json j;
-  j["team"]["at"] = {at_W.x(), at_W.y()};
-  j["team"]["going"] = going_W ? nlohmann::json{going_W->x(), going_W->y()} : nlohmann::json(nullptr);
-  const std::string text = j.dump();
-  return {text.begin(), text.end()};
-}
-
-/// The claim in a team datagram, or nothing for any other bytes.
-std::optional<TeamClaim> read_team_datagram(const std::vector<std::uint8_t>& bytes, SimTime sent) {
-  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("team")) return std::nullopt;
-  const nlohmann::json& t = j["team"];
-  const auto point = [](const nlohmann::json& p) -> std::optional<Vec2> {
-    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) return std::nullopt;
-    const Vec2 v(p[0].get<double>(), p[1].get<double>());
-    return v.allFinite() ? std::optional<Vec2>(v) : std::nullopt;
-  };
-  if (!t.is_object() || !t.contains("at")) return std::nullopt;
-  const auto at = point(t["at"]);
-  if (!at) return std::nullopt;
-  TeamClaim c;
-  c.at = *at;
-  if (t.contains("going")) c.going = point(t["going"]);
-  c.stamp = sent;
-  return c;
+  if (seen.squares.empty()) return std::nullopt;
+  return rescuesim::seen_datagram(seen);
 }
 }  // namespace
 
@@ -420,12 +351,14 @@ void Session::mission_step() {
     for (const Datagram& d : mission_->take_inbox(static_cast<int>(r))) {
       for (std::size_t k = 0; k < n; ++k) {
         if (k == r || mission_->robot_node(static_cast<int>(k)) != d.from) continue;
-        if (auto claim = read_team_datagram(d.bytes, d.sent)) c.heard[r][k] = claim;
-        if (auto seen = read_seen_datagram(d.bytes)) {
-          // where the teammate's camera looked, placed in this robot's map frame
+        if (const auto said = read_team_datagram(d.bytes)) c.heard[r][k] = TeamClaim{said->at, said->going, d.sent};
+        if (const auto seen = read_seen_datagram(d.bytes)) {
+          // the centres of the squares the teammate's camera looked at, in this robot's map frame
           const Pose2 X_MW = c.X_WO[r].inverse();
-          for (Vec2& p : seen->first) p = X_MW.transform(p);
-          c.explorers[r]->add_team_seen(seen->first, seen->second);
+          std::vector<Vec2> centres_M;
+          centres_M.reserve(seen->squares.size());
+          for (const auto& [i, j] : seen->squares) centres_M.push_back(X_MW.transform(Vec2(i + 0.5, j + 0.5) * seen->cell));
+          c.explorers[r]->add_team_seen(centres_M, seen->cell);
         }
       }
     }
@@ -443,7 +376,7 @@ void Session::mission_step() {
         const std::optional<Vec2> going = ex->frontier_target();
         const std::optional<Vec2> going_W = going ? std::optional<Vec2>(c.X_WO[r].transform(*going)) : std::nullopt;
         for (std::size_t k = 0; k < n; ++k) {
-          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, team_datagram(at_W, going_W));
+          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, team_datagram({at_W, going_W}));
         }
       }
     }

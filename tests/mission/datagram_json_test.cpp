@@ -67,5 +67,71 @@ TEST(DatagramJson, InboxEntriesCarryBase64AndTextWhenTheBytesAreText) {
   EXPECT_FALSE(is_text(cut));   // a lead byte without its continuation
 }
 
+std::vector<std::uint8_t> bytes_of(std::string_view text) { return {text.begin(), text.end()}; }
+
+TEST(DatagramJson, TeamPositionsRoundTripAndOtherBytesAreNotOne) {
+  const auto b = team_datagram({Vec2(1.5, -2.25), Vec2(4, 5)});
+  EXPECT_EQ(std::string(b.begin(), b.end()), R"({"team":{"at":[1.5,-2.25],"going":[4.0,5.0]}})");
+  const auto p = read_team_datagram(b);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->at, Vec2(1.5, -2.25));
+  ASSERT_TRUE(p->going);
+  EXPECT_EQ(*p->going, Vec2(4, 5));
+  const auto idle = read_team_datagram(team_datagram({Vec2(1, 2), std::nullopt}));
+  ASSERT_TRUE(idle);
+  EXPECT_FALSE(idle->going);
+  for (const char* bad : {"", "hello", "[1, 2]", R"({"team": 1})", R"({"team": {"at": [1]}})", R"({"team": {"at": [null, 1]}})",
+                          R"({"team": {"at": ["1", 2]}})", R"({"team": {"going": [1, 2]}})", R"({"seen": {}})"}) {
+    EXPECT_FALSE(read_team_datagram(bytes_of(bad))) << bad;
+  }
+  // a bad destination alone is left out, the position still counts
+  const auto half = read_team_datagram(bytes_of(R"({"team": {"at": [1, 2], "going": "there"}})"));
+  ASSERT_TRUE(half);
+  EXPECT_FALSE(half->going);
+}
+
+TEST(DatagramJson, SeenSquaresAreABitmapOfTheirBox) {
+  // squares (2, 3), (4, 3) and (2, 4): the box from (2, 3), 3 x 2; bits 0, 2 and 3 of one byte,
+  // 0b00001101 = 0x0D, "DQ==" in base64
+  SeenSquares s;
+  s.cell = 0.5;
+  s.squares = {{2, 3}, {4, 3}, {2, 4}};
+  const auto b = seen_datagram(s);
+  EXPECT_EQ(std::string(b.begin(), b.end()), R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[3,2]}})");
+  const auto back = read_seen_datagram(b);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->cell, 0.5);
+  EXPECT_EQ(back->squares, s.squares);
+  // squares left of and below the origin, and one alone
+  s.squares = {{-3, -1}, {-1, -1}};
+  EXPECT_EQ(read_seen_datagram(seen_datagram(s))->squares, s.squares);
+  s.squares = {{7, -9}};
+  const auto one = seen_datagram(s);
+  EXPECT_EQ(std::string(one.begin(), one.end()), R"({"seen":{"bits":"AQ==","cell":0.5,"origin":[7,-9],"size":[1,1]}})");
+}
+
+TEST(DatagramJson, MalformedSeenDatagramsAreRefused) {
+  const std::string ok = R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[3,2]}})";
+  ASSERT_TRUE(read_seen_datagram(bytes_of(ok)));
+  for (const char* bad : {
+           "", "{", R"({"team": {"at": [1, 2]}})", R"({"seen": []})",
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3]}})",                     // no size
+           R"({"seen":{"bits":"DQ==","cell":0,"origin":[2,3],"size":[3,2]}})",          // a cell of 0
+           R"({"seen":{"bits":"DQ==","cell":-0.5,"origin":[2,3],"size":[3,2]}})",
+           R"({"seen":{"bits":"DQ==","cell":1e300,"origin":[2,3],"size":[3,2]}})",
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2.5,3],"size":[3,2]}})",      // not whole
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[0,2]}})",        // empty box
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[-3,2]}})",
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2147483647,3],"size":[3,2]}})",  // far beyond any world
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[18446744073709551615,3],"size":[3,2]}})",
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[3,30000]}})",    // too large
+           R"({"seen":{"bits":"AQ==","cell":0.5,"origin":[10000,3],"size":[2,1]}})",    // beyond the side
+           R"({"seen":{"bits":"DQ==","cell":0.5,"origin":[2,3],"size":[3,3]}})",        // 9 bits in one byte
+           R"({"seen":{"bits":"DQ=","cell":0.5,"origin":[2,3],"size":[3,2]}})",         // not base64
+           R"({"seen":{"bits":13,"cell":0.5,"origin":[2,3],"size":[3,2]}})"}) {
+    EXPECT_FALSE(read_seen_datagram(bytes_of(bad))) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace rescuesim
