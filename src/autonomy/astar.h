@@ -57,6 +57,12 @@ class AStarPlanner {
   /// Cells expanded by the last search (a cost measure for tests and benches).
   int last_expansions() const { return expansions_; }
   const PlannerConfig& config() const { return config_; }  ///< its settings
+  /// Discs every later search keeps clear as if occupied (CostMapConfig::keep_out): where
+  /// other robots stand, in the grid's frame. Replaces the previous set.
+  void set_keep_out(std::vector<Vec2> centres, double radius) {
+    config_.cost.keep_out = std::move(centres);
+    config_.cost.keep_out_radius = radius;
+  }
 
  private:
   PlannerConfig config_;

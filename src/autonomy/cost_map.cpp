@@ -75,7 +75,11 @@ CostMap::CostMap(const OccupancyMapper& grid, const CostMapConfig& config, Cell 
   factor_.resize(n);
   clearance_.resize(n);
   for (int i = 0; i < n; ++i) {
-    const double d = f[i] >= 0.5 * kFar ? std::numeric_limits<double>::infinity() : std::sqrt(f[i]) * res;
+    double d = f[i] >= 0.5 * kFar ? std::numeric_limits<double>::infinity() : std::sqrt(f[i]) * res;
+    if (!config.keep_out.empty()) {
+      const Vec2 p = grid.cell_to_world(cell_at(i));
+      for (const Vec2& c : config.keep_out) d = std::min(d, std::max(0.0, (p - c).norm() - config.keep_out_radius));
+    }
     clearance_[i] = static_cast<float>(d);
     const CellState s = grid.state(cell_at(i));
     if (s == CellState::occupied || d < lethal || (s == CellState::unknown && !config.unknown_traversable)) {

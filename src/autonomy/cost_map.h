@@ -17,6 +17,10 @@ struct CostMapConfig {
   double clearance_weight = 3.0;   ///< extra cost factor at robot_radius, falling linearly to 0 at comfort_distance
   bool unknown_traversable = true; ///< may paths cross cells never observed?
   double unknown_cost = 2.0;       ///< cost factor of an unknown cell when traversable (>= 1)
+  /// Discs (centres in the grid's frame, m) kept clear like occupied ground: other robots,
+  /// which the map does not hold (a laser above their bodies sees only their masts).
+  std::vector<Vec2> keep_out;
+  double keep_out_radius = 0.3;    ///< m, the discs' radius
 };
 
 /// Cost factors (per metre travelled, >= 1, or lethal) of the cells in a rectangular window

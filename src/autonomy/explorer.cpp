@@ -113,6 +113,7 @@ bool Explorer::match_scan(const Pose2& X_OB) {
 void Explorer::on_scan(const msg::LaserScan& scan) {
   // the reactive controllers see every scan; the map only those with a pose
   points_B_ = scan_points_in_base(scan, X_BS_);
+  posts_M_.clear();
   scan_stamp_ = scan.header.stamp;
   have_scan_ = true;
   sees_behind_ = looks_toward(scan, X_BS_, M_PI - 0.35) && looks_toward(scan, X_BS_, M_PI) &&
@@ -133,6 +134,7 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   if (compared || pinned || !have_trusted_) trusted_X_MB_ = X_MB;
   have_trusted_ = true;
   const int learned = mapper_.integrate(scan, X_MB * X_BS_);
+  if (config_.post_radius > 0) find_masts(X_MB);
   if (config_.look.enabled) {
     CameraFan fan = config_.look.fan;
     fan.near = std::max(fan.near, config_.robot_radius);
@@ -145,6 +147,31 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   while (!novelty_.empty() && (scan.header.stamp - novelty_.front().first).seconds() > config_.novelty_window) {
     novelty_.pop_front();
   }
+}
+
+void Explorer::find_masts(const Pose2& X_MB) {
+  // a return of 1-3 map cells standing alone, not the end of a wall seen edge-on: few occupied
+  // cells around it beyond its own
+  constexpr double kOwn = 0.08, kAround = 0.3;
+  constexpr int kMaxAround = 2;
+  const double res = mapper_.resolution();
+  const int reach = static_cast<int>(std::ceil(kAround / res));
+  for (const Vec2& p_B : thin_returns(points_B_, X_BS_.position(), config_.post_width, 0.3)) {
+    const Vec2 p_M = X_MB.transform(p_B);
+    const auto c = mapper_.world_to_cell(p_M);
+    if (!c) continue;
+    int around = 0;
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const Cell n{c->x + dx, c->y + dy};
+        const double d = res * std::hypot(dx, dy);
+        if (d > kOwn && d <= kAround && mapper_.contains(n) && mapper_.is_occupied(n)) ++around;
+      }
+    }
+    if (around <= kMaxAround) posts_M_.push_back(p_M);
+  }
+  // plans keep a narrower berth than driving: enough to pass a robot standing in a corridor
+  planner_.set_keep_out(posts_M_, 0.6 * config_.post_radius);
 }
 
 msg::OccupancyGrid Explorer::map(SimTime stamp) const {
@@ -228,9 +255,14 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
-  // the targets: frontiers, and with the camera's view tracked, free ground it has not seen
-  // (frontiers where a teammate has looked are its to follow)
-  const auto is_target = [this](Cell c) { return (is_frontier(mapper_, c) && !looked_.looked_by_team(c)) || unseen(c); };
+  // the targets: frontiers, and with the camera's view tracked, free ground it has not seen.
+  // Frontiers where a teammate has looked are left to it while there is anything else; when
+  // there is nothing else they are this robot's too: the teammate's map, not shared, may know
+  // what lies beyond them, but this robot's does not, and a robot that thinks it is done idles.
+  bool team_frontiers = false;
+  const auto is_target = [this, &team_frontiers](Cell c) {
+    return (is_frontier(mapper_, c) && (team_frontiers || !looked_.looked_by_team(c))) || unseen(c);
+  };
   const auto min_cells = [this](Cell c) {
     return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
   };
@@ -242,6 +274,12 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   std::vector<Vec2> path;
   if (!claims_M_.empty()) path = plan(claims_M_);
   if (path.empty()) path = plan({});
+  if (path.empty() && config_.look.enabled) {
+    team_frontiers = true;
+    path = plan({});
+    if (!path.empty()) ++stats_.team_frontier_trips;
+  }
+  team_frontier_target_ = team_frontiers;
   if (!path.empty()) {
     const auto end = mapper_.world_to_cell(path.back());
     if (end && !is_frontier(mapper_, *end)) ++stats_.look_trips;
@@ -262,7 +300,8 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
-      if (mapper_.contains(n) && ((is_frontier(mapper_, n) && !looked_.looked_by_team(n)) || unseen(n))) return true;
+      if (!mapper_.contains(n)) continue;
+      if ((is_frontier(mapper_, n) && (team_frontier_target_ || !looked_.looked_by_team(n))) || unseen(n)) return true;
     }
   }
   return false;
@@ -485,8 +524,23 @@ msg::Twist Explorer::back_up(const Pose2& X_MB, SimTime now) {
 
 msg::Twist Explorer::follow_path(const Pose2& X_MB, SimTime now) {
   msg::Twist twist = follower_.command(X_MB, now);
-  // the laser overrules the map: slow, then stop forward motion, when something is close ahead
-  const double ahead = free_distance_ahead(points_B_, config_.robot_radius);
+  // the laser overrules the map: slow, then stop forward motion, when something is close
+  // ahead; another robot counts as the outline of the disc around its mast
+  double ahead = free_distance_ahead(points_B_, config_.robot_radius);
+  if (!posts_M_.empty()) {
+    constexpr int kOutline = 16;
+    std::vector<ScanPoint> outline;
+    const Pose2 X_BM = X_MB.inverse();
+    for (const Vec2& c_M : posts_M_) {
+      for (int k = 0; k < kOutline; ++k) {
+        const double a = 2 * M_PI * k / kOutline;
+        ScanPoint p;
+        p.p_B = X_BM.transform(c_M + config_.post_radius * Vec2(std::cos(a), std::sin(a)));
+        outline.push_back(p);
+      }
+    }
+    ahead = std::min(ahead, free_distance_ahead(outline, config_.robot_radius));
+  }
   const double span = std::max(config_.safety_slow_distance - config_.safety_stop_distance, 1e-6);
   const double scale = std::clamp((ahead - config_.safety_stop_distance) / span, 0.0, 1.0);
   twist.linear.x() = std::min(twist.linear.x(), scale * config_.path.max_linear);

@@ -96,6 +96,14 @@ struct ExplorerConfig {
   int max_tries = 3;                 ///< a frontier whose path got stuck this often is given up
   double safety_stop_distance = 0.1;  ///< m of free travel ahead below which a path is not driven forward
   double safety_slow_distance = 0.6;  ///< m of free travel ahead below which path driving slows
+  /// m: other robots as discs of this radius around their masts; 0: none expected (a robot
+  /// alone). The laser of the built-in robot passes above another robot's body and returns
+  /// only from its mast, so a thin return standing alone in the scan (scan_points'
+  /// thin_returns, narrower than post_width) with few occupied cells around it in the map (a
+  /// wall's end seen edge-on has its wall behind it) is taken for a mast: path driving slows
+  /// and stops for the disc as for the laser's returns, and plans keep clear of it.
+  double post_radius = 0;
+  double post_width = 0.09;  ///< m, widest return taken for a mast (the built-in robot's is 0.07 m)
   double blocked_clearance_factor = 0.8;  ///< an occupied cell within this x robot_radius of the path blocks it
   double backup_time = 2.0;          ///< s of reversing when stuck (when the way back is clear)
   double backup_speed = 0.15;        ///< m/s, reversing speed
@@ -126,6 +134,7 @@ struct ExplorerStats {
   int scans_ambiguous = 0;    ///< scans matched in one direction only (a corridor; X_MO updated across it)
   int scans_unmatched = 0;    ///< scans whose match was rejected (X_MO kept)
   int look_trips = 0;         ///< trips started to ground the camera has not seen (not a frontier)
+  int team_frontier_trips = 0;  ///< trips to frontiers where a teammate has looked, when nothing else was left
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -170,6 +179,8 @@ class Explorer {
   /// within the planner's claimed_radius of them, unless no other frontier is left. Replaces
   /// the previous set; empty for a robot alone.
   void set_claims(std::vector<Vec2> claims_M) { claims_M_ = std::move(claims_M); }
+  /// Other robots' masts in the last scan (map frame; ExplorerConfig::post_radius).
+  const std::vector<Vec2>& masts() const { return posts_M_; }
   /// The end of the frontier trip under way (map frame), if one is.
   std::optional<Vec2> frontier_target() const {
     return mode_ == ExplorerMode::to_frontier ? std::optional<Vec2>(target_M_) : std::nullopt;
@@ -219,6 +230,8 @@ class Explorer {
   bool path_ahead_blocked(const Pose2& X_MB) const;
   std::vector<Vec2> plan_frontier(const Pose2& X_MB, SimTime now);
   bool still_frontier(const Vec2& p_M) const;
+  /// Other robots' masts in the scan just mapped (posts_M_, ExplorerConfig::post_radius).
+  void find_masts(const Pose2& X_MB);
   bool unseen(Cell c) const;
   void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
   void start_wall_following(SimTime now);
@@ -266,6 +279,8 @@ class Explorer {
   int tries_ = 0;
   std::vector<Vec2> excluded_M_;                  // frontiers given up
   std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
+  bool team_frontier_target_ = false;             // the last plan had to take a frontier a teammate looked at
+  std::vector<Vec2> posts_M_;                     // other robots' masts in the last scan (post_radius)
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;
   bool complete_ = false;

@@ -21,7 +21,7 @@ std::vector<ScanPoint> scan_points_in_base(const msg::LaserScan& scan, const Pos
     }
     const double angle = static_cast<double>(scan.angle_min) + static_cast<double>(i) * scan.angle_increment;
     const Vec2 p_B = X_BS.transform(Vec2(r * std::cos(angle), r * std::sin(angle)));
-    points.push_back({p_B, std::atan2(p_B.y(), p_B.x()), p_B.norm(), too_close});
+    points.push_back({p_B, std::atan2(p_B.y(), p_B.x()), p_B.norm(), too_close, static_cast<int>(i)});
   }
   return points;
 }
@@ -43,6 +43,35 @@ double free_distance_along(const std::vector<ScanPoint>& points, double heading,
     travel = std::min(travel, std::max(0.0, t));
   }
   return travel;
+}
+
+std::vector<Vec2> thin_returns(const std::vector<ScanPoint>& points, const Vec2& laser_B, double max_width, double min_gap,
+                               double link) {
+  std::vector<Vec2> out;
+  const auto range = [&](std::size_t k) { return (points[k].p_B - laser_B).norm(); };
+  // does the beam next to the run (index k, if it is the very next beam) stand well behind it?
+  const auto behind = [&](std::size_t k, int beam, double r) {
+    if (k >= points.size() || points[k].beam != beam) return true;  // no return there
+    return range(k) >= r + min_gap;
+  };
+  std::size_t i = 0;
+  while (i < points.size()) {
+    std::size_t j = i;
+    while (j + 1 < points.size() && points[j + 1].beam == points[j].beam + 1 && (points[j + 1].p_B - points[j].p_B).norm() <= link) ++j;
+    const std::size_t first = i, last = j;
+    i = j + 1;
+    if (last == first || (points[last].p_B - points[first].p_B).norm() > max_width) continue;
+    Vec2 sum = Vec2::Zero();
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t k = first; k <= last; ++k) {
+      sum += points[k].p_B;
+      nearest = std::min(nearest, range(k));
+    }
+    const bool before_ok = first == 0 || behind(first - 1, points[first].beam - 1, nearest);
+    if (!before_ok || !behind(last + 1, points[last].beam + 1, nearest)) continue;
+    out.push_back(sum / static_cast<double>(last - first + 1));
+  }
+  return out;
 }
 
 }  // namespace rescuesim::autonomy

@@ -15,6 +15,7 @@ struct ScanPoint {
   double bearing_B = 0;   ///< rad, atan2 of p_B: 0 ahead, > 0 to the left
   double distance_B = 0;  ///< m, |p_B|
   bool too_close = false; ///< the beam read -inf (closer than range_min) and was placed at range_min
+  int beam = 0;           ///< the beam's index in the scan: neighbours differ by 1
 };
 
 /// The returns of `scan` in base_link, given the laser's mounting pose `X_BS` (laser frame
@@ -33,5 +34,13 @@ double free_distance_ahead(const std::vector<ScanPoint>& points, double radius, 
 
 /// The same along the base_link direction `heading` (rad, 0 = ahead, > 0 = left).
 double free_distance_along(const std::vector<ScanPoint>& points, double heading, double radius, double margin = 0.0);
+
+/// Thin things standing alone in a scan, such as a post or another robot's mast: runs of
+/// neighbouring beams whose returns lie within `link` (m) of each other, at least two and
+/// spanning at most `max_width` (m) end to end, whose neighbouring beams on both sides return
+/// nothing or return at least `min_gap` (m) farther from the laser at `laser_B`. The centre of
+/// each run's returns (base_link).
+std::vector<Vec2> thin_returns(const std::vector<ScanPoint>& points, const Vec2& laser_B, double max_width, double min_gap,
+                               double link = 0.05);
 
 }  // namespace rescuesim::autonomy

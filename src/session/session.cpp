@@ -111,7 +111,10 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
                              "' moves on a joint");
     }
     const Pose3 X_BS = laser_link == 0 ? laser->X_LS : lumped.X_BL[static_cast<std::size_t>(laser_link)] * laser->X_LS;
-    const autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller, robot.spec);
+    autonomy::ExplorerConfig ec = builtin_explorer_config(configs[r].controller, robot.spec);
+    // other robots about: give their masts (all the laser sees of them) a berth as wide as a
+    // rescue robot's reach from its mast (0.48 m to the front bumper)
+    if (sim_->world().robots.size() > 1) ec.post_radius = 0.5;
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(X_BS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {

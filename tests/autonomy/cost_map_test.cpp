@@ -51,6 +51,24 @@ TEST(CostMap, LethalInsideTheRadiusDearerNearObstaclesUnitFarAway) {
   EXPECT_FLOAT_EQ(costs.factor({5, 5}), 1.0f);
 }
 
+TEST(CostMap, KeepOutDiscsCountAsObstaclesTheirRadiusWide) {
+  // a free square with no obstacle but a disc of 0.3 m around the centre of cell (50, 50)
+  OccupancyMapper map = free_square();
+  CostMapConfig config;
+  config.robot_radius = 0.35;
+  config.keep_out = {map.cell_to_world({50, 50})};
+  config.keep_out_radius = 0.3;
+  const CostMap costs(map, config, {0, 0}, {99, 99});
+  EXPECT_NEAR(costs.clearance({60, 50}), 0.5 - 0.3, 1e-6);
+  EXPECT_NEAR(costs.clearance({53, 54}), 0.0, 1e-6);  // 0.25 m from the centre: inside the disc
+  EXPECT_NEAR(costs.clearance({50, 90}), 2.0 - 0.3, 1e-6);
+  // lethal within robot_radius + half a cell of the disc's edge: closer than 0.675 m to its centre
+  EXPECT_EQ(costs.factor({63, 50}), CostMap::kLethal);  // 0.65 m
+  EXPECT_LT(costs.factor({64, 50}), CostMap::kLethal);  // 0.70 m
+  // without the disc the square is free everywhere
+  EXPECT_FLOAT_EQ(CostMap(map, {}, {0, 0}, {99, 99}).factor({50, 50}), 1.0f);
+}
+
 TEST(CostMap, UnknownCellsAreDearerOrLethalAsConfigured) {
   OccupancyMapper map = free_square();
   map.set_state({10, 10}, CellState::unknown);

@@ -268,6 +268,33 @@ TEST(Explorer, GroundATeammateHasLookedAtIsLeftToIt) {
   EXPECT_TRUE(explorer.looked().looked_by_team(*explorer.mapper().world_to_cell({0.5, 3.0})));
 }
 
+TEST(Explorer, FrontiersATeammateHasLookedAtAreItsOwnWhenNothingElseIsLeft) {
+  // a room with a door to a corridor that turns a corner: the only frontier is round the
+  // corner. A teammate has looked at everything, but this robot's map does not know what lies
+  // beyond that frontier, so it still goes there rather than think it is done
+  const std::vector<Segment> walls = {{{0, 0}, {0, 6}},     {{0, 0}, {6, 0}},     {{0, 6}, {6, 6}},   {{6, 0}, {6, 2.5}},
+                                      {{6, 3.5}, {6, 6}},   {{6, 2.5}, {9, 2.5}}, {{6, 3.5}, {10, 3.5}}, {{9, 2.5}, {9, -3}},
+                                      {{10, 3.5}, {10, -3}}, {{9, -3}, {10, -3}}};
+  std::vector<Vec2> squares;
+  for (double y = -3.75; y < 6; y += 0.5) {
+    for (double x = 0.25; x < 12; x += 0.5) squares.emplace_back(x, y);
+  }
+  for (const bool teammate : {false, true}) {
+    KinematicSim sim(walls, {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+    Explorer explorer(kLaserMount, with_camera());
+    explorer.on_odometry(sim.odometry(SimTime{}));
+    explorer.on_scan(sim.scan(SimTime{}));
+    if (teammate) explorer.add_team_seen(squares, 0.5);
+    const RunLog run = drive(explorer, sim, 30.0, 1.5);
+    SCOPED_TRACE(describe(teammate ? "teammate looked" : "alone", run, sim, explorer));
+    EXPECT_GE(explorer.stats().frontier_trips, 1);
+    EXPECT_EQ(explorer.stats().team_frontier_trips > 0, teammate);
+    EXPECT_EQ(explorer.stats().look_trips > 0, !teammate);  // the room itself is the teammate's
+    EXPECT_GT(sim.pose().x, 6.0);                            // through the door either way
+    EXPECT_EQ(sim.collisions(), 0);
+  }
+}
+
 TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   ExplorerConfig config = with_camera();
   config.look.yaw_joint = "pan";
@@ -302,6 +329,70 @@ TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   const OccupancyMapper& map = explorer.mapper();
   EXPECT_TRUE(explorer.looked().looked(*map.world_to_cell({1.0, 3.0})));   // 2 m behind
   EXPECT_FALSE(explorer.looked().looked(*map.world_to_cell({5.0, 3.0})));  // 2 m ahead
+}
+
+TEST(Explorer, AThinReturnStandingAloneIsTakenForAnotherRobotsMast) {
+  // a room with a post 2 m ahead: 0.1 m square, as the simulator draws its walls
+  std::vector<Segment> walls = testing::box(-1, -3, 8, 3);
+  walls.push_back({{2.05, 0.0}, {2.05, 1e-4}});
+  KinematicSim sim(walls, {0, 0, 0}, kLaserMount, kRadius);
+  ExplorerConfig config;
+  config.post_radius = 0.5;
+  config.post_width = 0.15;
+  Explorer e(kLaserMount, config);
+  e.on_odometry(sim.odometry(SimTime{}));
+  e.on_scan(sim.scan(SimTime{}));
+  ASSERT_EQ(e.masts().size(), 1u);
+  EXPECT_NEAR(e.masts()[0].x(), 2.0, 0.01);  // the returns lie on the post's near face
+  EXPECT_NEAR(e.masts()[0].y(), 0.0, 0.03);
+  // a robot alone (post_radius 0) looks for none
+  Explorer alone(kLaserMount);
+  alone.on_odometry(sim.odometry(SimTime{}));
+  alone.on_scan(sim.scan(SimTime{}));
+  EXPECT_TRUE(alone.masts().empty());
+}
+
+TEST(Explorer, AWallsEndSeenEdgeOnIsNoMastOnceTheWallIsMapped) {
+  // a wall from (2, 1) to (6, 1); its end, seen from on the wall's line, is a thin return alone
+  std::vector<Segment> walls = testing::box(-1, -3, 8, 3);
+  walls.push_back({{2.0, 1.0}, {6.0, 1.0}});
+  ExplorerConfig config;
+  config.post_radius = 0.5;
+  config.post_width = 0.15;
+  // seen first from the wall's line, with nothing mapped yet: taken for a mast (a limit)
+  {
+    KinematicSim on_line(walls, {1, 1, 0}, kLaserMount, kRadius);
+    Explorer e(kLaserMount, config);
+    e.on_odometry(on_line.odometry(SimTime{}));
+    e.on_scan(on_line.scan(SimTime{}));
+    EXPECT_EQ(e.masts().size(), 1u);
+  }
+  // seen first from beside, where its side shows: then from the wall's line it is no mast
+  KinematicSim sim(walls, {1, 0.5, 0}, kLaserMount, kRadius);
+  Explorer e(kLaserMount, config);
+  SimTime t;
+  e.on_odometry(sim.odometry(t));
+  e.on_scan(sim.scan(t));
+  EXPECT_TRUE(e.masts().empty());
+  // a quarter turn left, 0.5 m up, a quarter turn back: 20 steps of 50 ms each
+  const auto move = [&](double v, double w) {
+    msg::Twist cmd;
+    cmd.linear.x() = v;
+    cmd.angular.z() = w;
+    for (int k = 0; k < 20; ++k) {
+      sim.step(cmd, kDt);
+      t += SimTime::from_ms(50);
+      e.on_odometry(sim.odometry(t));
+    }
+  };
+  move(0, M_PI / 2);
+  move(0.5, 0);
+  move(0, -M_PI / 2);
+  ASSERT_NEAR(sim.pose().y, 1.0, 1e-6);
+  ASSERT_NEAR(sim.pose().yaw, 0.0, 1e-6);
+  e.on_scan(sim.scan(t));
+  EXPECT_EQ(e.stats().scans, 2);
+  EXPECT_TRUE(e.masts().empty());
 }
 
 TEST(Explorer, GoalModeDrivesAcrossTheMazeAndStops) {

@@ -56,5 +56,34 @@ TEST(ScanPoints, FreeTravelOfADisc) {
   EXPECT_NEAR(free_distance_along({at(0.0, 2.0)}, M_PI / 2, 0.5), 1.5, 1e-12);
 }
 
+ScanPoint at(int beam, double x, double y) {
+  ScanPoint p;
+  p.p_B = {x, y};
+  p.distance_B = p.p_B.norm();
+  p.beam = beam;
+  return p;
+}
+
+TEST(ScanPoints, ThinReturnsStandingAloneAreFoundAndNothingElse) {
+  std::vector<ScanPoint> points;
+  points.push_back(at(9, 4.0, -0.5));  // background, 2 m behind the post
+  for (int k = 0; k < 3; ++k) points.push_back(at(10 + k, 2.0, -0.02 + 0.02 * k));  // a post 4 cm wide; beam 13 returns nothing
+  for (int k = 0; k <= 25; ++k) points.push_back(at(20 + k, 3.0, 0.5 + 0.04 * k));  // a wall 1 m long
+  points.push_back(at(49, 1.1, 0.95));  // a thin thing just in front of a wall: not alone
+  points.push_back(at(50, 1.0, 1.0));
+  points.push_back(at(51, 1.0, 1.03));
+  points.push_back(at(52, 1.12, 1.05));
+  points.push_back(at(60, 2.0, 2.0));  // one beam alone: noise, not a post
+  for (int k = 0; k < 6; ++k) points.push_back(at(70 + k, -2.0, 0.04 * k));  // alone, but 20 cm wide
+  const auto posts = thin_returns(points, Vec2::Zero(), 0.09, 0.3);
+  ASSERT_EQ(posts.size(), 1u);
+  EXPECT_TRUE(posts[0].isApprox(Vec2(2.0, 0.0), 1e-12));
+  // the same post with the background 0.2 m behind it: not standing alone
+  points[0] = at(9, 2.2, -0.05);
+  EXPECT_TRUE(thin_returns(points, Vec2::Zero(), 0.09, 0.3).empty());
+  // and with nothing around it at all
+  EXPECT_EQ(thin_returns({at(0, 1.0, 0.0), at(1, 1.0, 0.03)}, Vec2::Zero(), 0.09, 0.3).size(), 1u);
+}
+
 }  // namespace
 }  // namespace rescuesim::autonomy
