@@ -114,7 +114,6 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   // the reactive controllers see every scan; the map only those with a pose
   points_B_ = scan_points_in_base(scan, X_BS_);
   posts_M_.clear();
-  with_masts_B_.clear();
   scan_stamp_ = scan.header.stamp;
   have_scan_ = true;
   sees_behind_ = looks_toward(scan, X_BS_, M_PI - 0.35) && looks_toward(scan, X_BS_, M_PI) &&
@@ -157,7 +156,6 @@ void Explorer::find_masts(const Pose2& X_MB) {
   constexpr int kMaxAround = 2;
   const double res = mapper_.resolution();
   const int reach = static_cast<int>(std::ceil(kAround / res));
-  with_masts_B_.clear();
   for (const Vec2& p_B : thin_returns(points_B_, X_BS_.position(), config_.post_width, 0.3)) {
     const Vec2 p_M = X_MB.transform(p_B);
     const auto c = mapper_.world_to_cell(p_M);
@@ -170,23 +168,8 @@ void Explorer::find_masts(const Pose2& X_MB) {
         if (d > kOwn && d <= kAround && mapper_.contains(n) && mapper_.is_occupied(n)) ++around;
       }
     }
-    if (around > kMaxAround) continue;
-    posts_M_.push_back(p_M);
-    // the disc's outline joins the returns path driving slows and stops for (not those wall
-    // following steers by: following teammates as walls, team runs collided more, 119 against
-    // 68 contacts per run over seeds 11-30)
-    constexpr int kOutline = 16;
-    for (int k = 0; k < kOutline; ++k) {
-      const double a = 2 * M_PI * k / kOutline;
-      ScanPoint q;
-      q.p_B = p_B + config_.post_radius * Vec2(std::cos(a), std::sin(a));
-      q.bearing_B = std::atan2(q.p_B.y(), q.p_B.x());
-      q.distance_B = q.p_B.norm();
-      q.beam = -1;
-      with_masts_B_.push_back(q);
-    }
+    if (around <= kMaxAround) posts_M_.push_back(p_M);
   }
-  if (!with_masts_B_.empty()) with_masts_B_.insert(with_masts_B_.begin(), points_B_.begin(), points_B_.end());
   // plans keep a narrower berth than driving: enough to pass a robot standing in a corridor
   planner_.set_keep_out(posts_M_, 0.6 * config_.post_radius);
 }
@@ -272,9 +255,14 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   planned_ = true;
   last_plan_ = now;
   ++stats_.plans;
-  // the targets: frontiers, and with the camera's view tracked, free ground it has not seen
-  // (frontiers where a teammate has looked are its to follow)
-  const auto is_target = [this](Cell c) { return (is_frontier(mapper_, c) && !looked_.looked_by_team(c)) || unseen(c); };
+  // the targets: frontiers, and with the camera's view tracked, free ground it has not seen.
+  // Frontiers where a teammate has looked are left to it while there is anything else; when
+  // there is nothing else they are this robot's too: the teammate's map, not shared, may know
+  // what lies beyond them, but this robot's does not, and a robot that thinks it is done idles.
+  bool team_frontiers = false;
+  const auto is_target = [this, &team_frontiers](Cell c) {
+    return (is_frontier(mapper_, c) && (team_frontiers || !looked_.looked_by_team(c))) || unseen(c);
+  };
   const auto min_cells = [this](Cell c) {
     return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
   };
@@ -286,6 +274,12 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   std::vector<Vec2> path;
   if (!claims_M_.empty()) path = plan(claims_M_);
   if (path.empty()) path = plan({});
+  if (path.empty() && config_.look.enabled) {
+    team_frontiers = true;
+    path = plan({});
+    if (!path.empty()) ++stats_.team_frontier_trips;
+  }
+  team_frontier_target_ = team_frontiers;
   if (!path.empty()) {
     const auto end = mapper_.world_to_cell(path.back());
     if (end && !is_frontier(mapper_, *end)) ++stats_.look_trips;
@@ -306,7 +300,8 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
-      if (mapper_.contains(n) && ((is_frontier(mapper_, n) && !looked_.looked_by_team(n)) || unseen(n))) return true;
+      if (!mapper_.contains(n)) continue;
+      if ((is_frontier(mapper_, n) && (team_frontier_target_ || !looked_.looked_by_team(n))) || unseen(n)) return true;
     }
   }
   return false;
@@ -530,8 +525,22 @@ msg::Twist Explorer::back_up(const Pose2& X_MB, SimTime now) {
 msg::Twist Explorer::follow_path(const Pose2& X_MB, SimTime now) {
   msg::Twist twist = follower_.command(X_MB, now);
   // the laser overrules the map: slow, then stop forward motion, when something is close
-  // ahead (another robot's disc as much as the walls)
-  const double ahead = free_distance_ahead(obstacles_B(), config_.robot_radius);
+  // ahead; another robot counts as the outline of the disc around its mast
+  double ahead = free_distance_ahead(points_B_, config_.robot_radius);
+  if (!posts_M_.empty()) {
+    constexpr int kOutline = 16;
+    std::vector<ScanPoint> outline;
+    const Pose2 X_BM = X_MB.inverse();
+    for (const Vec2& c_M : posts_M_) {
+      for (int k = 0; k < kOutline; ++k) {
+        const double a = 2 * M_PI * k / kOutline;
+        ScanPoint p;
+        p.p_B = X_BM.transform(c_M + config_.post_radius * Vec2(std::cos(a), std::sin(a)));
+        outline.push_back(p);
+      }
+    }
+    ahead = std::min(ahead, free_distance_ahead(outline, config_.robot_radius));
+  }
   const double span = std::max(config_.safety_slow_distance - config_.safety_stop_distance, 1e-6);
   const double scale = std::clamp((ahead - config_.safety_stop_distance) / span, 0.0, 1.0);
   twist.linear.x() = std::min(twist.linear.x(), scale * config_.path.max_linear);

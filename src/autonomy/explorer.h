@@ -134,6 +134,7 @@ struct ExplorerStats {
   int scans_ambiguous = 0;    ///< scans matched in one direction only (a corridor; X_MO updated across it)
   int scans_unmatched = 0;    ///< scans whose match was rejected (X_MO kept)
   int look_trips = 0;         ///< trips started to ground the camera has not seen (not a frontier)
+  int team_frontier_trips = 0;  ///< trips to frontiers where a teammate has looked, when nothing else was left
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -278,11 +279,8 @@ class Explorer {
   int tries_ = 0;
   std::vector<Vec2> excluded_M_;                  // frontiers given up
   std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
+  bool team_frontier_target_ = false;             // the last plan had to take a frontier a teammate looked at
   std::vector<Vec2> posts_M_;                     // other robots' masts in the last scan (post_radius)
-  std::vector<ScanPoint> with_masts_B_;           // the scan's returns and the masts' discs, when there are masts
-  /// What path driving slows and stops for: the scan's returns, and the outlines of other
-  /// robots' discs when it found any.
-  const std::vector<ScanPoint>& obstacles_B() const { return with_masts_B_.empty() ? points_B_ : with_masts_B_; }
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;
   bool complete_ = false;

@@ -268,6 +268,33 @@ TEST(Explorer, GroundATeammateHasLookedAtIsLeftToIt) {
   EXPECT_TRUE(explorer.looked().looked_by_team(*explorer.mapper().world_to_cell({0.5, 3.0})));
 }
 
+TEST(Explorer, FrontiersATeammateHasLookedAtAreItsOwnWhenNothingElseIsLeft) {
+  // a room with a door to a corridor that turns a corner: the only frontier is round the
+  // corner. A teammate has looked at everything, but this robot's map does not know what lies
+  // beyond that frontier, so it still goes there rather than think it is done
+  const std::vector<Segment> walls = {{{0, 0}, {0, 6}},     {{0, 0}, {6, 0}},     {{0, 6}, {6, 6}},   {{6, 0}, {6, 2.5}},
+                                      {{6, 3.5}, {6, 6}},   {{6, 2.5}, {9, 2.5}}, {{6, 3.5}, {10, 3.5}}, {{9, 2.5}, {9, -3}},
+                                      {{10, 3.5}, {10, -3}}, {{9, -3}, {10, -3}}};
+  std::vector<Vec2> squares;
+  for (double y = -3.75; y < 6; y += 0.5) {
+    for (double x = 0.25; x < 12; x += 0.5) squares.emplace_back(x, y);
+  }
+  for (const bool teammate : {false, true}) {
+    KinematicSim sim(walls, {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+    Explorer explorer(kLaserMount, with_camera());
+    explorer.on_odometry(sim.odometry(SimTime{}));
+    explorer.on_scan(sim.scan(SimTime{}));
+    if (teammate) explorer.add_team_seen(squares, 0.5);
+    const RunLog run = drive(explorer, sim, 30.0, 1.5);
+    SCOPED_TRACE(describe(teammate ? "teammate looked" : "alone", run, sim, explorer));
+    EXPECT_GE(explorer.stats().frontier_trips, 1);
+    EXPECT_EQ(explorer.stats().team_frontier_trips > 0, teammate);
+    EXPECT_EQ(explorer.stats().look_trips > 0, !teammate);  // the room itself is the teammate's
+    EXPECT_GT(sim.pose().x, 6.0);                            // through the door either way
+    EXPECT_EQ(sim.collisions(), 0);
+  }
+}
+
 TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   ExplorerConfig config = with_camera();
   config.look.yaw_joint = "pan";
