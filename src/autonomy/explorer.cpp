@@ -274,7 +274,9 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   std::vector<Vec2> path;
   if (!claims_M_.empty()) path = plan(claims_M_);
   if (path.empty()) path = plan({});
-  if (path.empty() && config_.look.enabled) {
+  // (a third search only when a teammate's squares could have hidden anything: alone, it would
+  // repeat the second)
+  if (path.empty() && team_seen_) {
     team_frontiers = true;
     path = plan({});
     if (!path.empty()) ++stats_.team_frontier_trips;
@@ -291,7 +293,7 @@ bool Explorer::unseen(Cell c) const { return config_.look.enabled && mapper_.is_
 
 void Explorer::add_team_seen(const std::vector<Vec2>& centres_M, double cell) {
   if (!config_.look.enabled || !mapper_.allocated() || !(cell > 0)) return;
-  for (const Vec2& p : centres_M) looked_.mark_team_square(mapper_, p, cell / 2);
+  for (const Vec2& p : centres_M) team_seen_ = looked_.mark_team_square(mapper_, p, cell / 2) > 0 || team_seen_;
 }
 
 bool Explorer::still_frontier(const Vec2& p_M) const {

@@ -280,6 +280,7 @@ class Explorer {
   std::vector<Vec2> excluded_M_;                  // frontiers given up
   std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
   bool team_frontier_target_ = false;             // the last plan had to take a frontier a teammate looked at
+  bool team_seen_ = false;                        // a teammate's squares marked some cell (add_team_seen)
   std::vector<Vec2> posts_M_;                     // other robots' masts in the last scan (post_radius)
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;
