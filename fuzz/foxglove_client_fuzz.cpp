@@ -2,13 +2,16 @@
 /// first input byte picks the frame kind, the rest is the frame.
 ///   even: a text frame for parse_client_text (JSON: subscribe, advertise, ...);
 ///   odd:  a binary frame for parse_client_binary, whose payload then goes through the command
-///         decoders (Twist, Float64MultiArray, JointState) in both client encodings, cdr and
-///         json, as the bridge does for a client channel.
+///         decoders (Twist, Float64MultiArray, JointState) and the decoder of every message type
+///         (a mission's reports, datagrams and map are PoseStamped, String and OccupancyGrid) in
+///         both client encodings, cdr and json, as the bridge does for a client channel. What
+///         json reads, msg::to_json writes back to text that reads to the same text again.
 /// rescuesim::Error is the only failure these may report; an escaping nlohmann::json exception,
 /// a crash or a sanitizer finding is a bug.
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
 #include <string_view>
 
@@ -43,6 +46,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       expect_only_errors([&] { decode_twist(encoding, m.payload); });
       expect_only_errors([&] { decode_multi_array(encoding, m.payload); });
       expect_only_errors([&] { decode_joint_state(encoding, m.payload); });
+    }
+    for (const rescuesim::msg::TypeSupport& type : rescuesim::msg::all_types()) {
+      expect_only_errors([&] { decode_message("cdr", type, m.payload); });
+      expect_only_errors([&] {
+        const std::string once = rescuesim::msg::to_json(decode_message("json", type, m.payload));
+        if (rescuesim::msg::to_json(rescuesim::msg::from_json(type, once)) != once) std::abort();
+      });
     }
   });
   return 0;

@@ -139,6 +139,10 @@ int main(int argc, char** argv) {
   binary("twist_json", json_bytes(R"({"linear":{"x":0.5,"y":0,"z":0},"angular":{"x":0,"y":0,"z":-0.25}})"));
   binary("joint_state_json", json_bytes(R"({"name":["lift"],"position":[0.15],"velocity":[],"effort":[]})"));
   binary("multi_array_json", json_bytes(R"({"layout":{"dim":[],"data_offset":0},"data":[1.0,2.5]})"));
+  // a mission's inputs (a report, a map) as a publish panel writes them: some fields left out
+  binary("report_json", json_bytes(R"({"header":{"stamp":{"sec":3,"nanosec":5},"frame_id":"map"},"pose":{"position":{"x":1.5,"y":-2}}})"));
+  binary("map_json", json_bytes(R"({"info":{"resolution":0.1,"width":2,"height":1,"origin":{"position":{"x":0}}},"data":[-1,100]})"));
+  binary("image_json", json_bytes(R"({"height":1,"width":2,"encoding":"rgb8","step":6,"data":"AQIDBAUG"})"));
 
   // results.jsonl lines: a success, a failure
   TrialRecord ok;

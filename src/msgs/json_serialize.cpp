@@ -1,13 +1,20 @@
 // JSON of a message for Foxglove's `json` encoding: one compact object with ROS 1 field names,
 // stamps as {"sec":..,"nsec":..}, uint8[] as base64 strings, and non-finite floats (REP-117's
-// ±inf, NaN) as null because JSON has no literal for them.
+// ±inf, NaN) as null because JSON has no literal for them. And the way back (from_json), for
+// what Foxglove clients publish: the same field list read with nlohmann::json.
 
 #include <charconv>
 #include <cmath>
+#include <limits>
+#include <set>
 
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
 #include "msgs/base64.h"
 #include "msgs/message_fields.h"
 #include "msgs/serialize.h"
+#include "msgs/wire.h"
 
 namespace rescuesim::msg {
 
@@ -152,6 +159,179 @@ class JsonWriter {
   bool first_ = true;
 };
 
+
+/// Reads a message out of a parsed JSON object by the field list: keys are ROS 1 field names (a
+/// differing ROS 2 name is taken too), a field left out keeps its default (Foxglove's publish
+/// panels and teleop send only what they set, as rosbridge allows), and a key that is no field
+/// is an error, so that a misspelt field is not silently zero.
+class JsonReader {
+ public:
+  JsonReader(const nlohmann::json& root, const char* type) : path_(type) { enter(root, nullptr); }
+
+  template <class T>
+  void value(Name n, T& x) {
+    if (const nlohmann::json* j = field(n)) scalar(n.ros1, *j, x);
+  }
+  void time(Name n, SimTime& t) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    enter(*j, n.ros1);
+    std::int64_t sec = 0;
+    std::uint32_t nsec = 0;
+    if (const nlohmann::json* s = field("sec")) scalar("sec", *s, sec);
+    // ROS 2's builtin_interfaces/Time says nanosec; ROS 1's JSON (and ours) nsec
+    for (const char* key : {"nsec", "nanosec"}) {
+      if (const nlohmann::json* ns = field(key)) scalar(key, *ns, nsec);
+    }
+    if (nsec >= 1'000'000'000u) path_.fail("nsec", "expected fewer than 1e9 nanoseconds, got " + std::to_string(nsec));
+    if (sec < -(std::int64_t{1} << 31) || sec >= (std::int64_t{1} << 32)) path_.fail("sec", "out of range: " + std::to_string(sec));
+    leave();
+    t.ns = sec * 1'000'000'000 + nsec;
+  }
+  void header(Name n, Header& h) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    enter(*j, n.ros1);
+    time("stamp", h.stamp);
+    value("frame_id", h.frame_id);
+    std::uint32_t seq = 0;  // ROS 1's header has it; it is the transport's, not the message's
+    value("seq", seq);
+    leave();
+  }
+  template <class T, std::size_t N>
+  void array(Name n, std::array<T, N>& a) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    if (!j->is_array() || j->size() != N) path_.fail(n.ros1, "expected an array of " + std::to_string(N) + " numbers, got " + shown(*j));
+    for (std::size_t i = 0; i < N; ++i) element(n.ros1, i, (*j)[i], a[i]);
+  }
+  template <class T>
+  void sequence(Name n, std::vector<T>& s) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    if constexpr (std::is_same_v<T, std::uint8_t>) {
+      if (j->is_string()) {  // uint8[] as to_json writes it
+        auto bytes = decode_base64(j->get_ref<const std::string&>());
+        if (!bytes) path_.fail(n.ros1, "a string here must be base64 (RFC 4648, padded)");
+        s = std::move(*bytes);
+        return;
+      }
+    }
+    if (!j->is_array()) path_.fail(n.ros1, "expected an array, got " + shown(*j));
+    s.assign(j->size(), T{});
+    for (std::size_t i = 0; i < j->size(); ++i) {
+      T x{};
+      element(n.ros1, i, (*j)[i], x);
+      s[i] = std::move(x);
+    }
+  }
+  template <class F>
+  void message(Name n, const char*, F&& f) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    enter(*j, n.ros1);
+    f(*this);
+    leave();
+  }
+  template <class E, class F>
+  void messages(Name n, const char*, std::vector<E>& s, F&& f) {
+    const nlohmann::json* j = field(n);
+    if (j == nullptr) return;
+    if (!j->is_array()) path_.fail(n.ros1, "expected an array of objects, got " + shown(*j));
+    s.assign(j->size(), E{});
+    for (std::size_t i = 0; i < j->size(); ++i) {
+      enter((*j)[i], n.ros1, static_cast<std::int64_t>(i));
+      f(*this, s[i]);
+      leave();
+    }
+  }
+  void constant(const char*, const char*, const char*) {}
+
+  /// The top-level object's keys must all have been fields too.
+  void finish() { leave(); }
+
+ private:
+  struct Level {
+    const nlohmann::json* object;
+    std::size_t used = 0;  ///< keys of `object` read as fields
+    bool named = false;    ///< pushed on path_
+  };
+
+  static std::string shown(const nlohmann::json& j) {
+    std::string s = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+  }
+  void enter(const nlohmann::json& j, const char* name, std::int64_t index = -1) {
+    if (name != nullptr) path_.push(name, index);
+    if (!j.is_object()) path_.fail(nullptr, "expected an object, got " + shown(j));
+    levels_.push_back({&j, 0, name != nullptr});
+  }
+  void leave() {
+    const Level& l = levels_.back();
+    if (l.used < l.object->size()) {
+      for (const auto& [key, v] : l.object->items()) {
+        if (read_.count({l.object, key}) == 0) path_.fail(key.c_str(), "no such field");
+      }
+    }
+    if (l.named) path_.pop();
+    levels_.pop_back();
+  }
+  /// The member of the current object for field n (ROS 1 name, else ROS 2), or nullptr.
+  const nlohmann::json* field(Name n) {
+    Level& l = levels_.back();
+    auto it = l.object->find(n.ros1);
+    if (it == l.object->end() && std::string_view(n.ros1) != n.ros2) it = l.object->find(n.ros2);
+    if (it == l.object->end()) return nullptr;
+    ++l.used;
+    read_.insert({l.object, it.key()});
+    return &*it;
+  }
+  template <class T>
+  void element(const char* name, std::size_t i, const nlohmann::json& j, T& x) {
+    path_.push(name, static_cast<std::int64_t>(i));
+    scalar(nullptr, j, x);
+    path_.pop();
+  }
+  template <class T>
+  void scalar(const char* name, const nlohmann::json& j, T& x) {
+    if constexpr (std::is_same_v<T, std::string>) {
+      if (!j.is_string()) path_.fail(name, "expected a string, got " + shown(j));
+      x = j.get<std::string>();
+    } else if constexpr (std::is_same_v<T, bool>) {
+      if (!j.is_boolean()) path_.fail(name, "expected true or false, got " + shown(j));
+      x = j.get<bool>();
+    } else if constexpr (std::is_floating_point_v<T>) {
+      if (j.is_null()) {  // to_json writes non-finite values as null
+        x = std::numeric_limits<T>::quiet_NaN();
+        return;
+      }
+      if (!j.is_number()) path_.fail(name, "expected a number, got " + shown(j));
+      x = static_cast<T>(j.get<double>());
+    } else {
+      static_assert(std::is_integral_v<T>);
+      bool fits = false;
+      if (j.is_number_unsigned()) {
+        fits = j.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<T>::max());
+      } else if (j.is_number_integer()) {
+        const std::int64_t v = j.get<std::int64_t>();
+        fits = v >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
+               (v < 0 || static_cast<std::uint64_t>(v) <= static_cast<std::uint64_t>(std::numeric_limits<T>::max()));
+      } else {
+        path_.fail(name, "expected an integer, got " + shown(j));
+      }
+      if (!fits) {
+        path_.fail(name, "expected an integer from " + std::to_string(std::numeric_limits<T>::min()) + " to " +
+                             std::to_string(std::numeric_limits<T>::max()) + ", got " + shown(j));
+      }
+      x = j.is_number_unsigned() ? static_cast<T>(j.get<std::uint64_t>()) : static_cast<T>(j.get<std::int64_t>());
+    }
+  }
+
+  wire::FieldPath path_;
+  std::vector<Level> levels_;
+  std::set<std::pair<const nlohmann::json*, std::string>> read_;  ///< (object, key) pairs read as fields
+};
+
 }  // namespace
 
 std::string to_json(const Message& m) {
@@ -165,6 +345,27 @@ std::string to_json(const Message& m) {
       },
       m);
   return out;
+}
+
+Message from_json(const TypeSupport& type, std::string_view text) {
+  if (type.variant_index >= std::variant_size_v<Message>) {
+    throw Error("from_json: " + type.ros1_name + ": not a msg::Message type (variant index " + std::to_string(type.variant_index) + ")");
+  }
+  nlohmann::json root;
+  try {
+    root = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte says where; the library's own text repeats it with its error id
+    throw Error(type.ros1_name + ": not valid JSON at byte " + std::to_string(e.byte) + " of " + std::to_string(text.size()));
+  }
+  return fields::with_alternative(type.variant_index, [&](auto id) -> Message {
+    using T = typename decltype(id)::type;
+    T m;
+    JsonReader r(root, type.ros1_name.c_str());
+    fields::visit_fields(r, m);
+    r.finish();
+    return m;
+  });
 }
 
 }  // namespace rescuesim::msg

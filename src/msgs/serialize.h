@@ -74,6 +74,10 @@ std::string to_json(const Message& m);
 /// left before anything is allocated.
 Message from_ros1(const TypeSupport& type, std::span<const std::uint8_t> bytes);
 Message from_cdr(const TypeSupport& type, std::span<const std::uint8_t> bytes);
+/// JSON as to_json writes it (ROS 1 field names; a differing ROS 2 name is taken too; stamps
+/// with nsec or nanosec; uint8[] as base64 or an array of numbers; null for a non-finite float).
+/// A field left out keeps its default; a key that is no field is an error naming it.
+Message from_json(const TypeSupport& type, std::string_view text);
 
 /// The MD5 of a ROS 1 message text as `genmsg` computes it (comments and blank lines dropped,
 /// constants first, field types of non-builtin types replaced by their own MD5): exposed for

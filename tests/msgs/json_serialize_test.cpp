@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "msgs/serialize.h"
 #include "samples.h"
 
@@ -110,6 +111,73 @@ void expect_valid(const Json& schema, const Json& v, const std::string& path) {
   } else {
     ADD_FAILURE() << path << ": unexpected schema type " << type;
   }
+}
+
+// from_json reads what to_json writes: every sample type reads back to the same JSON and, where
+// it has no non-finite value (JSON's null cannot tell inf from NaN), to the same CDR bytes
+TEST(JsonRead, EveryTypeRoundTripsThroughToJson) {
+  for (const Message& m : test::all_samples()) {
+    const TypeSupport& t = type_of(m);
+    const std::string text = to_json(m);
+    const Message back = from_json(t, text);
+    EXPECT_EQ(to_json(back), text) << t.ros1_name;
+    if (text.find("null") != std::string::npos) continue;
+    std::vector<std::uint8_t> a, b;
+    to_cdr(m, a);
+    to_cdr(back, b);
+    EXPECT_EQ(a, b) << t.ros1_name << ": " << text;
+  }
+}
+
+TEST(JsonRead, PartialMessagesKeepDefaultsAndRos2NamesAreTaken) {
+  // a report as a Foxglove publish panel sends it: no header stamp, no orientation
+  const Message m = from_json(*find_type("geometry_msgs/PoseStamped"), R"({"header":{"frame_id":"map"},"pose":{"position":{"x":1.5,"y":-2}}})");
+  const auto& p = std::get<PoseStamped>(m);
+  EXPECT_EQ(p.header.frame_id, "map");
+  EXPECT_EQ(p.header.stamp.ns, 0);
+  EXPECT_EQ(p.pose.p, Vec3(1.5, -2, 0));
+  EXPECT_EQ(p.pose.q.w(), 1.0);  // the default, identity
+  // ROS 2's nanosec, and ROS 1's seq (ignored)
+  const auto s = std::get<PoseStamped>(
+      from_json(*find_type("geometry_msgs/msg/PoseStamped"), R"({"header":{"seq":7,"stamp":{"sec":3,"nanosec":250000000},"frame_id":""}})"));
+  EXPECT_EQ(s.header.stamp.ns, 3'250'000'000);
+  // CameraInfo's D/K/R/P are d/k/r/p in ROS 2
+  const auto c = std::get<CameraInfo>(from_json(*find_type("sensor_msgs/CameraInfo"), R"({"k":[1,0,2,0,1,3,0,0,1]})"));
+  EXPECT_EQ(c.k[2], 2.0);
+  EXPECT_EQ(c.k[5], 3.0);
+  // uint8[] as base64 or as numbers; int8[] as numbers
+  EXPECT_EQ(std::get<Image>(from_json(*find_type("sensor_msgs/Image"), R"({"data":"AQID"})")).data, (std::vector<std::uint8_t>{1, 2, 3}));
+  EXPECT_EQ(std::get<Image>(from_json(*find_type("sensor_msgs/Image"), R"({"data":[1,2,255]})")).data, (std::vector<std::uint8_t>{1, 2, 255}));
+  EXPECT_EQ(std::get<OccupancyGrid>(from_json(*find_type("nav_msgs/OccupancyGrid"), R"({"data":[-1,0,100]})")).data,
+            (std::vector<std::int8_t>{-1, 0, 100}));
+}
+
+TEST(JsonRead, BadInputNamesTheFieldAndWhatWasExpected) {
+  const auto error = [](const char* type, const char* text) {
+    try {
+      from_json(*find_type(type), text);
+    } catch (const Error& e) {
+      return e.message();
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error("geometry_msgs/Twist", "{"), "geometry_msgs/Twist: not valid JSON at byte 2 of 1");
+  EXPECT_EQ(error("geometry_msgs/Twist", "[1]"), "geometry_msgs/Twist: expected an object, got [1]");
+  EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":{"x":"fast"}})"), "geometry_msgs/Twist: linear.x: expected a number, got \"fast\"");
+  EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":[1,2,3]})"), "geometry_msgs/Twist: linear: expected an object, got [1,2,3]");
+  EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":{"x":1,"yy":2}})"), "geometry_msgs/Twist: linear.yy: no such field");
+  EXPECT_EQ(error("geometry_msgs/PoseStamped", R"({"pose":{},"extra":1})"), "geometry_msgs/PoseStamped: extra: no such field");
+  EXPECT_EQ(error("std_msgs/String", R"({"data":5})"), "std_msgs/String: data: expected a string, got 5");
+  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"data":[1,200]})"), "nav_msgs/OccupancyGrid: data[1]: expected an integer from -128 to 127, got 200");
+  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"info":{"width":-1}})"),
+            "nav_msgs/OccupancyGrid: info.width: expected an integer from 0 to 4294967295, got -1");
+  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"info":{"width":2.5}})"), "nav_msgs/OccupancyGrid: info.width: expected an integer, got 2.5");
+  EXPECT_EQ(error("sensor_msgs/Image", R"({"data":"AQI"})"), "sensor_msgs/Image: data: a string here must be base64 (RFC 4648, padded)");
+  EXPECT_EQ(error("sensor_msgs/CameraInfo", R"({"K":[1,2]})"), "sensor_msgs/CameraInfo: K: expected an array of 9 numbers, got [1,2]");
+  EXPECT_EQ(error("tf2_msgs/TFMessage", R"({"transforms":[{},5]})"), "tf2_msgs/TFMessage: transforms[1]: expected an object, got 5");
+  EXPECT_EQ(error("geometry_msgs/PoseStamped", R"({"header":{"stamp":{"sec":1,"nsec":1000000000}}})"),
+            "geometry_msgs/PoseStamped: header.stamp.nsec: expected fewer than 1e9 nanoseconds, got 1000000000");
+  EXPECT_EQ(error("sensor_msgs/Range", R"({"range":true})"), "sensor_msgs/Range: range: expected a number, got true");
 }
 
 TEST(JsonSchema, EveryTypesJsonMatchesItsSchema) {

@@ -35,7 +35,9 @@
 #include "bridges/foxglove/scene.h"
 #include "bridges/foxglove/ws_server.h"
 #include "core/throttle.h"
+#include "bus/bridge_host.h"
 #include "bus/bus.h"
+#include "msgs/serialize.h"
 
 namespace rescuesim {
 class BridgeHost;
@@ -67,9 +69,11 @@ struct ChannelState {
 
 /// What a client channel publishes to.
 struct CommandTarget {
-  enum class Kind { twist, head, joints };  ///< cmd_vel, head/command, joint_command
+  enum class Kind { twist, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
   Kind kind = Kind::twist;
-  int robot = 0;
+  int robot = 0;                            ///< -1: none (no target, or a host input of no robot)
+  std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
+  const msg::TypeSupport* type = nullptr;   ///< Kind::host: the input's message type
   ClientChannel channel;
 };
 
@@ -127,8 +131,10 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   void apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload);
   void reply(ClientId client, StatusLevel level, const std::string& message);
   void reject(ClientId client, const std::string& message);
-  /// The command topics robot `robot` takes, with their types, for status errors.
+  /// The topics robot `robot` takes (commands and its host inputs), with their types, for status errors.
   std::string accepted_topics(std::size_t robot) const;
+  /// Every topic a client may publish on, with its type.
+  std::string accepted_topics() const;
 
   FoxgloveOptions options_;
   BridgeHost* host_ = nullptr;
@@ -163,6 +169,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::vector<std::string> twist_topics_, head_topics_, joint_topics_;  ///< per robot
   std::vector<std::size_t> head_sizes_;
   std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
+  std::vector<HostInput> host_inputs_;    ///< what the host takes beyond commands (a mission's reports, datagrams, maps)
   std::atomic<std::uint64_t> received_{0}, rejected_{0};
   std::unique_ptr<CommandGate> gate_;  ///< checks client commands, hands them to the host, warns (as ROS 1 and 2 do)
   Throttle client_log_{std::chrono::seconds(5)};

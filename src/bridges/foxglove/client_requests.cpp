@@ -1,9 +1,11 @@
 // What Foxglove clients ask for, on the server's I/O thread: subscriptions (with the latched
 // message of a channel sent at once), client channels for /cmd_vel, /head/command and
-// /joint_command, and their commands, checked and passed to the simulation. Anything malformed
-// or refused is answered with a status error to that client only.
+// /joint_command and for the host's inputs (a mission's reports, datagrams, relay drops and
+// map), and their messages, checked and passed to the simulation. Anything malformed or refused
+// is answered with a status error to that client only.
 
 #include <cmath>
+#include <optional>
 #include <variant>
 
 #include "bridges/foxglove/bridge_impl.h"
@@ -16,11 +18,12 @@ namespace rescuesim::foxglove {
 namespace {
 
 /// The ROS 2 and ROS 1 names of the message type a command topic takes.
-std::pair<std::string, std::string> schema_names(CommandTarget::Kind kind) {
-  switch (kind) {
+std::pair<std::string, std::string> schema_names(const CommandTarget& target) {
+  switch (target.kind) {
     case CommandTarget::Kind::twist: return {"geometry_msgs/msg/Twist", "geometry_msgs/Twist"};
     case CommandTarget::Kind::head: return {"std_msgs/msg/Float64MultiArray", "std_msgs/Float64MultiArray"};
     case CommandTarget::Kind::joints: return {"sensor_msgs/msg/JointState", "sensor_msgs/JointState"};
+    case CommandTarget::Kind::host: return {target.type->ros2_name, target.type->ros1_name};
   }
   return {};
 }
@@ -31,7 +34,22 @@ std::string FoxgloveBridge::accepted_topics(std::size_t robot) const {
   std::string t = twist_topics_[robot] + " (geometry_msgs/msg/Twist)";
   if (head_sizes_[robot] > 0) t += ", " + head_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
   if (joints_commandable_[robot]) t += ", " + joint_topics_[robot] + " (sensor_msgs/msg/JointState)";
+  for (const HostInput& in : host_inputs_) {
+    if (in.robot != static_cast<int>(robot)) continue;
+    const msg::TypeSupport* type = msg::find_type(in.type);
+    t += ", " + in.topic + " (" + (type ? type->ros2_name : in.type) + ")";
+  }
   return t;
+}
+
+std::string FoxgloveBridge::accepted_topics() const {
+  std::string all;
+  for (std::size_t r = 0; r < twist_topics_.size(); ++r) all += (all.empty() ? "" : ", ") + accepted_topics(r);
+  for (const HostInput& in : host_inputs_) {
+    const msg::TypeSupport* type = msg::find_type(in.type);
+    if (in.robot < 0) all += ", " + in.topic + " (" + (type ? type->ros2_name : in.type) + ")";
+  }
+  return all;
 }
 
 void FoxgloveBridge::on_open(ClientId client, const std::string&) {
@@ -169,30 +187,38 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
       }
       CommandTarget target;
       target.channel = ch;
-      target.robot = -1;
-      for (std::size_t r = 0; r < twist_topics_.size() && target.robot < 0; ++r) {
+      bool found = false;
+      for (std::size_t r = 0; r < twist_topics_.size() && !found; ++r) {
         const bool twist = ch.topic == twist_topics_[r];
         const bool head = ch.topic == head_topics_[r] && head_sizes_[r] > 0;
         const bool joints = ch.topic == joint_topics_[r];
         if (!twist && !head && !joints) continue;
         target.kind = twist ? CommandTarget::Kind::twist : head ? CommandTarget::Kind::head : CommandTarget::Kind::joints;
         target.robot = static_cast<int>(r);
+        found = true;
       }
-      if (target.robot < 0) {
-        std::string accepted;
-        for (std::size_t r = 0; r < twist_topics_.size(); ++r) accepted += (accepted.empty() ? "" : ", ") + accepted_topics(r);
-        errors.push_back(where + "rescuesim does not take this topic; it takes " + accepted);
+      for (std::size_t i = 0; i < host_inputs_.size() && !found; ++i) {
+        if (ch.topic != host_inputs_[i].topic) continue;
+        target.type = msg::find_type(host_inputs_[i].type);
+        if (target.type == nullptr) break;  // a type with no serialiser here: not taken
+        target.kind = CommandTarget::Kind::host;
+        target.robot = host_inputs_[i].robot;
+        target.host_input = i;
+        found = true;
+      }
+      if (!found) {
+        errors.push_back(where + "rescuesim does not take this topic; it takes " + accepted_topics());
         continue;
       }
       // a robot whose moving joints are all driven otherwise (wheels, head) or not at all
-      const auto robot = static_cast<std::size_t>(target.robot);
-      if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[robot]) {
+      if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[static_cast<std::size_t>(target.robot)]) {
+        const auto robot = static_cast<std::size_t>(target.robot);
         errors.push_back(where + "robot '" + host_->world().robots[robot].name +
                          "' has no joints that joint_command can drive (drive wheels take cmd_vel, head joints head/command; fixed, "
                          "passive and mimic joints take nothing); it takes " + accepted_topics(robot));
         continue;
       }
-      const auto [ros2, ros1] = schema_names(target.kind);
+      const auto [ros2, ros1] = schema_names(target);
       if (!ch.schema_name.empty() && ch.schema_name != ros2 && ch.schema_name != ros1) {
         errors.push_back(where + "schema '" + ch.schema_name + "' does not match " + ros2);
         continue;
@@ -224,23 +250,19 @@ void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> by
     reject(client, e.message());
     return;
   }
-  CommandTarget target;
+  std::optional<CommandTarget> target;
   {
     std::lock_guard lock(mutex_);
     const auto cit = clients_.find(client);
     if (cit == clients_.end()) return;
     const auto it = cit->second.publishers.find(m.channel);
-    if (it == cit->second.publishers.end()) {
-      target.robot = -1;
-    } else {
-      target = it->second;
-    }
+    if (it != cit->second.publishers.end()) target = it->second;
   }
-  if (target.robot < 0) {
+  if (!target) {
     reject(client, "client message data on unknown channel id " + std::to_string(m.channel) + " (advertise the channel first)");
     return;
   }
-  apply(client, target, m.payload);
+  apply(client, *target, m.payload);
 }
 
 void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload) {
@@ -252,6 +274,8 @@ void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::sp
       r = gate_->velocity(target.robot, topic, decode_twist(target.channel.encoding, payload));
     } else if (target.kind == CommandTarget::Kind::head) {
       r = gate_->head(target.robot, topic, decode_multi_array(target.channel.encoding, payload).data);
+    } else if (target.kind == CommandTarget::Kind::host) {
+      r = gate_->input(target.host_input, topic, decode_message(target.channel.encoding, *target.type, payload));
     } else {
       r = gate_->joints(target.robot, topic, decode_joint_state(target.channel.encoding, payload));
     }

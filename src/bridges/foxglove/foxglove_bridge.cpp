@@ -77,6 +77,8 @@ void FoxgloveBridge::start(BridgeHost& host) {
     joint_topics_.push_back(host.topic_name(static_cast<int>(r), "joint_command"));
     joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
   }
+  // and what the host takes beyond them (a mission's reports, datagrams, relay drops, map)
+  host_inputs_ = host.inputs();
 
   std::string robots;
   for (const auto& r : world.robots) robots += (robots.empty() ? "" : ", ") + r.name;

@@ -67,35 +67,6 @@ std::vector<std::uint32_t> u32_array(const json& request, const char* key, const
   return ids;
 }
 
-/// A number of a JSON object (0 when absent), finite or not: finiteness is the caller's check.
-double number_field(const json& object, const char* key, const std::string& where) {
-  const auto it = object.find(key);
-  if (it == object.end()) return 0.0;
-  if (!it->is_number()) throw Error(where + "." + key + ": expected a number, got " + it->dump());
-  return it->get<double>();
-}
-
-Vec3 vector3_field(const json& object, const char* key, const std::string& where) {
-  const auto it = object.find(key);
-  if (it == object.end()) return Vec3::Zero();
-  const std::string w = where + "." + key;
-  if (!it->is_object()) throw Error(w + ": expected an object with x, y, z");
-  return {number_field(*it, "x", w), number_field(*it, "y", w), number_field(*it, "z", w)};
-}
-
-/// An array of numbers of a JSON object (empty when absent), finite or not.
-std::vector<double> number_array(const json& object, const char* key, const std::string& where) {
-  std::vector<double> values;
-  if (!object.contains(key)) return values;
-  const json& a = array_field(object, key, where);
-  values.reserve(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!a[i].is_number()) throw Error(where + "." + key + "[" + std::to_string(i) + "]: expected a number, got " + a[i].dump());
-    values.push_back(a[i].get<double>());
-  }
-  return values;
-}
-
 json parse_json(std::span<const std::uint8_t> payload, const char* type) {
   json j = json::parse(payload.begin(), payload.end(), nullptr, false);
   if (j.is_discarded()) throw Error(std::string(type) + ": payload is not valid JSON");
@@ -217,60 +188,31 @@ ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes) {
   return {get_u32(bytes.subspan(1, 4)), bytes.subspan(5)};
 }
 
-msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload) {
-  if (encoding == "cdr") {
-    msg::Message m = msg::from_cdr(type_support("geometry_msgs/msg/Twist"), payload);
-    return std::get<msg::Twist>(m);
-  }
-  if (encoding == "json") {
-    const json j = parse_json(payload, "geometry_msgs/Twist");
-    msg::Twist t;
-    t.linear = vector3_field(j, "linear", "geometry_msgs/Twist");
-    t.angular = vector3_field(j, "angular", "geometry_msgs/Twist");
-    return t;
-  }
+msg::Message decode_message(std::string_view encoding, const msg::TypeSupport& type, std::span<const std::uint8_t> payload) {
+  if (encoding == "cdr") return msg::from_cdr(type, payload);
+  if (encoding == "json") return msg::from_json(type, std::string_view(reinterpret_cast<const char*>(payload.data()), payload.size()));
   throw Error("unsupported encoding '" + std::string(encoding) + "'");
+}
+
+msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload) {
+  return std::get<msg::Twist>(decode_message(encoding, type_support("geometry_msgs/msg/Twist"), payload));
 }
 
 msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<const std::uint8_t> payload) {
-  if (encoding == "cdr") {
-    msg::Message m = msg::from_cdr(type_support("std_msgs/msg/Float64MultiArray"), payload);
-    return std::get<msg::Float64MultiArray>(m);
-  }
   if (encoding == "json") {
+    // a head command without targets is a mistake, not a command to do nothing
     const json j = parse_json(payload, "std_msgs/Float64MultiArray");
-    const json& data = array_field(j, "data", "std_msgs/Float64MultiArray");
-    msg::Float64MultiArray a;
-    for (std::size_t i = 0; i < data.size(); ++i) {
-      if (!data[i].is_number()) throw Error("std_msgs/Float64MultiArray.data[" + std::to_string(i) + "]: expected a number, got " + data[i].dump());
-      a.data.push_back(data[i].get<double>());
-    }
-    return a;
+    array_field(j, "data", "std_msgs/Float64MultiArray");
   }
-  throw Error("unsupported encoding '" + std::string(encoding) + "'");
+  return std::get<msg::Float64MultiArray>(decode_message(encoding, type_support("std_msgs/msg/Float64MultiArray"), payload));
 }
 
 msg::JointState decode_joint_state(std::string_view encoding, std::span<const std::uint8_t> payload) {
-  if (encoding == "cdr") {
-    msg::Message m = msg::from_cdr(type_support("sensor_msgs/msg/JointState"), payload);
-    return std::get<msg::JointState>(m);
-  }
   if (encoding == "json") {
-    static const std::string where = "sensor_msgs/JointState";
     const json j = parse_json(payload, "sensor_msgs/JointState");
-    if (const auto h = j.find("header"); h != j.end() && !h->is_object()) throw Error(where + ".header: expected an object");
-    msg::JointState s;
-    const json& names = array_field(j, "name", where);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (!names[i].is_string()) throw Error(where + ".name[" + std::to_string(i) + "]: expected a string, got " + names[i].dump());
-      s.name.push_back(names[i].get<std::string>());
-    }
-    s.position = number_array(j, "position", where);
-    s.velocity = number_array(j, "velocity", where);
-    s.effort = number_array(j, "effort", where);
-    return s;
+    array_field(j, "name", "sensor_msgs/JointState");
   }
-  throw Error("unsupported encoding '" + std::string(encoding) + "'");
+  return std::get<msg::JointState>(decode_message(encoding, type_support("sensor_msgs/msg/JointState"), payload));
 }
 
 }  // namespace rescuesim::foxglove

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "msgs/messages.h"
+#include "msgs/serialize.h"
 
 namespace rescuesim::foxglove {
 
@@ -85,13 +86,16 @@ struct ClientMessage {
 /// frame too short for its header.
 ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes);
 
+/// Decodes a message of `type` in `encoding` ("cdr" or "json": msg::from_cdr, msg::from_json);
+/// throws Error when malformed.
+msg::Message decode_message(std::string_view encoding, const msg::TypeSupport& type, std::span<const std::uint8_t> payload);
 /// Decodes a geometry_msgs/Twist in `encoding` ("cdr" or "json"); throws Error when malformed.
 msg::Twist decode_twist(std::string_view encoding, std::span<const std::uint8_t> payload);
 /// Decodes a std_msgs/Float64MultiArray in `encoding`; throws Error when malformed.
 msg::Float64MultiArray decode_multi_array(std::string_view encoding, std::span<const std::uint8_t> payload);
 /// Decodes a sensor_msgs/JointState in `encoding` ("cdr" or "json"); throws Error when
 /// malformed. JSON: `{"name":["lift"],"position":[0.15]}`; `name` is required, `position`,
-/// `velocity` and `effort` may be left out (empty), `header` is ignored.
+/// `velocity` and `effort` may be left out (empty).
 msg::JointState decode_joint_state(std::string_view encoding, std::span<const std::uint8_t> payload);
 
 }  // namespace rescuesim::foxglove

@@ -6,6 +6,7 @@
 // client that stops reading costs bounded memory.
 // Expected values come from the scenario (tests/bridges/foxglove/server_rig.h), by hand.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,10 +17,12 @@
 
 #include "bridges/foxglove/foxglove_bridge.h"
 #include "bridges/foxglove/server_rig.h"
+#include "mission/mission.h"
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
+#include "support/rig.h"
 #include "world/scenario/scenario.h"
 
 namespace rescuesim {
@@ -235,7 +238,7 @@ TEST_F(FoxgloveServer, BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory) 
       {"json twist not json", "not valid JSON"},
       {"json twist wrong type", "linear.x: expected a number"},
       {"head wrong size", "1 positions, expected 4"},
-      {"head non-number", "data[1]: expected a number"},
+      {"head non-number", "data[1] (shoulder_pitch) is nan (positions must be finite)"},  // JSON's null is NaN, as to_json writes it
   };
   ASSERT_EQ(d["replies"].size(), expected.size()) << d["replies"];
   for (const auto& reply : d["replies"]) {
@@ -404,6 +407,68 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
   const BridgeStats st = bridge->stats();
   EXPECT_EQ(st.received, 2u);
   EXPECT_EQ(st.rejected, 2u);
+}
+
+TEST_F(FoxgloveServer, AMissionsReportsAndDatagramsComeFromAClientToo) {
+  // two robots 4 m apart in a 20 m room, a victim at (5, 0) (as the ROS 2 mission test); the
+  // client reports it 0.5 m off (0.3, 0.4) in json and sends robot2 a datagram in cdr
+  WorldSpec spec = testing::room_spec(20.0, {0, -2, 0});
+  RobotPlacement second;
+  second.name = "robot2";
+  second.start = {0, 2, 0};
+  spec.robots.push_back(second);
+  VictimSpec v;
+  v.name = "v1";
+  v.pose = {5, 0, 0};
+  spec.victims.push_back(v);
+  Simulation sim(compile_world(spec, builtin_models()));
+  Mission mission(MissionSpec{}, sim);  // ideal radio, RoboCup rules
+  FoxgloveOptions options;
+  options.port = free_local_port();
+  ASSERT_GT(options.port, 0);
+  auto bridge = make_foxglove_bridge(options);
+  bridge->start(sim);
+  const Vec3 at = sim.world().victims[0].centre + Vec3(0.3, 0.4, 0);
+  testing::CommandResult r;
+  std::atomic<bool> done = false;
+  std::thread client([&] {
+    r = testing::node_script("mission_client.js", "ws://127.0.0.1:" + std::to_string(options.port) + " /robot robot2 " +
+                                                      fmt::format("{:.17g} {:.17g} {:.17g}", at.x(), at.y(), at.z()));
+    done = true;
+  });
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(45);
+  while (!done && std::chrono::steady_clock::now() < deadline) {
+    sim.step();
+    mission.after_step();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  client.join();
+  bridge->stop();
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json d = last_json(r.out);
+  EXPECT_TRUE(d["errors"].empty()) << d["errors"];
+
+  // the report was judged: accepted, v1, 0.5 m off, +1
+  ASSERT_EQ(d["answers"].size(), 1u) << d["answers"];
+  EXPECT_EQ(d["answers"][0]["outcome"], "accepted") << d["answers"][0];
+  EXPECT_EQ(d["answers"][0]["victim"], "v1");
+  EXPECT_NEAR(d["answers"][0]["distance"].get<double>(), 0.5, 1e-9);
+  EXPECT_EQ(mission.referee().score(), 1.0);
+  EXPECT_EQ(mission.referee().counts()[ReportOutcome::accepted], 1u);
+  // the datagram crossed the (ideal) radio to robot2's inbox
+  ASSERT_EQ(d["inbox"].size(), 1u) << d["inbox"];
+  EXPECT_EQ(d["inbox"][0]["from"], "robot");
+  EXPECT_EQ(d["inbox"][0]["text"], fmt::format("victim near {:.17g},{:.17g}", at.x(), at.y()));
+  // the malformed report: one status error naming the field; nothing charged for it
+  ASSERT_EQ(d["statuses"].size(), 1u) << d["statuses"];
+  EXPECT_EQ(d["statuses"][0]["phase"], "malformed");
+  EXPECT_NE(d["statuses"][0]["message"].get<std::string>().find("/robot/rescue/report: geometry_msgs/PoseStamped: pose.position.x: expected a number"),
+            std::string::npos)
+      << d["statuses"][0];
+  EXPECT_EQ(mission.referee().counts()[ReportOutcome::false_report], 0u);
+  const BridgeStats st = bridge->stats();
+  EXPECT_EQ(st.received, 2u);
+  EXPECT_EQ(st.rejected, 1u);
 }
 
 TEST(FoxgloveCli, PortFlagTakesAnOptionalValue) {

@@ -197,10 +197,10 @@ TEST(FoxgloveProtocol, MalformedJointStatesAreErrorsThatSayWhere) {
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":"lift"})")); }).find("name: expected an array"), std::string::npos);
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":[3]})")); }).find("name[0]: expected a string"), std::string::npos);
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"position":["high"]})")); })
-                .find("sensor_msgs/JointState.position[0]: expected a number"),
+                .find("sensor_msgs/JointState: position[0]: expected a number"),
             std::string::npos);
-  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"velocity":[null]})")); }).find("velocity[0]"),
-            std::string::npos);
+  // null is how to_json writes a non-finite value: it reads as NaN, which the command gate refuses
+  EXPECT_TRUE(std::isnan(decode_joint_state("json", bytes_of(R"({"name":["lift"],"velocity":[null]})")).velocity.at(0)));
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"effort":{}})")); }).find("effort: expected an array"),
             std::string::npos);
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"header":7,"name":[]})")); }).find("header"), std::string::npos);
