@@ -120,13 +120,16 @@ class Env:
 
     # -- missions (a scenario with a ``mission:`` block; docs/missions.md) --------------------
 
-    def report(self, x, y, z=0.0):
-        """Reports a victim at (x, y, z) m in the map frame (the world frame) to the referee.
+    def report(self, x, y, z=0.0, image=None):
+        """Reports a victim at (x, y, z) m in the map frame (the world frame) to the referee,
+        with an optional picture: a uint8 array H x W (grey), H x W x 3 (RGB) or H x W x 4
+        (RGBA), at most 4096 pixels a side, written to reports/ with the run's outputs.
 
         -> dict(id, outcome, victim, distance, score_change, score, reports_left, message);
         outcome is accepted, duplicate, false, repeat, out_of_contact, limit_reached,
-        rate_limited, time_over or invalid. RuntimeError without a mission."""
-        return self._core.report(float(x), float(y), float(z))
+        rate_limited, time_over or invalid; the message says whether the picture was kept.
+        rescuesim.Error without a mission, or for an array that is no picture."""
+        return self._core.report(float(x), float(y), float(z), image)
 
     def send(self, to, data):
         """Queues a datagram (bytes) to a robot's or base's name, or "*" for every neighbour;

@@ -1,6 +1,7 @@
 // The mission calls of an environment's robot (EnvCore): victim reports, datagrams, relays,
 // link status and the score, as plain Python values. See docs/missions.md.
 
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include "bindings.h"
@@ -24,14 +25,32 @@ Mission& mission_of(EnvCore& e) {
 
 py::object or_none(bool present, py::object value) { return present ? std::move(value) : py::none(); }
 
+/// A report's picture from numpy: uint8, H x W (mono8), H x W x 3 (rgb8) or H x W x 4 (rgba8).
+msg::Image picture_of(const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
+  const auto nd = a.ndim();
+  const std::size_t channels = nd == 2 ? 1 : nd == 3 ? static_cast<std::size_t>(a.shape(2)) : 0;
+  if (channels != 1 && channels != 3 && channels != 4) {
+    throw Error("a report's image is a uint8 array of H x W (grey), H x W x 3 (RGB) or H x W x 4 (RGBA)");
+  }
+  msg::Image im;
+  im.height = static_cast<std::uint32_t>(a.shape(0));
+  im.width = static_cast<std::uint32_t>(a.shape(1));
+  im.encoding = channels == 1 ? "mono8" : channels == 3 ? "rgb8" : "rgba8";
+  im.step = static_cast<std::uint32_t>(im.width * channels);
+  im.data.assign(a.data(), a.data() + a.size());
+  return im;
+}
+
 }  // namespace
 
 void add_mission_methods(py::class_<EnvCore>& cls) {
   cls.def(
          "report",
-         [](EnvCore& e, double x, double y, double z) {
+         [](EnvCore& e, double x, double y, double z, const py::object& image) {
            Mission& m = mission_of(e);
-           const ReportReply r = m.report(e.robot_index(), {x, y, z});
+           const ReportReply r = image.is_none() ? m.report(e.robot_index(), {x, y, z})
+                                                 : m.report(e.robot_index(), {x, y, z},
+                                                            picture_of(image.cast<py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>>()));
            py::dict d;
            d["id"] = r.id;
            d["outcome"] = std::string(report_outcome_name(r.outcome));
@@ -43,7 +62,8 @@ void add_mission_methods(py::class_<EnvCore>& cls) {
            d["message"] = r.message;
            return d;
          },
-         py::arg("x"), py::arg("y"), py::arg("z") = 0.0, "reports a victim at (x, y, z) in the map frame; -> the referee's answer")
+         py::arg("x"), py::arg("y"), py::arg("z") = 0.0, py::arg("image") = py::none(),
+         "reports a victim at (x, y, z) in the map frame, with an optional picture (uint8 numpy array); -> the referee's answer")
       .def(
           "send",
           [](EnvCore& e, const std::string& to, const py::bytes& data) {

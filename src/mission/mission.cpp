@@ -34,6 +34,25 @@ nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::js
 
 }  // namespace
 
+std::string image_problem(const msg::Image& im) {
+  int channels = 0;
+  if (im.encoding == "rgb8" || im.encoding == "bgr8") channels = 3;
+  if (im.encoding == "rgba8" || im.encoding == "bgra8") channels = 4;
+  if (im.encoding == "mono8") channels = 1;
+  if (channels == 0) return "encoding '" + im.encoding.substr(0, 32) + "': a report's picture is rgb8, bgr8, rgba8, bgra8 or mono8";
+  constexpr std::uint32_t kMaxSide = 4096;
+  if (im.width == 0 || im.height == 0 || im.width > kMaxSide || im.height > kMaxSide) {
+    return "a picture of " + std::to_string(im.width) + " x " + std::to_string(im.height) + " pixels: each side must be 1 to 4096";
+  }
+  if (im.step < im.width * static_cast<std::uint32_t>(channels)) {
+    return "step " + std::to_string(im.step) + " is shorter than a row of " + std::to_string(im.width) + " " + im.encoding + " pixels";
+  }
+  if (im.data.size() != static_cast<std::size_t>(im.step) * im.height) {
+    return std::to_string(im.data.size()) + " bytes of data, expected step x height = " + std::to_string(static_cast<std::size_t>(im.step) * im.height);
+  }
+  return {};
+}
+
 Mission::Mission(const MissionSpec& spec, Simulation& sim)
     : spec_(spec),
       sim_(sim),
@@ -58,6 +77,8 @@ Mission::Mission(const MissionSpec& spec, Simulation& sim)
   }
   in_contact_updates_.assign(world.robots.size(), 0);
   in_contact_.assign(world.robots.size(), false);
+  last_report_.assign(world.robots.size(), std::nullopt);
+  waiting_image_.assign(world.robots.size(), std::nullopt);
 
   Bus& bus = sim_.bus();
   score_topic_ = bus.advertise("/rescue/score", "std_msgs/String", 0, true);
@@ -120,6 +141,23 @@ void Mission::after_step() {
 bool Mission::in_contact(int robot) const { return in_contact_.at(static_cast<std::size_t>(robot)); }
 
 ReportReply Mission::report(int robot, const Vec3& p_W) {
+  ReportReply reply = judge(robot, p_W);
+  publish_reply(robot, reply, p_W);
+  return reply;
+}
+
+ReportReply Mission::report(int robot, const Vec3& p_W, msg::Image image) {
+  ReportReply reply = judge(robot, p_W);
+  if (const std::string problem = keep_image(robot, reply, std::move(image)); !problem.empty()) {
+    reply.message += "; its picture was not kept: " + problem;
+  } else {
+    reply.message += "; with its picture";
+  }
+  publish_reply(robot, reply, p_W);
+  return reply;
+}
+
+ReportReply Mission::judge(int robot, const Vec3& p_W) {
   VictimReport r;
   r.robot = robot;
   r.p_W = p_W;
@@ -128,9 +166,48 @@ ReportReply Mission::report(int robot, const Vec3& p_W) {
   const double before = referee_.score();
   const std::uint64_t charged = referee_.counts().charged;
   ReportReply reply = referee_.judge(r);
-  publish_reply(robot, reply, p_W);
   if (referee_.score() != before || referee_.counts().charged != charged) publish_score();
   return reply;
+}
+
+std::string Mission::keep_image(int robot, const ReportReply& reply, msg::Image image) {
+  if (std::string problem = image_problem(image); !problem.empty()) return problem;
+  if (report_image_bytes_ + image.data.size() > kReportImageBytes) {
+    return "the run keeps at most " + std::to_string(kReportImageBytes >> 20) + " MiB of report pictures, and has " +
+           std::to_string(report_image_bytes_ >> 20) + " MiB";
+  }
+  report_image_bytes_ += image.data.size();
+  report_images_.push_back({{reply.id, robot, sim_.time().seconds(), reply.outcome, reply.victim}, std::move(image)});
+  return {};
+}
+
+std::string Mission::report_image(int robot, msg::Image image) {
+  const auto r = static_cast<std::size_t>(robot);
+  std::string problem = image_problem(image);
+  std::optional<LastReport>& last = last_report_.at(r);
+  if (problem.empty() && last && !last->has_image && last->stamp == image.header.stamp) {
+    const std::uint64_t id = last->reply.id;
+    problem = keep_image(robot, last->reply, std::move(image));
+    if (problem.empty()) last->has_image = true;
+    publish_image_result(robot, id, problem);
+    return problem;
+  }
+  if (problem.empty()) {
+    waiting_image_[r] = std::move(image);
+  } else {
+    publish_image_result(robot, 0, problem);
+  }
+  return problem;
+}
+
+void Mission::publish_image_result(int robot, std::uint64_t report, const std::string& problem) {
+  nlohmann::json j;
+  j["request"] = "report_image";
+  j["accepted"] = problem.empty();
+  j["id"] = report > 0 ? nlohmann::json(report) : nlohmann::json(nullptr);
+  if (!problem.empty()) j["reason"] = problem;
+  j["stamp"] = sim_.time().seconds();
+  sim_.bus().publish(result_topics_.at(static_cast<std::size_t>(robot)), msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
 }
 
 void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W) {
@@ -191,8 +268,20 @@ void Mission::add_inputs() {
         publish_reply(ri, reply, p);
         return;
       }
-      report(ri, p);
+      // a picture that came first with this stamp goes with it
+      std::optional<msg::Image>& waiting = waiting_image_[static_cast<std::size_t>(ri)];
+      const bool paired = waiting && waiting->header.stamp == pose.header.stamp;
+      ReportReply reply;
+      if (paired) {
+        reply = report(ri, p, std::move(*waiting));
+        waiting.reset();
+      } else {
+        reply = report(ri, p);
+      }
+      last_report_[static_cast<std::size_t>(ri)] = LastReport{pose.header.stamp, reply, paired};
     });
+    sim_.add_input({sim_.topic_name(ri, "rescue/report_image"), "sensor_msgs/Image", ri},
+                   [this, ri](const msg::Message& m) { report_image(ri, std::get<msg::Image>(m)); });
     sim_.add_input({sim_.topic_name(ri, "rescue/comms/send"), "std_msgs/String", ri}, [this, ri](const msg::Message& m) {
       nlohmann::json j;
       j["request"] = "send";
@@ -308,11 +397,13 @@ MissionResult Mission::result() const {
   }
   m.datagrams_dropped = network_.dropped(RadioDropReason::no_route) + network_.dropped(RadioDropReason::capacity);
   m.map = map_score_;
+  for (const ReportImage& p : report_images_) m.pictures.push_back(p.about);
   return m;
 }
 
 Mission::Memory Mission::save() const {
-  return Memory{referee_, network_, in_contact_updates_, in_contact_, next_link_ns_, next_status_ns_, visible_, seen_from_, map_score_};
+  return Memory{referee_,  network_,    in_contact_updates_, in_contact_,   next_link_ns_,  next_status_ns_,     visible_,
+                seen_from_, map_score_, last_report_,        waiting_image_, report_images_, report_image_bytes_};
 }
 
 void Mission::load(const Memory& m) {
@@ -325,6 +416,10 @@ void Mission::load(const Memory& m) {
   visible_ = m.visible;
   seen_from_ = m.seen_from;
   map_score_ = m.map_score;
+  last_report_ = m.last_report;
+  waiting_image_ = m.waiting_image;
+  report_images_ = m.report_images;
+  report_image_bytes_ = m.report_image_bytes;
 }
 
 void Mission::enable_map_scoring(const WorldSpec& world) {

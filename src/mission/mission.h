@@ -15,6 +15,8 @@
 /// subscribes (ROS 1, ROS 2):
 ///   /<robot>/rescue/report          geometry_msgs/PoseStamped: a victim at pose.position in
 ///                                   the map frame (header.frame_id "map" or empty)
+///   /<robot>/rescue/report_image    sensor_msgs/Image: the picture of a report, paired with
+///                                   the report of the same header.stamp (either may come first)
 ///   /<robot>/rescue/comms/send      std_msgs/String, JSON {"to", "data" | "text"}
 ///   /<robot>/rescue/drop_relay      std_msgs/String (content ignored): drop a relay here
 /// Driven from the stepping thread: after_step() after every Simulation step. The Simulation
@@ -52,6 +54,26 @@ struct MapScoreResult {
   std::string error;           ///< why the last map was refused, or ""
 };
 
+/// Which report a kept picture belongs to.
+struct ReportPicture {
+  std::uint64_t report = 0;   ///< the report's id (ReportReply::id)
+  int robot = -1;
+  double t = 0;               ///< sim time the picture was attached (s)
+  ReportOutcome outcome = ReportOutcome::invalid;
+  int victim = -1;            ///< as the report's reply
+};
+
+/// The picture a report came with, kept for the run's outputs (reports/ in the output folder).
+struct ReportImage {
+  ReportPicture about;
+  msg::Image image;           ///< rgb8, bgr8, rgba8, bgra8 or mono8 (image_problem)
+};
+
+/// Why `image` cannot be a report's picture ("" when it can): an encoding other than rgb8,
+/// bgr8, rgba8, bgra8 and mono8, a side of 0 or over 4096 pixels, a step shorter than a row, or
+/// data that is not step × height bytes.
+std::string image_problem(const msg::Image& image);
+
 /// What a mission came to, for summary.json and the score figure.
 struct MissionResult {
   std::string rules;                          ///< the rules preset
@@ -71,6 +93,7 @@ struct MissionResult {
   std::uint64_t datagrams_delivered = 0;       ///< copies handed to inboxes (a broadcast: one per neighbour)
   std::uint64_t datagrams_dropped = 0;        ///< no route or beyond capacity
   std::optional<MapScoreResult> map;          ///< with map scoring, once a map came
+  std::vector<ReportPicture> pictures;        ///< reports that came with a picture (Mission::report_images)
 };
 
 class Mission {
@@ -89,6 +112,18 @@ class Mission {
   /// A report by `robot` of a victim at p_W (map frame = world frame), judged now; the answer
   /// is also published on /<robot>/rescue/report_result, and the score when it changes.
   ReportReply report(int robot, const Vec3& p_W);
+  /// The same with its picture (checked by image_problem; a picture that is refused, or that
+  /// would take the kept pictures over kReportImageBytes, is left out and the reply says why in
+  /// `message`; the report is judged all the same).
+  ReportReply report(int robot, const Vec3& p_W, msg::Image image);
+  /// A picture for robot `robot`'s report of the same header.stamp: attached to its last
+  /// report if that has this stamp and no picture yet, else kept until such a report comes (a
+  /// newer picture replaces it). Returns "" or why it was refused (also published on
+  /// /<robot>/rescue/report_result).
+  std::string report_image(int robot, msg::Image image);
+  /// Every report picture kept, in the order they were attached.
+  const std::vector<ReportImage>& report_images() const { return report_images_; }
+  static constexpr std::size_t kReportImageBytes = std::size_t{256} << 20;
 
   /// Scores team maps against `world` (the WorldSpec the run was built from): adds the input
   /// /rescue/map (nav_msgs/OccupancyGrid in the map frame) and the latched /rescue/map_score;
@@ -131,6 +166,10 @@ class Mission {
   /// Publishes the datagrams delivered since `before` (inbox sizes per robot before deliver()).
   void publish_inboxes(const std::vector<std::size_t>& before);
   void publish_reply(int robot, const ReportReply& reply, const Vec3& p_W);
+  ReportReply judge(int robot, const Vec3& p_W);
+  /// Keeps `image` as report `reply`'s picture; "" or why not.
+  std::string keep_image(int robot, const ReportReply& reply, msg::Image image);
+  void publish_image_result(int robot, std::uint64_t report, const std::string& problem);
   void publish_comms_result(int robot, const std::string& json);
   void add_inputs();
   void publish_score();
@@ -159,6 +198,16 @@ class Mission {
   std::optional<MapScoreResult> map_score_;
   TopicId map_score_topic_ = kNoTopic;
   void update_visible();
+  // report pictures (in Memory too)
+  struct LastReport {
+    SimTime stamp;            ///< header.stamp of the report as it came in on the topic
+    ReportReply reply;
+    bool has_image = false;
+  };
+  std::vector<std::optional<LastReport>> last_report_;     ///< per robot: its last report from the topic
+  std::vector<std::optional<msg::Image>> waiting_image_;   ///< per robot: a picture whose report has not come
+  std::vector<ReportImage> report_images_;
+  std::size_t report_image_bytes_ = 0;
 };
 
 /// See Mission::save.
@@ -171,6 +220,10 @@ struct Mission::Memory {
   map_eval::Grid visible;
   std::vector<std::optional<Pose2>> seen_from;
   std::optional<MapScoreResult> map_score;
+  std::vector<std::optional<LastReport>> last_report;
+  std::vector<std::optional<msg::Image>> waiting_image;
+  std::vector<ReportImage> report_images;
+  std::size_t report_image_bytes = 0;
 };
 
 }  // namespace rescuesim

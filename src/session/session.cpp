@@ -301,7 +301,7 @@ void Session::mission_step() {
       const Vec3 centre = sim_->world().victims[v].centre;
       const Vec2 p_B = rs.base.X_WB.to_pose2().inverse().transform(centre.head<2>());
       const Vec2 p_W = (c.X_WO[r] * ex->X_MO() * rs.odom).transform(p_B);
-      c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z())});
+      c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z()), victim_picture(ri)});
       c.known[r][v] = true;
     }
     const bool contact = mission_->in_contact(ri);
@@ -311,7 +311,12 @@ void Session::mission_step() {
       c.lost_contact[r] = s.time;
     }
     if (!c.pending[r].empty() && contact && s.time >= c.next_report[r]) {
-      mission_->report(ri, c.pending[r].front().p_W);
+      PendingReport& next = c.pending[r].front();
+      if (next.picture) {
+        mission_->report(ri, next.p_W, std::move(*next.picture));
+      } else {
+        mission_->report(ri, next.p_W);
+      }
       c.pending[r].erase(c.pending[r].begin());
       c.next_report[r] = s.time + gap;
     }

@@ -151,6 +151,9 @@ class Session {
   /// After every step with a mission: its links and datagrams, and the built-in controllers' reports.
   void mission_step();
   void write_camera_frames(const std::filesystem::path& dir) const;
+  /// Robot `robot`'s last thermal frame as mono8 through its sensor's temperature window (the
+  /// picture of a built-in report), or nothing when its thermal camera does not render.
+  std::optional<msg::Image> victim_picture(int robot) const;
   bool world_has_no_thermal() const;
 
   Scenario scenario_;

@@ -14,6 +14,7 @@ namespace rescuesim {
 struct PendingReport {
   int victim = -1;
   Vec3 p_W = Vec3::Zero();  ///< where the robot believes the victim is
+  std::optional<msg::Image> picture;  ///< its thermal camera's frame when it saw the victim (cameras rendering)
 };
 
 /// What a teammate last said over the radio (Session::mission_step's team rule), world frame.

@@ -1,5 +1,5 @@
 // The files a run leaves behind: summary.json, trajectory.csv, world.svg, overview.png,
-// score.png (with a mission) and sensors/laser.png, each written atomically.
+// score.png and reports/ (with a mission) and sensors/laser.png, each written atomically.
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +18,36 @@ namespace rescuesim {
 
 namespace {
 
+/// A thermal pixel (mono16, centikelvin) as grey through the sensor's mono8 window.
+std::uint8_t thermal_grey(std::uint16_t v, const CameraSpec& camera) {
+  const double t = (v * 0.01 - camera.mono8_min) / (camera.mono8_max - camera.mono8_min);
+  return static_cast<std::uint8_t>(std::clamp(std::lround(255 * t), 0L, 255L));
+}
+
+/// Where a report's picture is written, relative to the output folder: the report's id, robot
+/// and outcome ("reports/3_r1_accepted.png").
+std::string picture_file(const ReportPicture& p, const std::vector<std::string>& robot_names) {
+  return "reports/" + std::to_string(p.report) + "_" + robot_names.at(static_cast<std::size_t>(p.robot)) + "_" +
+         std::string(report_outcome_name(p.outcome)) + ".png";
+}
+
+/// A report's picture (an encoding image_problem accepts) as a canvas.
+Canvas picture_canvas(const msg::Image& m) {
+  const std::size_t channels = m.encoding == "mono8" ? 1 : m.encoding.size() == 5 ? 4 : 3;  // rgba8/bgra8 : rgb8/bgr8
+  const bool bgr = m.encoding[0] == 'b';
+  Canvas img(static_cast<int>(m.width), static_cast<int>(m.height));
+  for (std::uint32_t y = 0; y < m.height; ++y) {
+    for (std::uint32_t x = 0; x < m.width; ++x) {
+      const std::uint8_t* p = &m.data[static_cast<std::size_t>(y) * m.step + x * channels];
+      const Rgb8 c = channels == 1 ? Rgb8{p[0], p[0], p[0]} : bgr ? Rgb8{p[2], p[1], p[0]} : Rgb8{p[0], p[1], p[2]};
+      img.set(static_cast<int>(x), static_cast<int>(y), c);
+    }
+  }
+  return img;
+}
+
 /// The mission's part of summary.json: score, reports by outcome, victims as the referee saw
-/// them, and the radio's figures (see docs/missions.md).
+/// them, the reports' pictures, and the radio's figures (see docs/missions.md).
 nlohmann::ordered_json mission_json(const MissionResult& m) {
   nlohmann::ordered_json j;
   j["rules"] = m.rules;
@@ -39,6 +67,15 @@ nlohmann::ordered_json mission_json(const MissionResult& m) {
     victims.push_back({{"name", m.victim_names[v]}, {"found", s.found}, {"time_s", or_null(s.time)},
                        {"by", s.found ? nlohmann::ordered_json(m.robot_names[static_cast<std::size_t>(s.by)]) : nlohmann::ordered_json()},
                        {"error_m", or_null(s.error_m)}});
+  }
+  auto& pictures = j["report_pictures"] = nlohmann::ordered_json::array();
+  for (const ReportPicture& p : m.pictures) {
+    pictures.push_back({{"report", p.report},
+                        {"robot", m.robot_names.at(static_cast<std::size_t>(p.robot))},
+                        {"time_s", p.t},
+                        {"outcome", report_outcome_name(p.outcome)},
+                        {"victim", p.victim >= 0 ? nlohmann::ordered_json(m.victim_names.at(static_cast<std::size_t>(p.victim))) : nlohmann::ordered_json()},
+                        {"file", picture_file(p, m.robot_names)}});
   }
   auto& robots = j["robots"] = nlohmann::ordered_json::array();
   for (std::size_t r = 0; r < m.robot_names.size(); ++r) {
@@ -227,9 +264,7 @@ void Session::write_camera_frames(const std::filesystem::path& dir) const {
           // thermal: the mono8 window of the sensor, as grey
           std::uint16_t v;
           std::memcpy(&v, &m.data[i * 2], 2);
-          const SensorSpec* s = world.robots[static_cast<std::size_t>(f.robot)].spec.find_sensor(f.sensor);
-          const double t = (v * 0.01 - s->camera.mono8_min) / (s->camera.mono8_max - s->camera.mono8_min);
-          const auto g = static_cast<std::uint8_t>(std::clamp(std::lround(255 * t), 0L, 255L));
+          const std::uint8_t g = thermal_grey(v, world.robots[static_cast<std::size_t>(f.robot)].spec.find_sensor(f.sensor)->camera);
           c = {g, g, g};
         }
         img.set(static_cast<int>(x), static_cast<int>(y), c);
@@ -238,6 +273,33 @@ void Session::write_camera_frames(const std::filesystem::path& dir) const {
     const std::string name = (world.robots.size() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
     img.write_png(dir / "sensors" / name);
   }
+}
+
+std::optional<msg::Image> Session::victim_picture(int robot) const {
+  if (!cameras_) return std::nullopt;
+  const RobotSpec& spec = sim_->world().robots.at(static_cast<std::size_t>(robot)).spec;
+  const SensorSpec* thermal = nullptr;  // the last thermal camera, as the victim detectors take it
+  for (const SensorSpec& s : spec.sensors) {
+    if (s.type == SensorSpec::Type::thermal_camera && s.enabled) thermal = &s;
+  }
+  if (thermal == nullptr) return std::nullopt;
+  for (const auto& f : cameras_->last_frames()) {
+    if (f.robot != robot || f.sensor != thermal->name || f.image.encoding != "mono16") continue;
+    msg::Image grey;
+    grey.header = f.image.header;
+    grey.width = f.image.width;
+    grey.height = f.image.height;
+    grey.encoding = "mono8";
+    grey.step = grey.width;
+    grey.data.resize(static_cast<std::size_t>(grey.width) * grey.height);
+    for (std::size_t i = 0; i < grey.data.size(); ++i) {
+      std::uint16_t v;
+      std::memcpy(&v, &f.image.data[i * 2], 2);
+      grey.data[i] = thermal_grey(v, thermal->camera);
+    }
+    return grey;
+  }
+  return std::nullopt;
 }
 
 void Session::write_outputs(const std::filesystem::path& dir, const RunResult& result) const {
@@ -294,6 +356,7 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
                   m.victims_found, m.victims, static_cast<unsigned long long>(m.counts[ReportOutcome::false_report]), m.rules.c_str(),
                   m.radio_model.c_str());
     score_plot(m, result.sim_time, title).write_png(dir / "score.png");
+    for (const ReportImage& p : mission_->report_images()) picture_canvas(p.image).write_png(dir / picture_file(p.about, m.robot_names));
   }
 
   write_camera_frames(dir);

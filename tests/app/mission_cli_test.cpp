@@ -51,6 +51,24 @@ TEST(MissionCli, ARunWritesTheScoreAndItsFigure) {
   EXPECT_EQ(m["victims_found"], m["reports"]["accepted"]);
   // every victim the run saw was reported by its finder, within the time left after the sighting
   EXPECT_LE(m["victims_found"].get<int>(), j["victims_found"].get<int>());
+  // cameras render, so each report carries the finder's thermal frame of the sighting (the
+  // rescue robot's 160 x 120 thermal camera), written as reports/<id>_<robot>_<outcome>.png
+  ASSERT_GT(m["reports"]["charged"].get<int>(), 0) << "seed 5 sees and reports both victims";
+  ASSERT_EQ(m["report_pictures"].size(), m["reports"]["charged"].get<std::size_t>()) << m.dump(2);
+  for (const auto& p : m["report_pictures"]) {
+    const std::string file = p["file"];
+    EXPECT_EQ(file, "reports/" + std::to_string(p["report"].get<int>()) + "_" + p["robot"].get<std::string>() + "_" +
+                        p["outcome"].get<std::string>() + ".png");
+    const std::string png = read_file(dir / "out" / file, 1 << 20);
+    ASSERT_GT(png.size(), 24u) << file;
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+    const auto be32 = [&](std::size_t at) {
+      return (static_cast<unsigned>(static_cast<unsigned char>(png[at])) << 24) | (static_cast<unsigned char>(png[at + 1]) << 16) |
+             (static_cast<unsigned char>(png[at + 2]) << 8) | static_cast<unsigned char>(png[at + 3]);
+    };
+    EXPECT_EQ(be32(16), 160u) << file;  // IHDR width, height
+    EXPECT_EQ(be32(20), 120u) << file;
+  }
 }
 
 TEST(MissionCli, BadMissionBlocksAreInputErrors) {

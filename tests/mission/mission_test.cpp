@@ -190,7 +190,7 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   Simulation sim(line_world({}, {0, 5}));
   Mission mission(wss_mission(), sim);
   const std::vector<HostInput> inputs = sim.inputs();
-  ASSERT_EQ(inputs.size(), 6u);  // per robot: report, comms/send, drop_relay
+  ASSERT_EQ(inputs.size(), 8u);  // per robot: report, comms/send, drop_relay, report_image
   EXPECT_EQ(inputs[0].type, "geometry_msgs/PoseStamped");
   const int report = input_index(sim, "/a/rescue/report"), send = input_index(sim, "/a/rescue/comms/send"),
             relay = input_index(sim, "/a/rescue/drop_relay");
@@ -275,6 +275,104 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   sim.step();  // 4096 drops against a budget of 11 left: 11 relays, the rest refused with a reason
   EXPECT_EQ(mission.result().relays_dropped, (std::vector<int>{12, 0}));
   EXPECT_EQ(results_a.back()["accepted"], false);
+}
+
+/// A w x h rgb8 picture stamped `stamp`, every pixel (r, g, b).
+msg::Image picture(std::uint32_t w, std::uint32_t h, SimTime stamp, std::uint8_t r = 200, std::uint8_t g = 40, std::uint8_t b = 10) {
+  msg::Image im;
+  im.header.stamp = stamp;
+  im.width = w;
+  im.height = h;
+  im.encoding = "rgb8";
+  im.step = 3 * w;
+  for (std::uint32_t i = 0; i < w * h; ++i) im.data.insert(im.data.end(), {r, g, b});
+  return im;
+}
+
+TEST(Mission, AReportsPictureGoesWithTheReportOfItsStampInEitherOrder) {
+  Simulation sim(line_world({}, {0, 5}));
+  Mission mission(wss_mission(), sim);
+  const int report = input_index(sim, "/a/rescue/report"), image = input_index(sim, "/a/rescue/report_image");
+  ASSERT_GE(image, 0);
+  EXPECT_EQ(sim.inputs()[static_cast<std::size_t>(image)].type, "sensor_msgs/Image");
+  std::vector<nlohmann::json> answers;
+  sim.bus().subscribe("/a/rescue/report_result",
+                      [&](const Topic&, const msg::Message& m) { answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+  const auto submit = [&](int index, msg::Message m) { return sim.submit_input(static_cast<std::size_t>(index), m); };
+  msg::PoseStamped p;
+  p.header.frame_id = "map";
+
+  // picture first (stamp 1 s), then its report: kept with report 1
+  p.header.stamp = SimTime::from_seconds(1);
+  p.pose.p = {1, 0, 0};
+  ASSERT_TRUE(submit(image, picture(4, 2, p.header.stamp)));
+  ASSERT_TRUE(submit(report, p));
+  sim.step();
+  ASSERT_EQ(answers.size(), 1u);
+  EXPECT_EQ(answers[0]["id"], 1);
+  EXPECT_NE(answers[0]["message"].get<std::string>().find("with its picture"), std::string::npos) << answers[0];
+  // report first (stamp 2 s), then a picture of another stamp (kept waiting), then its own
+  p.header.stamp = SimTime::from_seconds(2);
+  p.pose.p = {2, 0, 0};
+  ASSERT_TRUE(submit(report, p));
+  ASSERT_TRUE(submit(image, picture(3, 3, SimTime::from_seconds(7))));
+  ASSERT_TRUE(submit(image, picture(2, 5, p.header.stamp, 1, 2, 3)));
+  sim.step();
+  // the report (no picture yet); the picture of stamp 7 s waits, silently; its own is answered
+  ASSERT_EQ(answers.size(), 3u);
+  EXPECT_EQ(answers[1]["id"], 2);
+  EXPECT_EQ(answers[1]["message"].get<std::string>().find("picture"), std::string::npos) << answers[1];
+  EXPECT_EQ(answers[2], nlohmann::json::parse(R"({"request": "report_image", "accepted": true, "id": 2, "stamp": )" +
+                                              answers[2]["stamp"].dump() + "}"));
+  const auto& pictures = mission.report_images();
+  ASSERT_EQ(pictures.size(), 2u);
+  EXPECT_EQ(pictures[0].about.report, 1u);
+  EXPECT_EQ(pictures[0].image.width, 4u);
+  EXPECT_EQ(pictures[0].about.outcome, ReportOutcome::false_report);  // no victims in this world
+  EXPECT_EQ(pictures[1].about.report, 2u);
+  EXPECT_EQ(pictures[1].image.height, 5u);
+  EXPECT_EQ(pictures[1].image.data[0], 1);
+  EXPECT_EQ(mission.result().pictures.size(), 2u);
+  // a second picture for report 2 is not taken: it waits for a report of its stamp
+  ASSERT_TRUE(submit(image, picture(2, 2, p.header.stamp)));
+  sim.step();
+  EXPECT_EQ(mission.report_images().size(), 2u);
+  EXPECT_EQ(answers.size(), 3u);
+}
+
+TEST(Mission, APictureThatIsNoPictureIsRefusedWithTheReasonAndTheReportStillCounts) {
+  Simulation sim(line_world({}, {0, 5}));
+  Mission mission(wss_mission(), sim);
+  const int image = input_index(sim, "/a/rescue/report_image");
+  std::vector<nlohmann::json> answers;
+  sim.bus().subscribe("/a/rescue/report_result",
+                      [&](const Topic&, const msg::Message& m) { answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+  msg::Image depth = picture(2, 2, SimTime{});
+  depth.encoding = "32FC1";
+  msg::Image short_data = picture(4, 4, SimTime{});
+  short_data.data.resize(40);
+  msg::Image huge = picture(1, 1, SimTime{});
+  huge.width = 5000;
+  msg::Image narrow = picture(4, 1, SimTime{});
+  narrow.step = 8;
+  for (const msg::Image& bad : {depth, short_data, huge, narrow}) ASSERT_TRUE(sim.submit_input(static_cast<std::size_t>(image), bad));
+  sim.step();
+  ASSERT_EQ(answers.size(), 4u);
+  const char* why[] = {"encoding '32FC1': a report's picture is rgb8, bgr8, rgba8, bgra8 or mono8",
+                       "40 bytes of data, expected step x height = 48",
+                       "a picture of 5000 x 1 pixels: each side must be 1 to 4096",
+                       "step 8 is shorter than a row of 4 rgb8 pixels"};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(answers[i]["request"], "report_image");
+    EXPECT_EQ(answers[i]["accepted"], false);
+    EXPECT_EQ(answers[i]["reason"], why[i]) << answers[i];
+  }
+  // in-process (the built-in robots, Python): the report is judged, its bad picture left out
+  const ReportReply r = mission.report(0, {1, 0, 0}, depth);
+  EXPECT_EQ(r.outcome, ReportOutcome::false_report);
+  EXPECT_NE(r.message.find("its picture was not kept: encoding '32FC1'"), std::string::npos) << r.message;
+  EXPECT_TRUE(mission.report_images().empty());
+  EXPECT_EQ(mission.referee().counts().charged, 1u);
 }
 
 TEST(Mission, ATeamMapIsScoredAgainstTheWallsTheRobotsCouldSee) {

@@ -65,6 +65,24 @@ class Reports(unittest.TestCase):
         self.assertEqual(score["false_reports"], 1)
         self.assertEqual(score["reports"], 3)
 
+    def test_a_report_takes_a_picture_as_a_numpy_array(self):
+        import numpy as np
+
+        picture = np.zeros((4, 6, 3), dtype=np.uint8)
+        picture[:, :, 0] = 255
+        right = self.env.report(7.0, 5.3, image=picture)
+        self.assertEqual(right["outcome"], "accepted", right["message"])
+        self.assertIn("with its picture", right["message"])
+        self.wait(0.6)
+        # an array that is no picture is a usage error, raised before anything is judged
+        with self.assertRaisesRegex(rescuesim.Error, "H x W x 3"):
+            self.env.report(6.8, 5.0, image=np.zeros((4, 6, 2), dtype=np.uint8))
+        self.assertEqual(self.env.mission_score()["reports"], 1)
+        # a picture the referee cannot keep (over 4096 pixels a side): judged, the picture left out
+        again = self.env.report(6.8, 5.0, image=np.zeros((1, 4097), dtype=np.uint8))
+        self.assertEqual(again["outcome"], "duplicate")
+        self.assertIn("its picture was not kept: a picture of 4097 x 1 pixels", again["message"])
+
     def test_a_flood_and_nan_are_answered_not_scored(self):
         outcomes = [self.env.report(9.0, 9.0)["outcome"] for _ in range(50)]
         self.assertEqual(outcomes[0], "false")
