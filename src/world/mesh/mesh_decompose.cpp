@@ -21,14 +21,12 @@
 // up to 1.45 times its volume). Pieces that together are no tighter than the single hull are
 // dropped for it.
 
-#include <HACD/hacdHACD.h>
-
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <mutex>
 #include <string>
 
+#include "physics/hull/bullet_hull.h"
 #include "world/mesh/mesh.h"
 #include "world/mesh/mesh_detail.h"
 
@@ -39,54 +37,11 @@ namespace {
 /// The most triangles handed to HACD (about a second of work).
 constexpr std::size_t kHacdTriangles = 2000;
 
-std::mutex hacd_mutex;
-
 /// Volume by the divergence theorem with its sign: negative for a mesh wound inward.
 double signed_volume(const TriangleMesh& m) {
   double v = 0;
   for (const auto& t : m.triangles) v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
   return v;
-}
-
-/// HACD's partition of an outward mesh: for each triangle, the index of its cluster (or -1).
-std::vector<long> hacd_partition(const TriangleMesh& mesh, const DecompositionOptions& options, std::size_t& clusters) {
-  // HACD scales and shifts the points it is given in place, so it gets copies
-  std::vector<HACD::Vec3<HACD::Real>> points;
-  Vec3 lo = mesh.vertices.front(), hi = mesh.vertices.front();
-  for (const Vec3& v : mesh.vertices) {
-    points.emplace_back(v.x(), v.y(), v.z());
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  std::vector<HACD::Vec3<long>> triangles;
-  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-
-  HACD::HACD hacd;
-  hacd.SetPoints(points.data());
-  hacd.SetNPoints(points.size());
-  hacd.SetTriangles(triangles.data());
-  hacd.SetNTriangles(triangles.size());
-  // HACD measures concavity after scaling the bounding-box diagonal to 2 * its scale factor
-  hacd.SetConcavity(options.concavity * 2.0 * hacd.GetScaleFactor() / (hi - lo).norm());
-  // merge as far as the concavity allows; too many pieces are merged afterwards, by volume
-  hacd.SetNClusters(1);
-  hacd.SetNVerticesPerCH(static_cast<std::size_t>(options.max_vertices_per_hull));
-  // probes for concavity: triangle centres (concavity inside large faces) and the neighbouring
-  // clusters' points (a merge that would swallow a notch); without the second, the flat top and
-  // bottom of a finely meshed L merge into one piece. The ray-cast "extra distance points" cost
-  // a pass over all triangles per triangle and helped no test shape.
-  hacd.SetAddFacesPoints(true);
-  hacd.SetAddNeighboursDistPoints(true);
-  hacd.SetAddExtraDistPoints(false);
-
-  const std::lock_guard<std::mutex> lock(hacd_mutex);
-  if (!hacd.Compute(false)) return {};
-  clusters = hacd.GetNClusters();
-  std::vector<long> partition(hacd.GetPartition(), hacd.GetPartition() + triangles.size());
-  for (long& p : partition) {
-    if (p < 0 || static_cast<std::size_t>(p) >= clusters) p = -1;
-  }
-  return partition;
 }
 
 /// The exact hull of each HACD cluster of `mesh`, made of the original vertices that fell into
@@ -95,7 +50,8 @@ std::vector<TriangleMesh> hacd_pieces(const TriangleMesh& mesh, const Decomposit
   const mesh_detail::ClusteredMesh coarse = mesh_detail::coarsen(mesh, kHacdTriangles);
   if (coarse.mesh.triangles.empty()) return {};
   std::size_t clusters = 0;
-  const std::vector<long> partition = hacd_partition(coarse.mesh, options, clusters);
+  const std::vector<long> partition =
+      bullet_hull::hacd_partition(coarse.mesh.vertices, coarse.mesh.triangles, options.concavity, options.max_vertices_per_hull, clusters);
   if (partition.empty()) return {};
 
   // the clusters each coarse vertex touches, then each original vertex into those clusters

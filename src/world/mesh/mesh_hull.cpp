@@ -1,5 +1,5 @@
-// convex_hull: Bullet's exact hull (btConvexHullComputer), its faces fanned into triangles, then
-// reduced to the vertex budget.
+// convex_hull: Bullet's exact hull (btConvexHullComputer, through physics/hull), its faces fanned
+// into triangles, then reduced to the vertex budget.
 //
 // How the reduction works and what it costs: the reduced hull is the hull of a subset of the exact
 // hull's vertices, chosen greedily "farthest outside first" (the incremental step of quickhull,
@@ -16,12 +16,11 @@
 // 30 000-triangle sphere mesh (14 400 hull vertices) takes 25 ms for the exact hull and 100 ms
 // more to reduce it to 64 vertices.
 
-#include <LinearMath/btConvexHullComputer.h>
-
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <string>
 
+#include "physics/hull/bullet_hull.h"
 #include "world/mesh/mesh.h"
 
 namespace rescuesim {
@@ -59,27 +58,13 @@ void check_spread(const std::vector<Vec3>& points) {
   if (spread[0] <= tolerance) throw Error("convex_hull: the points all lie in a plane, so they enclose no volume");
 }
 
-/// The exact hull of `points` by Bullet, with the input's own coordinates (Bullet works in float
-/// internally; its original_vertex_index gives back our doubles) and outward triangles.
+/// The exact hull of `points` by Bullet, with the input's own coordinates and outward triangles.
 TriangleMesh exact_hull(const std::vector<Vec3>& points) {
-  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles for Bullet");
-  btConvexHullComputer computer;
-  computer.compute(points.front().data(), static_cast<int>(sizeof(Vec3)), static_cast<int>(points.size()), 0, 0);
-
+  const bullet_hull::Hull h = bullet_hull::exact_hull(points);
   TriangleMesh hull;
-  hull.vertices.reserve(static_cast<std::size_t>(computer.vertices.size()));
-  for (int i = 0; i < computer.vertices.size(); ++i) hull.vertices.push_back(points[computer.original_vertex_index[i]]);
-
-  // each face is a planar convex polygon given by a counter-clockwise edge loop: fan it from its
-  // first vertex (the guard stops a malformed loop)
-  for (int f = 0; f < computer.faces.size(); ++f) {
-    const btConvexHullComputer::Edge* first = &computer.edges[computer.faces[f]];
-    const int apex = first->getSourceVertex();
-    const btConvexHullComputer::Edge* e = first->getNextEdgeOfFace();
-    for (int guard = 0; e->getTargetVertex() != apex && guard < computer.edges.size(); ++guard, e = e->getNextEdgeOfFace()) {
-      hull.triangles.push_back({apex, e->getSourceVertex(), e->getTargetVertex()});
-    }
-  }
+  hull.vertices.reserve(h.vertices.size());
+  for (int i : h.vertices) hull.vertices.push_back(points[static_cast<std::size_t>(i)]);
+  hull.triangles = h.triangles;
   orient_outward(hull);
   return hull;
 }
