@@ -3,10 +3,10 @@
 // ±inf, NaN) as null because JSON has no literal for them. And the way back (from_json), for
 // what Foxglove clients publish: the same field list read with nlohmann::json.
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -253,8 +253,8 @@ class JsonReader {
  private:
   struct Level {
     const nlohmann::json* object;
-    std::size_t used = 0;  ///< keys of `object` read as fields
-    bool named = false;    ///< pushed on path_
+    std::vector<std::string_view> read;  ///< keys of `object` read as fields
+    bool named = false;                  ///< pushed on path_
   };
 
   static std::string shown(const nlohmann::json& j) {
@@ -264,13 +264,13 @@ class JsonReader {
   void enter(const nlohmann::json& j, const char* name, std::int64_t index = -1) {
     if (name != nullptr) path_.push(name, index);
     if (!j.is_object()) path_.fail(nullptr, "expected an object, got " + shown(j));
-    levels_.push_back({&j, 0, name != nullptr});
+    levels_.push_back({&j, {}, name != nullptr});
   }
   void leave() {
     const Level& l = levels_.back();
-    if (l.used < l.object->size()) {
-      for (const auto& [key, v] : l.object->items()) {
-        if (read_.count({l.object, key}) == 0) path_.fail(key.c_str(), "no such field");
+    if (l.read.size() < l.object->size()) {
+      for (const auto& item : l.object->items()) {
+        if (std::find(l.read.begin(), l.read.end(), item.key()) == l.read.end()) path_.fail(item.key().c_str(), "no such field");
       }
     }
     if (l.named) path_.pop();
@@ -282,8 +282,7 @@ class JsonReader {
     auto it = l.object->find(n.ros1);
     if (it == l.object->end() && std::string_view(n.ros1) != n.ros2) it = l.object->find(n.ros2);
     if (it == l.object->end()) return nullptr;
-    ++l.used;
-    read_.insert({l.object, it.key()});
+    l.read.push_back(it.key());
     return &*it;
   }
   template <class T>
@@ -329,7 +328,6 @@ class JsonReader {
 
   wire::FieldPath path_;
   std::vector<Level> levels_;
-  std::set<std::pair<const nlohmann::json*, std::string>> read_;  ///< (object, key) pairs read as fields
 };
 
 }  // namespace
@@ -357,6 +355,9 @@ Message from_json(const TypeSupport& type, std::string_view text) {
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte says where; the library's own text repeats it with its error id
     throw Error(type.ros1_name + ": not valid JSON at byte " + std::to_string(e.byte) + " of " + std::to_string(text.size()));
+  } catch (const nlohmann::json::exception&) {
+    // a number beyond a double's range (out_of_range 406), found by fuzzing
+    throw Error(type.ros1_name + ": not valid JSON: a number out of range");
   }
   return fields::with_alternative(type.variant_index, [&](auto id) -> Message {
     using T = typename decltype(id)::type;

@@ -283,23 +283,21 @@ std::optional<msg::Image> Session::victim_picture(int robot) const {
     if (s.type == SensorSpec::Type::thermal_camera && s.enabled) thermal = &s;
   }
   if (thermal == nullptr) return std::nullopt;
-  for (const auto& f : cameras_->last_frames()) {
-    if (f.robot != robot || f.sensor != thermal->name || f.image.encoding != "mono16") continue;
-    msg::Image grey;
-    grey.header = f.image.header;
-    grey.width = f.image.width;
-    grey.height = f.image.height;
-    grey.encoding = "mono8";
-    grey.step = grey.width;
-    grey.data.resize(static_cast<std::size_t>(grey.width) * grey.height);
-    for (std::size_t i = 0; i < grey.data.size(); ++i) {
-      std::uint16_t v;
-      std::memcpy(&v, &f.image.data[i * 2], 2);
-      grey.data[i] = thermal_grey(v, thermal->camera);
-    }
-    return grey;
+  const msg::Image* frame = cameras_->last_frame(robot, thermal->name);
+  if (frame == nullptr || frame->encoding != "mono16") return std::nullopt;
+  msg::Image grey;
+  grey.header = frame->header;
+  grey.width = frame->width;
+  grey.height = frame->height;
+  grey.encoding = "mono8";
+  grey.step = grey.width;
+  grey.data.resize(static_cast<std::size_t>(grey.width) * grey.height);
+  for (std::size_t i = 0; i < grey.data.size(); ++i) {
+    std::uint16_t v;
+    std::memcpy(&v, &frame->data[i * 2], 2);
+    grey.data[i] = thermal_grey(v, thermal->camera);
   }
-  return std::nullopt;
+  return grey;
 }
 
 void Session::write_outputs(const std::filesystem::path& dir, const RunResult& result) const {

@@ -162,6 +162,7 @@ TEST(JsonRead, BadInputNamesTheFieldAndWhatWasExpected) {
     return std::string("(no error)");
   };
   EXPECT_EQ(error("geometry_msgs/Twist", "{"), "geometry_msgs/Twist: not valid JSON at byte 2 of 1");
+  EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":{"x":4e999}})"), "geometry_msgs/Twist: not valid JSON: a number out of range");
   EXPECT_EQ(error("geometry_msgs/Twist", "[1]"), "geometry_msgs/Twist: expected an object, got [1]");
   EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":{"x":"fast"}})"), "geometry_msgs/Twist: linear.x: expected a number, got \"fast\"");
   EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":[1,2,3]})"), "geometry_msgs/Twist: linear: expected an object, got [1,2,3]");

@@ -175,6 +175,13 @@ void RenderCameraService::deliver(const World& world, State& state, SimTime now,
 
 std::vector<RenderCameraService::LastFrame> RenderCameraService::last_frames() const { return last_; }
 
+const msg::Image* RenderCameraService::last_frame(int robot, const std::string& sensor) const {
+  for (const LastFrame& f : last_) {
+    if (f.robot == robot && f.sensor == sensor) return &f.image;
+  }
+  return nullptr;
+}
+
 RenderCameraService::InFlight RenderCameraService::in_flight() const {
   std::lock_guard lock(mutex_);
   return InFlight{{pending_.begin(), pending_.end()}};

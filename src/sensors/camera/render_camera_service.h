@@ -56,6 +56,9 @@ class RenderCameraService : public CameraService {
     msg::Image image;
   };
   std::vector<LastFrame> last_frames() const;
+  /// The last frame of robot `robot`'s camera `sensor`, or nullptr before its first; valid until
+  /// the next deliver().
+  const msg::Image* last_frame(int robot, const std::string& sensor) const;
 
   struct Job;
   /// The frames sampled and not yet delivered, as what to render (the State each shows, its
