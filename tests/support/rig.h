@@ -29,6 +29,21 @@ inline WorldSpec room_spec(double size = 20.0, Pose2 start = {0, 0, 0}) {
   return w;
 }
 
+/// The mission bridge tests' world: a 20 m room_spec with robots "robot" at (0, -2) and
+/// "robot2" at (0, 2), 4 m apart, and victim "v1" at (5, 0).
+inline WorldSpec two_robots_and_a_victim() {
+  WorldSpec spec = room_spec(20.0, {0, -2, 0});
+  RobotPlacement second;
+  second.name = "robot2";
+  second.start = {0, 2, 0};
+  spec.robots.push_back(second);
+  VictimSpec v;
+  v.name = "v1";
+  v.pose = {5, 0, 0};
+  spec.victims.push_back(v);
+  return spec;
+}
+
 struct Rig {
   World world;
   std::unique_ptr<Physics> physics;

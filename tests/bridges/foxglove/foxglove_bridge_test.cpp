@@ -412,16 +412,7 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
 TEST_F(FoxgloveServer, AMissionsReportsAndDatagramsComeFromAClientToo) {
   // two robots 4 m apart in a 20 m room, a victim at (5, 0) (as the ROS 2 mission test); the
   // client reports it 0.5 m off (0.3, 0.4) in json and sends robot2 a datagram in cdr
-  WorldSpec spec = testing::room_spec(20.0, {0, -2, 0});
-  RobotPlacement second;
-  second.name = "robot2";
-  second.start = {0, 2, 0};
-  spec.robots.push_back(second);
-  VictimSpec v;
-  v.name = "v1";
-  v.pose = {5, 0, 0};
-  spec.victims.push_back(v);
-  Simulation sim(compile_world(spec, builtin_models()));
+  Simulation sim(compile_world(testing::two_robots_and_a_victim(), builtin_models()));
   Mission mission(MissionSpec{}, sim);  // ideal radio, RoboCup rules
   FoxgloveOptions options;
   options.port = free_local_port();

@@ -33,16 +33,7 @@ TEST(Ros2MissionTopics, ADatagramCrossesTheRadioAndAReportIsAnswered) {
            1);
   const int domain = 81 + static_cast<int>(::getpid() % 80);  // see dds_participant_test.cpp
   // two robots 4 m apart in a 20 m room, a victim at (5, 0)
-  WorldSpec spec = testing::room_spec(20.0, {0, -2, 0});
-  RobotPlacement second;
-  second.name = "robot2";
-  second.start = {0, 2, 0};
-  spec.robots.push_back(second);
-  VictimSpec v;
-  v.name = "v1";
-  v.pose = {5, 0, 0};
-  spec.victims.push_back(v);
-  Simulation sim(compile_world(spec, builtin_models()));
+  Simulation sim(compile_world(testing::two_robots_and_a_victim(), builtin_models()));
   Mission mission(MissionSpec{}, sim);  // ideal radio, RoboCup rules
   Ros2Options o;
   o.domain_id = domain;
