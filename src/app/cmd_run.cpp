@@ -146,8 +146,8 @@ int run(const RunCommand& c) {
     for (std::size_t i = 0; i < m.robot_names.size(); ++i) std::printf(" %s %.0f%%", m.robot_names[i].c_str(), 100 * m.contact_fraction[i]);
     std::printf("\n");
   }
-  std::printf("wrote %s/{summary.json, overview.png,%s trajectory.csv, world.svg, sensors/}\n", out.string().c_str(),
-              r.mission ? " score.png," : "");
+  std::printf("wrote %s/{summary.json, overview.png,%s%s trajectory.csv, world.svg, sensors/}\n", out.string().c_str(),
+              r.mission ? " score.png," : "", r.mission && !r.mission->pictures.empty() ? " reports/," : "");
   return r.trouble ? kExitFailure : kExitOk;
 }
 
@@ -162,7 +162,8 @@ void add_run_command(CLI::App& app, Action& action) {
       "exploring on its own (wall following + A* to frontiers) for 180 s of sim time.\n\n"
       "Outputs: summary.json (victims found, coverage, collisions, distance, real-time factor,\n"
       "message counts), overview.png (map, path, laser map, victims), trajectory.csv, world.svg,\n"
-      "sensors/laser.png. Ctrl-C stops early and still writes them.\n\n"
+      "sensors/laser.png; with a mission: block, score.png and reports/ (the reports' pictures).\n"
+      "Ctrl-C stops early and still writes them.\n\n"
       "Examples:\n"
       "  rescuesim run\n"
       "  rescuesim run worlds/arena.yaml --seed 3\n"
