@@ -257,18 +257,21 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
   ++stats_.plans;
   // the targets: frontiers, and with the camera's view tracked, free ground it has not seen.
   // Frontiers where a teammate has looked are left to it while there is anything else; when
-  // there is nothing else they are this robot's too: the teammate's map, not shared, may know
-  // what lies beyond them, but this robot's does not, and a robot that thinks it is done idles.
+  // there is nothing else they are this robot's too, unless the teammate has mapped what lies
+  // beyond them: a robot that thinks it is done idles.
+  // A frontier a teammate's laser has mapped beyond (its map, shared over the radio) is no
+  // target at all.
   bool team_frontiers = false;
   const auto is_target = [this, &team_frontiers](Cell c) {
-    return (is_frontier(mapper_, c) && (team_frontiers || !looked_.looked_by_team(c))) || unseen(c);
+    return (open_frontier(c) && (team_frontiers || !looked_.looked_by_team(c))) || unseen(c);
   };
   const auto min_cells = [this](Cell c) {
     return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
   };
   const auto plan = [&](const std::vector<Vec2>& claims) {
-    return config_.look.enabled ? planner_.plan_to_nearest_target(mapper_, X_MB.position(), is_target, min_cells, excluded_M_, claims)
-                                : planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims);
+    return config_.look.enabled || !team_map_.empty()
+               ? planner_.plan_to_nearest_target(mapper_, X_MB.position(), is_target, min_cells, excluded_M_, claims)
+               : planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims);
   };
   // targets teammates have not claimed first; any target when they claimed them all
   std::vector<Vec2> path;
@@ -291,6 +294,43 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
 
 bool Explorer::unseen(Cell c) const { return config_.look.enabled && mapper_.is_free(c) && !looked_.looked(c); }
 
+bool Explorer::open_frontier(Cell c) const {
+  if (!is_frontier(mapper_, c)) return false;
+  if (team_map_.empty()) return true;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const Cell n{c.x + dx, c.y + dy};
+      if (mapper_.contains(n) && mapper_.is_unknown(n) && !team_mapped(n)) return true;
+    }
+  }
+  return false;
+}
+
+void Explorer::add_team_map(const std::vector<std::pair<Vec2, CellState>>& squares_M, double cell) {
+  if (!mapper_.allocated() || !(cell > 0)) return;
+  const std::size_t cells = static_cast<std::size_t>(mapper_.width()) * static_cast<std::size_t>(mapper_.height());
+  if (team_map_.size() != cells) team_map_.assign(cells, CellState::unknown);
+  const double half = cell / 2, res = mapper_.resolution();
+  for (const auto& [p, state] : squares_M) {
+    if (state == CellState::unknown) continue;
+    // the cells whose centres lie in the square (its sides along the map's axes: the squares
+    // are the world's, and a start turned by other than a quarter turn only shifts them a little)
+    const Vec2 lo = (p - Vec2(half, half) - mapper_.origin()) / res, hi = (p + Vec2(half, half) - mapper_.origin()) / res;
+    if (!lo.allFinite() || !hi.allFinite() || hi.x() < 0 || hi.y() < 0 || lo.x() >= mapper_.width() || lo.y() >= mapper_.height()) continue;
+    const int x0 = static_cast<int>(std::max(0.0, std::ceil(lo.x() - 0.5))), y0 = static_cast<int>(std::max(0.0, std::ceil(lo.y() - 0.5)));
+    const int x1 = static_cast<int>(std::min<double>(mapper_.width() - 1, std::floor(hi.x() - 0.5)));
+    const int y1 = static_cast<int>(std::min<double>(mapper_.height() - 1, std::floor(hi.y() - 0.5)));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        CellState& t = team_map_[static_cast<std::size_t>(mapper_.index({x, y}))];
+        if (t == CellState::unknown) ++stats_.team_mapped_cells;
+        // a wall one teammate saw stays a wall when another saw free ground there
+        if (t != CellState::occupied) t = state;
+      }
+    }
+  }
+}
+
 void Explorer::add_team_seen(const std::vector<Vec2>& centres_M, double cell) {
   if (!config_.look.enabled || !mapper_.allocated() || !(cell > 0)) return;
   for (const Vec2& p : centres_M) team_seen_ = looked_.mark_team_square(mapper_, p, cell / 2) > 0 || team_seen_;
@@ -303,7 +343,7 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
       if (!mapper_.contains(n)) continue;
-      if ((is_frontier(mapper_, n) && (team_frontier_target_ || !looked_.looked_by_team(n))) || unseen(n)) return true;
+      if ((open_frontier(n) && (team_frontier_target_ || !looked_.looked_by_team(n))) || unseen(n)) return true;
     }
   }
   return false;

@@ -135,6 +135,7 @@ struct ExplorerStats {
   int scans_unmatched = 0;    ///< scans whose match was rejected (X_MO kept)
   int look_trips = 0;         ///< trips started to ground the camera has not seen (not a frontier)
   int team_frontier_trips = 0;  ///< trips to frontiers where a teammate has looked, when nothing else was left
+  long team_mapped_cells = 0;   ///< cells of this robot's map that teammates said they mapped (add_team_map), counted once each
 };
 
 /// Wall following plus A* frontier trips on a laser-built map.
@@ -168,6 +169,18 @@ class Explorer {
   /// map frame), as it said over the radio: not worth a trip of this robot's, neither as
   /// unseen ground nor as a frontier. Ignored while looking is disabled or before the first scan.
   void add_team_seen(const std::vector<Vec2>& centres_M, double cell);
+
+  /// What a teammate's laser has mapped, as it said over the radio: squares of side `cell` m
+  /// centred on the points (map frame), each free or occupied. A frontier of this robot's map
+  /// whose unknown side a teammate has mapped is no longer worth a trip (the teammate has been
+  /// there); such frontiers are not even a last resort. The team's word is kept beside this
+  /// robot's own map, never in it: it feeds neither the scan matching nor the plans, so a
+  /// teammate's misplaced map cannot mislead either. Ignored before the first scan.
+  void add_team_map(const std::vector<std::pair<Vec2, CellState>>& squares_M, double cell);
+  /// True when a teammate has said cell `c` (inside the map) is free or occupied.
+  bool team_mapped(Cell c) const {
+    return !team_map_.empty() && team_map_[static_cast<std::size_t>(mapper_.index(c))] != CellState::unknown;
+  }
 
   /// Drives to `p_M` (m, map frame) by A* over the map (unknown cells allowed per the
   /// planner settings), replanning as the map grows; stops there (mode at_goal).
@@ -233,6 +246,9 @@ class Explorer {
   /// Other robots' masts in the scan just mapped (posts_M_, ExplorerConfig::post_radius).
   void find_masts(const Pose2& X_MB);
   bool unseen(Cell c) const;
+  /// A frontier whose unknown side some teammate has not mapped either (any frontier without
+  /// a teammate's map).
+  bool open_frontier(Cell c) const;
   void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
   void start_wall_following(SimTime now);
   void reset_progress(const Pose2& X_MB, SimTime now);
@@ -281,6 +297,7 @@ class Explorer {
   std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
   bool team_frontier_target_ = false;             // the last plan had to take a frontier a teammate looked at
   bool team_seen_ = false;                        // a teammate's squares marked some cell (add_team_seen)
+  std::vector<CellState> team_map_;               // per map cell: what teammates mapped (add_team_map); empty before the first
   std::vector<Vec2> posts_M_;                     // other robots' masts in the last scan (post_radius)
   msg::Path path_msg_;
   StuckReason last_stuck_ = StuckReason::none;

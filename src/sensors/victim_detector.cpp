@@ -20,7 +20,7 @@ void LineOfSightDetector::check(const World& world, State& state, const RayScene
     const double tan_v = tan_h * cam->camera.height / cam->camera.width;
     for (std::size_t v = 0; v < world.victims.size(); ++v) {
       VictimState& vs = state.victims[v];
-      if (vs.first_seen.ns >= 0) continue;
+      if (vs.seen_by_robot(r)) continue;
       for (int part : world.victims[v].parts) {
         const Vec3 p_W = world.statics[static_cast<std::size_t>(part)].X_WO.p;
         const Vec3 p_C = X_WC.inverse() * p_W;
@@ -31,8 +31,7 @@ void LineOfSightDetector::check(const World& world, State& state, const RayScene
         RayHit hit;
         rays.cast({&ray, 1}, {&hit, 1}, static_cast<int>(r));
         if (hit.source == RayHit::Source::static_object && world.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
-          vs.first_seen = state.time;
-          vs.seen_by = world.robots[r].name;
+          vs.saw(r, world.robots.size(), world.robots[r].name, state.time);
           break;
         }
       }

@@ -6,7 +6,8 @@
 ///
 /// Both implementations look through a robot's thermal camera (the last one in its spec); a
 /// robot without one finds nothing. A victim counts as found once, at the first time any
-/// robot finds it (VictimState::first_seen, seen_by).
+/// robot finds it (VictimState::first_seen, seen_by); each robot's own first sighting is kept
+/// too (VictimState::seen_at), since a robot knows only what it saw itself.
 
 #include <string_view>
 #include <vector>

@@ -115,6 +115,26 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     // other robots about: give their masts (all the laser sees of them) a berth as wide as a
     // rescue robot's reach from its mast (0.48 m to the front bumper)
     if (sim_->world().robots.size() > 1) ec.post_radius = 0.5;
+    // the map covers the whole floor (and a margin) wherever the robot starts: the square the
+    // mapper allocates around the start by default (auto_size, 40 m) would leave the far side
+    // of a larger world unmapped, and a robot in a corner of a 30 m maze could map only half
+    // of it. Worlds that square covers keep it.
+    if (const Box2& floor = sim_->world().floor; !floor.empty()) {
+      const Pose2 X_OW = controllers_->X_WO[r].inverse();
+      constexpr double kMargin = 2.0;  // m
+      Box2 box_O;
+      for (const Vec2& corner : {floor.min, floor.max, Vec2(floor.min.x(), floor.max.y()), Vec2(floor.max.x(), floor.min.y())}) {
+        box_O.extend(X_OW.transform(corner));
+      }
+      box_O.min -= Vec2(kMargin, kMargin);
+      box_O.max += Vec2(kMargin, kMargin);
+      // the default square is centred on the laser at the start, near the odom frame's origin
+      const double reach = ec.map.auto_size / 2 - 1.0;
+      if (box_O.min.minCoeff() < -reach || box_O.max.maxCoeff() > reach) {
+        ec.map.size = box_O.max - box_O.min;
+        ec.map.origin_O = box_O.min;
+      }
+    }
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(X_BS.to_pose2(), ec);
     autonomy::Explorer* ex = controllers_->explorers.back().get();
     sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
@@ -150,12 +170,14 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   const std::size_t robots = sim_->world().robots.size();
   controllers_->pending.assign(robots, {});
   controllers_->known.assign(robots, std::vector<bool>(sim_->world().victims.size(), false));
+  controllers_->found_W.assign(robots, {});
   controllers_->next_report.assign(robots, SimTime{});
   controllers_->lost_contact.assign(robots, SimTime{-1});
   controllers_->returning.assign(robots, 0);
   controllers_->heard.assign(robots, std::vector<std::optional<TeamClaim>>(robots));
   controllers_->next_share.assign(robots, SimTime{});
   controllers_->next_seen.assign(robots, SimTime{});
+  controllers_->next_map.assign(robots, SimTime{});
 
   // the coverage grid: cells of free floor
   grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
@@ -252,6 +274,8 @@ constexpr double kClaimAge = 10.0;        // s a teammate's word counts for
 constexpr double kSeenEvery = 6.0;        // s between a built-in robot's "where my camera looked" datagrams
 constexpr double kSeenCell = 0.5;         // m, the squares that datagram is counted in (world frame)
 constexpr int kSeenMinCells = 25;         // a square counts as seen when the camera looked at this many of its map cells
+constexpr double kMapEvery = 6.0;         // s between a built-in robot's "what my laser mapped" datagrams
+constexpr double kMapCell = 0.1;          // m, the squares that datagram is drawn in (world frame)
 
 /// The squares (kSeenCell, world frame) where an explorer's own camera has looked, as a
 /// "seen" datagram (mission/datagram_json); nothing when it has looked nowhere yet.
@@ -276,6 +300,44 @@ std::optional<std::vector<std::uint8_t>> seen_datagram(const autonomy::Explorer&
   if (seen.squares.empty()) return std::nullopt;
   return rescuesim::seen_datagram(seen);
 }
+
+/// What an explorer's laser has mapped, in kMapCell squares of the world, as a "map" datagram
+/// (mission/datagram_json): a square holding an occupied cell is occupied, else one holding a
+/// free cell is free. Nothing before its first scan. Map cells are half a square, so every
+/// square the map covers holds a cell's centre, whatever the start's heading.
+std::optional<std::vector<std::uint8_t>> map_datagram(const autonomy::Explorer& ex, const Pose2& X_WM) {
+  const autonomy::OccupancyMapper& map = ex.mapper();
+  const auto box = map.observed_box();
+  if (!box) return std::nullopt;
+  // the squares of the observed box's corners in the world
+  Box2 world;
+  const double r = map.resolution() / 2;
+  using autonomy::Cell;
+  for (const Cell& c : {box->first, box->second, Cell{box->first.x, box->second.y}, Cell{box->second.x, box->first.y}}) {
+    for (const Vec2& d : {Vec2(-r, -r), Vec2(r, r), Vec2(-r, r), Vec2(r, -r)}) world.extend(X_WM.transform(map.cell_to_world(c) + d));
+  }
+  const Vec2 lo = (world.min / kMapCell).array().floor(), hi = (world.max / kMapCell).array().floor();
+  if (!(lo.cwiseAbs().maxCoeff() <= kMaxSeenSide && hi.cwiseAbs().maxCoeff() <= kMaxSeenSide)) return std::nullopt;  // a map run far away says nothing
+  MapSquares out;
+  out.cell = kMapCell;
+  out.origin = {static_cast<int>(lo.x()), static_cast<int>(lo.y())};
+  out.width = static_cast<int>(hi.x() - lo.x()) + 1;
+  out.height = static_cast<int>(hi.y() - lo.y()) + 1;
+  if (static_cast<long>(out.width) * out.height > kMaxMapSquares) return std::nullopt;
+  out.states.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), MapSquares::unknown);
+  for (int y = box->first.y; y <= box->second.y; ++y) {
+    for (int x = box->first.x; x <= box->second.x; ++x) {
+      const autonomy::CellState st = map.state({x, y});
+      if (st == autonomy::CellState::unknown) continue;
+      const Vec2 q = X_WM.transform(map.cell_to_world({x, y})) / kMapCell;
+      const int i = std::clamp(static_cast<int>(std::floor(q.x())) - out.origin.first, 0, out.width - 1);
+      const int j = std::clamp(static_cast<int>(std::floor(q.y())) - out.origin.second, 0, out.height - 1);
+      std::uint8_t& v = out.states[static_cast<std::size_t>(j) * static_cast<std::size_t>(out.width) + static_cast<std::size_t>(i)];
+      v = std::max<std::uint8_t>(v, st == autonomy::CellState::occupied ? MapSquares::occupied : MapSquares::free);
+    }
+  }
+  return rescuesim::map_datagram(out);
+}
 }  // namespace
 
 void Session::mission_step() {
@@ -292,17 +354,25 @@ void Session::mission_step() {
     if (!ex) continue;  // robots driven from outside report for themselves
     const int ri = static_cast<int>(r);
     const RobotState& rs = s.robots[r];
-    const std::string& name = sim_->world().robots[r].name;
     for (std::size_t v = 0; v < s.victims.size(); ++v) {
-      if (c.known[r][v] || s.victims[v].first_seen.ns < 0 || s.victims[v].seen_by != name) continue;
+      if (c.known[r][v] || !s.victims[v].seen_by_robot(r)) continue;
       // where the robot believes the victim is: its offset from the robot (the victim sensor),
       // placed at the robot's own pose estimate: odometry corrected by the explorer's scan
       // matching (X_MO), in its map frame, which starts on the odom frame at the start pose
       const Vec3 centre = sim_->world().victims[v].centre;
       const Vec2 p_B = rs.base.X_WB.to_pose2().inverse().transform(centre.head<2>());
       const Vec2 p_W = (c.X_WO[r] * ex->X_MO() * rs.odom).transform(p_B);
-      c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z()), victim_picture(ri)});
       c.known[r][v] = true;
+      // a victim a teammate said it found (within the rules' radius of where this robot
+      // believes it lies) is the teammate's to report; a report of it would be a duplicate
+      bool teammates = false;
+      for (const auto& h : c.heard[r]) {
+        if (!h) continue;
+        for (const Vec2& q : h->victims) teammates = teammates || (q - p_W).norm() <= mission_->spec().rules.report_radius_m;
+      }
+      if (teammates) continue;
+      c.found_W[r].push_back(p_W);
+      c.pending[r].push_back({static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z()), victim_picture(ri)});
     }
     const bool contact = mission_->in_contact(ri);
     if (contact) {
@@ -359,7 +429,7 @@ void Session::mission_step() {
     for (const Datagram& d : mission_->take_inbox(static_cast<int>(r))) {
       for (std::size_t k = 0; k < n; ++k) {
         if (k == r || mission_->robot_node(static_cast<int>(k)) != d.from) continue;
-        if (const auto said = read_team_datagram(d.bytes)) c.heard[r][k] = TeamClaim{said->at, said->going, d.sent};
+        if (auto said = read_team_datagram(d.bytes)) c.heard[r][k] = TeamClaim{said->at, said->going, d.sent, std::move(said->victims)};
         if (const auto seen = read_seen_datagram(d.bytes)) {
           // the centres of the squares the teammate's camera looked at, in this robot's map frame
           const Pose2 X_MW = c.X_WO[r].inverse();
@@ -367,6 +437,20 @@ void Session::mission_step() {
           centres_M.reserve(seen->squares.size());
           for (const auto& [i, j] : seen->squares) centres_M.push_back(X_MW.transform(Vec2(i + 0.5, j + 0.5) * seen->cell));
           c.explorers[r]->add_team_seen(centres_M, seen->cell);
+        }
+        if (const auto map = read_map_datagram(d.bytes)) {
+          // the squares the teammate mapped, centred in this robot's map frame
+          const Pose2 X_MW = c.X_WO[r].inverse();
+          std::vector<std::pair<Vec2, autonomy::CellState>> squares_M;
+          for (int j = 0; j < map->height; ++j) {
+            for (int i = 0; i < map->width; ++i) {
+              const std::uint8_t v = map->states[static_cast<std::size_t>(j) * static_cast<std::size_t>(map->width) + static_cast<std::size_t>(i)];
+              if (v == MapSquares::unknown) continue;
+              const Vec2 centre_W = Vec2(map->origin.first + i + 0.5, map->origin.second + j + 0.5) * map->cell;
+              squares_M.emplace_back(X_MW.transform(centre_W), v == MapSquares::occupied ? autonomy::CellState::occupied : autonomy::CellState::free);
+            }
+          }
+          c.explorers[r]->add_team_map(squares_M, map->cell);
         }
       }
     }
@@ -383,8 +467,10 @@ void Session::mission_step() {
         const Vec2 at_W = c.X_WO[r].transform(X_MB->position());
         const std::optional<Vec2> going = ex->frontier_target();
         const std::optional<Vec2> going_W = going ? std::optional<Vec2>(c.X_WO[r].transform(*going)) : std::nullopt;
+        const auto& found = c.found_W[r];  // (a world of more victims than a datagram names tells the first ones)
+        const auto bytes = team_datagram({at_W, going_W, {found.begin(), found.begin() + static_cast<std::ptrdiff_t>(std::min(found.size(), kMaxTeamVictims))}});
         for (std::size_t k = 0; k < n; ++k) {
-          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, team_datagram({at_W, going_W}));
+          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, bytes);
         }
       }
     }
@@ -393,6 +479,15 @@ void Session::mission_step() {
       // (nothing to say before its first look: it tries again at the next step)
       if (const auto bytes = seen_datagram(*ex, c.X_WO[r])) {
         c.next_seen[r] = s.time + SimTime::from_seconds(kSeenEvery);
+        for (std::size_t k = 0; k < n; ++k) {
+          if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, *bytes);
+        }
+      }
+    }
+    // and what its laser has mapped, as often
+    if (s.time >= c.next_map[r]) {
+      if (const auto bytes = map_datagram(*ex, c.X_WO[r])) {
+        c.next_map[r] = s.time + SimTime::from_seconds(kMapEvery);
         for (std::size_t k = 0; k < n; ++k) {
           if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, *bytes);
         }

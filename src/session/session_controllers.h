@@ -22,6 +22,7 @@ struct TeamClaim {
   Vec2 at = Vec2::Zero();        ///< where it was
   std::optional<Vec2> going;     ///< the frontier it was driving to, if any
   SimTime stamp;                 ///< when it was sent
+  std::vector<Vec2> victims;     ///< where it believes the victims it found lie
 };
 
 /// The built-in controllers, one per robot that asked for one, fed from the Bus.
@@ -48,7 +49,8 @@ struct Session::Controllers {
   /// period, and explores on once they are made; it drops a relay where its link to the base
   /// grows weak (Session::mission_step has the rule).
   std::vector<std::vector<PendingReport>> pending;  // per robot, oldest first
-  std::vector<std::vector<bool>> known;             // per robot, per victim: queued or reported already
+  std::vector<std::vector<bool>> known;             // per robot, per victim: queued or reported already, or a teammate's
+  std::vector<std::vector<Vec2>> found_W;           // per robot: where it believes the victims it reports lie (told to teammates)
   std::vector<SimTime> next_report;                 // per robot: not before this
   std::vector<SimTime> lost_contact;                // per robot: when it last lost contact (-1: in contact)
   std::vector<std::uint8_t> returning;              // per robot: driving back towards the base to report
@@ -63,6 +65,10 @@ struct Session::Controllers {
   /// (squares of the world); a teammate's explorer then leaves that ground to it
   /// (Explorer::add_team_seen). A robot out of contact catches up with the next one it hears.
   std::vector<SimTime> next_seen;                            // per robot
+  /// And every kMapEvery what its laser has mapped (squares of the world, free or occupied); a
+  /// teammate's explorer then takes no trip to a frontier already mapped beyond
+  /// (Explorer::add_team_map).
+  std::vector<SimTime> next_map;                             // per robot
 };
 
 }  // namespace rescuesim

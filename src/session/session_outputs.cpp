@@ -176,6 +176,7 @@ nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const
                   {"frontiers_reached", st.frontiers_reached},
                   {"look_trips", st.look_trips},
                   {"team_frontier_trips", st.team_frontier_trips},
+                  {"team_mapped_cells", st.team_mapped_cells},
                   {"stuck_no_progress", st.stuck_no_progress},
                   {"stuck_blocked", st.stuck_blocked},
                   {"stuck_looping", st.stuck_looping},

@@ -22,12 +22,14 @@ struct SessionExtras {
   std::optional<Mission::Memory> mission;                    // referee and radio network
   std::vector<std::vector<PendingReport>> pending;            // the built-in controllers' reports
   std::vector<std::vector<bool>> known;
+  std::vector<std::vector<Vec2>> found_W;
   std::vector<SimTime> next_report;
   std::vector<SimTime> lost_contact;
   std::vector<std::uint8_t> returning;
   std::vector<std::vector<std::optional<TeamClaim>>> heard;
   std::vector<SimTime> next_share;
   std::vector<SimTime> next_seen;
+  std::vector<SimTime> next_map;
 };
 
 SessionSnapshot Session::snapshot() {
@@ -47,12 +49,14 @@ SessionSnapshot Session::snapshot() {
   if (mission_) extras->mission = mission_->save();
   extras->pending = controllers_->pending;
   extras->known = controllers_->known;
+  extras->found_W = controllers_->found_W;
   extras->next_report = controllers_->next_report;
   extras->lost_contact = controllers_->lost_contact;
   extras->returning = controllers_->returning;
   extras->heard = controllers_->heard;
   extras->next_share = controllers_->next_share;
   extras->next_seen = controllers_->next_seen;
+  extras->next_map = controllers_->next_map;
   return SessionSnapshot{sim_->snapshot(), std::move(extras)};
 }
 
@@ -84,12 +88,14 @@ void Session::restore(const SessionSnapshot& snapshot) {
   if (mission_ && x.mission) mission_->load(*x.mission);
   controllers_->pending = x.pending;
   controllers_->known = x.known;
+  controllers_->found_W = x.found_W;
   controllers_->next_report = x.next_report;
   controllers_->lost_contact = x.lost_contact;
   controllers_->returning = x.returning;
   controllers_->heard = x.heard;
   controllers_->next_share = x.next_share;
   controllers_->next_seen = x.next_seen;
+  controllers_->next_map = x.next_map;
 }
 
 }  // namespace rescuesim

@@ -68,6 +68,22 @@ struct RobotState {
 struct VictimState {
   SimTime first_seen{-1};               ///< -1: not yet seen
   std::string seen_by;                  ///< robot name
+  /// Per robot: when it first saw the victim itself (-1: not yet); empty until the first sighting.
+  /// Each robot finds a victim on its own: a team learns of a teammate's finds only by radio.
+  std::vector<SimTime> seen_at;
+
+  /// True when robot `r` has seen the victim.
+  bool seen_by_robot(std::size_t r) const { return r < seen_at.size() && seen_at[r].ns >= 0; }
+  /// Records that robot `r` (named `name`, one of `robots`) sees the victim at `t`: its own
+  /// first sighting, and the victim's first when nobody saw it before.
+  void saw(std::size_t r, std::size_t robots, const std::string& name, SimTime t) {
+    if (seen_at.size() < robots) seen_at.resize(robots, SimTime{-1});
+    if (seen_at[r].ns < 0) seen_at[r] = t;
+    if (first_seen.ns < 0) {
+      first_seen = t;
+      seen_by = name;
+    }
+  }
 };
 
 /// What an IMU remembers between samples (sensors/imu.h).
@@ -212,6 +228,7 @@ void visit_fields(S& s, V& v) {
   v.items("victims", s.victims, [](auto& w, auto& victim) {
     w("first_seen", victim.first_seen);
     w("seen_by", victim.seen_by);
+    w("seen_at", victim.seen_at);
   });
   v.items("sensors", s.sensors, [](auto& w, auto& slot) { visit_fields(slot, w); });
   v.group("schedule", [&](auto& w) {

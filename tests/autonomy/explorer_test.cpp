@@ -295,6 +295,54 @@ TEST(Explorer, FrontiersATeammateHasLookedAtAreItsOwnWhenNothingElseIsLeft) {
   }
 }
 
+TEST(Explorer, AFrontierATeammateHasMappedBeyondIsNoTargetAtAll) {
+  // the room, the door and the corridor round the corner again; a teammate has looked at
+  // everything and said so. When it has also said it mapped the corridor (its squares, 0.1 m,
+  // free inside, occupied on the walls), the frontier at the door is explored: this robot
+  // does not go through, not even as a last resort. Having mapped only the room, it does.
+  const std::vector<Segment> walls = {{{0, 0}, {0, 6}},     {{0, 0}, {6, 0}},     {{0, 6}, {6, 6}},   {{6, 0}, {6, 2.5}},
+                                      {{6, 3.5}, {6, 6}},   {{6, 2.5}, {9, 2.5}}, {{6, 3.5}, {10, 3.5}}, {{9, 2.5}, {9, -3}},
+                                      {{10, 3.5}, {10, -3}}, {{9, -3}, {10, -3}}};
+  const auto on_wall = [&](const Vec2& p) {
+    return std::any_of(walls.begin(), walls.end(), [&](const Segment& w) { return distance_to_segment(p, w) <= 0.05; });
+  };
+  const auto in_room = [](const Vec2& p) { return p.x() > 0 && p.x() < 6 && p.y() > 0 && p.y() < 6; };
+  const auto in_corridor = [](const Vec2& p) {
+    return (p.x() >= 6 && p.x() < 10 && p.y() > 2.5 && p.y() < 3.5) || (p.x() > 9 && p.x() < 10 && p.y() > -3 && p.y() <= 3.5);
+  };
+  std::vector<Vec2> looked;
+  for (double y = -3.75; y < 6; y += 0.5) {
+    for (double x = 0.25; x < 12; x += 0.5) looked.emplace_back(x, y);
+  }
+  for (const bool corridor : {false, true}) {
+    std::vector<std::pair<Vec2, CellState>> mapped;
+    for (double y = -3.95; y < 6.1; y += 0.1) {
+      for (double x = -0.05; x < 10.1; x += 0.1) {
+        const Vec2 p(x, y);
+        if (on_wall(p) && (corridor || p.x() <= 6.05)) mapped.emplace_back(p, CellState::occupied);
+        else if (in_room(p) || (corridor && in_corridor(p))) mapped.emplace_back(p, CellState::free);
+      }
+    }
+    KinematicSim sim(walls, {1.5, 3.0, 0.0}, kLaserMount, kRadius);
+    Explorer explorer(kLaserMount, with_camera());
+    explorer.on_odometry(sim.odometry(SimTime{}));
+    explorer.on_scan(sim.scan(SimTime{}));
+    explorer.add_team_seen(looked, 0.5);
+    explorer.add_team_map(mapped, 0.1);
+    // every map cell whose centre lies in a square is marked: 2 x 2 cells of 0.05 m per square
+    const OccupancyMapper& map = explorer.mapper();
+    EXPECT_TRUE(explorer.team_mapped(*map.world_to_cell({3.02, 3.02})));
+    EXPECT_EQ(explorer.team_mapped(*map.world_to_cell({8.0, 3.0})), corridor);
+    EXPECT_FALSE(explorer.team_mapped(*map.world_to_cell({11.0, 0.0})));
+    const RunLog run = drive(explorer, sim, 30.0, 1.5);
+    SCOPED_TRACE(describe(corridor ? "teammate mapped the corridor" : "teammate mapped the room", run, sim, explorer));
+    EXPECT_EQ(explorer.stats().team_frontier_trips > 0, !corridor);
+    EXPECT_EQ(sim.pose().x > 6.0, !corridor);  // through the door only when the corridor is news
+    EXPECT_EQ(explorer.stats().look_trips, 0);  // the room is the teammate's either way
+    EXPECT_EQ(sim.collisions(), 0);
+  }
+}
+
 TEST(Explorer, SwingsTheCameraAndLooksWhereTheJointStands) {
   ExplorerConfig config = with_camera();
   config.look.yaw_joint = "pan";

@@ -7,12 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "mission/datagram_json.h"
 #include "msgs/base64.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
@@ -171,6 +173,38 @@ TEST(SessionMission, TeammatesTellEachOtherWhereTheyAreOverTheRadio) {
     const int k = j * w + i;
     EXPECT_TRUE(((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8)) & 1) << sq;
   }
+  // and as often what its laser has mapped, in 0.1 m squares of the world: at 0 and 6 s
+  std::vector<nlohmann::json> mapped;
+  std::erase_if(heard, [&](const nlohmann::json& d) {
+    const auto body = nlohmann::json::parse(d["text"].get<std::string>());
+    if (!body.contains("map")) return false;
+    mapped.push_back(d);
+    return true;
+  });
+  ASSERT_EQ(mapped.size(), 2u);
+  EXPECT_NEAR(mapped[0]["sent"].get<double>(), 0.0, 0.11);
+  EXPECT_NEAR(mapped[1]["sent"].get<double>(), 6.0, 0.11);
+  {
+    const std::string text = mapped[1]["text"].get<std::string>();
+    const auto map = read_map_datagram(std::vector<std::uint8_t>(text.begin(), text.end()));
+    ASSERT_TRUE(map.has_value());
+    EXPECT_EQ(map->cell, 0.1);
+    // the ground 0.6 m ahead of a's start is in the box, and free (the laser, 0.26 m ahead of
+    // the robot's centre, swept it from the start)
+    const Pose2 X_WA = session.sim().world().robots[0].X_W_start.to_pose2();
+    const Vec2 ahead = X_WA.transform(Vec2(0.6, 0));
+    const int i = static_cast<int>(std::floor(ahead.x() / 0.1)) - map->origin.first;
+    const int j = static_cast<int>(std::floor(ahead.y() / 0.1)) - map->origin.second;
+    ASSERT_TRUE(i >= 0 && j >= 0 && i < map->width && j < map->height);
+    EXPECT_EQ(map->states[static_cast<std::size_t>(j * map->width + i)], MapSquares::free);
+    // and it saw walls
+    EXPECT_GT(std::count(map->states.begin(), map->states.end(), MapSquares::occupied), 100);
+  }
+  // b took it: its explorer knows cells from a's map
+  const auto explorers = session.result().explorers;
+  const auto b = std::find_if(explorers.begin(), explorers.end(), [](const auto& e) { return e.first == "b"; });
+  ASSERT_NE(b, explorers.end());
+  EXPECT_GT(b->second.team_mapped_cells, 1000);
   ASSERT_EQ(heard.size(), 5u);
   for (std::size_t i = 0; i < heard.size(); ++i) {
     EXPECT_EQ(heard[i]["from"], "a");
@@ -201,8 +235,21 @@ TEST(SessionMission, TheFinderReportsWhatItSawWhereItBelievesItIs) {
     seen_early += v.found && v.time < r.sim_time - 1.0;
   }
   EXPECT_GE(static_cast<int>(r.mission->counts.charged), seen_early);
-  EXPECT_LE(static_cast<int>(r.mission->counts.charged), seen);
+  EXPECT_LE(static_cast<int>(r.mission->counts[ReportOutcome::accepted]), seen);
   EXPECT_GT(seen, 0) << "the explorers should see a victim of this small maze in 60 s";
+  // each robot finds victims for itself (VictimState::seen_at) and reports those it saw, but
+  // not one a teammate told it (by its team datagram, every 2 s) it had found already. So a
+  // victim both saw is reported twice (a duplicate) only when the second saw it before the
+  // first one's next team datagram could arrive: within 2 s plus a link update (0.1 s).
+  int both = 0, close = 0;
+  for (const VictimState& v : session.sim().state().victims) {
+    if (!v.seen_by_robot(0) || !v.seen_by_robot(1)) continue;
+    ++both;
+    close += std::abs((v.seen_at[0] - v.seen_at[1]).seconds()) <= 2.1 + 1e-9;
+  }
+  EXPECT_LE(static_cast<int>(r.mission->counts[ReportOutcome::duplicate]), close);
+  EXPECT_GT(both - close, 0) << "this maze should have a victim both robots saw far apart in time";
+  EXPECT_LE(static_cast<int>(r.mission->counts.charged), seen + close);
   // reports are odometry estimates: accepted ones lie within the 1.5 m radius of their victim
   for (const auto& v : r.mission->victim_states) {
     if (v.found) {

@@ -31,7 +31,7 @@ State full_state() {
   r.head_target = {0.5};
   r.touching = {"wall_1"};
   s.robots.push_back(r);
-  s.victims.push_back(VictimState{SimTime::from_seconds(1), "robot"});
+  s.victims.push_back(VictimState{SimTime::from_seconds(1), "robot", {SimTime::from_seconds(1)}});
   SensorSlot slot;
   slot.rng = Rng(7, "imu");
   s.sensors.push_back(slot);
@@ -55,6 +55,7 @@ struct Change {
   void operator()(std::vector<double>& v) { v.back() += 0.5; }
   void operator()(std::vector<Pose3>& v) { v.back().p.x() += 0.5; }
   void operator()(std::vector<std::string>& v) { v.back() += "x"; }
+  void operator()(std::vector<SimTime>& v) { v.push_back(SimTime{3}); }
 };
 
 /// Walks the field list, naming each leaf and sequence; changes the one numbered `target`
@@ -105,8 +106,8 @@ TEST(StateHash, EveryFieldOfTheListChangesTheHash) {
   State probe = base;
   visit_fields(probe, count);
   // 2 top-level leaves, 4 sequences, 5 per body, per robot its base's 5 + 1 + 1 + 3 + 10 + 3 + 3,
-  // 2 per victim, 8 per sensor slot, 4 schedule and 3 trouble leaves
-  EXPECT_EQ(count.seen, 2 + 4 + 5 + 26 + 2 + 8 + 4 + 3);
+  // 3 per victim, 8 per sensor slot, 4 schedule and 3 trouble leaves
+  EXPECT_EQ(count.seen, 2 + 4 + 5 + 26 + 3 + 8 + 4 + 3);
   for (int k = 0; k < count.seen; ++k) {
     State s = base;
     Perturber p;

@@ -164,11 +164,8 @@ void RenderCameraService::deliver(const World& world, State& state, SimTime now,
       publish(topic, std::move(m));
     }
     for (int v : job->victims_seen) {
-      VictimState& vs = state.victims[static_cast<std::size_t>(v)];
-      if (vs.first_seen.ns < 0) {
-        vs.first_seen = job->stamp;
-        vs.seen_by = world.robots[static_cast<std::size_t>(job->sensor.robot)].name;
-      }
+      const auto r = static_cast<std::size_t>(job->sensor.robot);
+      state.victims[static_cast<std::size_t>(v)].saw(r, world.robots.size(), world.robots[r].name, job->stamp);
     }
   }
 }
