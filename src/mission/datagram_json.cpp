@@ -210,10 +210,12 @@ std::vector<std::uint8_t> map_datagram(const MapSquares& map) {
   RS_DEMAND(std::all_of(map.states.begin(), map.states.end(), [](std::uint8_t v) { return v <= MapSquares::occupied; }),
             "map_datagram: a state that is no MapSquares::State");
   // zlib, not a hand-made run-length code: a mapped maze is long runs of free and unknown
-  // squares, which deflate takes to about 1/30 (zlib's output is the same for the same input)
+  // squares, which deflate takes to about 1/30 (zlib's output is the same for the same input).
+  // The default level: on a 340 x 340 maze map level 9 saves a third of the bytes but takes
+  // ten times as long (7.7 ms against 0.8 ms)
   uLongf packed_size = compressBound(static_cast<uLong>(n));
   std::vector<std::uint8_t> packed(packed_size);
-  const int z = compress2(packed.data(), &packed_size, map.states.data(), static_cast<uLong>(n), Z_BEST_COMPRESSION);
+  const int z = compress2(packed.data(), &packed_size, map.states.data(), static_cast<uLong>(n), Z_DEFAULT_COMPRESSION);
   RS_DEMAND(z == Z_OK, "map_datagram: zlib compress2 failed");
   std::string b64;
   msg::append_base64(b64, packed.data(), packed_size);
