@@ -72,14 +72,14 @@ TEST(DatagramJson, InboxEntriesCarryBase64AndTextWhenTheBytesAreText) {
 std::vector<std::uint8_t> bytes_of(std::string_view text) { return {text.begin(), text.end()}; }
 
 TEST(DatagramJson, TeamPositionsRoundTripAndOtherBytesAreNotOne) {
-  const auto b = team_datagram({Vec2(1.5, -2.25), Vec2(4, 5)});
+  const auto b = team_datagram({Vec2(1.5, -2.25), Vec2(4, 5), {}});
   EXPECT_EQ(std::string(b.begin(), b.end()), R"({"team":{"at":[1.5,-2.25],"going":[4.0,5.0]}})");
   const auto p = read_team_datagram(b);
   ASSERT_TRUE(p);
   EXPECT_EQ(p->at, Vec2(1.5, -2.25));
   ASSERT_TRUE(p->going);
   EXPECT_EQ(*p->going, Vec2(4, 5));
-  const auto idle = read_team_datagram(team_datagram({Vec2(1, 2), std::nullopt}));
+  const auto idle = read_team_datagram(team_datagram({Vec2(1, 2), std::nullopt, {}}));
   ASSERT_TRUE(idle);
   EXPECT_FALSE(idle->going);
   for (const char* bad : {"", "hello", "[1, 2]", R"({"team": 1})", R"({"team": {"at": [1]}})", R"({"team": {"at": [null, 1]}})",
@@ -218,7 +218,7 @@ TEST(DatagramJson, MapSquaresAreDeflatedStatesOfTheirBox) {
   // and it is not taken for the other datagrams, nor they for it
   EXPECT_FALSE(read_seen_datagram(b));
   EXPECT_FALSE(read_team_datagram(b));
-  EXPECT_FALSE(read_map_datagram(team_datagram({Vec2(1, 2), std::nullopt})));
+  EXPECT_FALSE(read_map_datagram(team_datagram({Vec2(1, 2), std::nullopt, {}})));
 }
 
 TEST(DatagramJson, MalformedMapDatagramsAreRefused) {
