@@ -250,6 +250,10 @@ void Mission::publish_inboxes(const std::vector<std::size_t>& before) {
     // nobody may ever take them (a ROS team reads the topic): keep only the newest
     if (inbox.size() > kInboxKeep) network_.trim_inbox(node, kInboxKeep);
   }
+  // nor a base's (datagrams "to base" from a ROS team, with no built-in team to read them)
+  for (int node : base_nodes_) {
+    if (network_.inbox(node).size() > kInboxKeep) network_.trim_inbox(node, kInboxKeep);
+  }
 }
 
 void Mission::add_inputs() {
@@ -331,6 +335,8 @@ SendResult Mission::send(int robot, std::string_view to, std::vector<std::uint8_
 }
 
 std::vector<Datagram> Mission::take_inbox(int robot) { return network_.take_inbox(robot_node(robot)); }
+
+std::vector<Datagram> Mission::take_base_inbox(std::size_t index) { return network_.take_inbox(base_nodes_.at(index)); }
 
 RadioStatus Mission::status(int robot) const { return network_.status(robot_node(robot)); }
 

@@ -143,6 +143,9 @@ class Mission {
   /// Empties the robot's inbox (which keeps the newest kInboxKeep datagrams not taken; every
   /// one is also published on /<robot>/rescue/comms/inbox as it arrives).
   std::vector<Datagram> take_inbox(int robot);
+  /// Empties base `index`'s inbox (base_nodes()[index]) and returns what was in it. A base's
+  /// inbox keeps the newest kInboxKeep datagrams not taken, as a robot's does.
+  std::vector<Datagram> take_base_inbox(std::size_t index);
   static constexpr std::size_t kInboxKeep = 1024;
   RadioStatus status(int robot) const;
   /// Drops a relay where the robot stands (its antenna position); from the robot's budget.

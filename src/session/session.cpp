@@ -1,5 +1,6 @@
 #include "session/session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -178,6 +179,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   controllers_->next_share.assign(robots, SimTime{});
   controllers_->next_seen.assign(robots, SimTime{});
   controllers_->next_map.assign(robots, SimTime{});
+  controllers_->base_maps.assign(robots, std::nullopt);
 
   // the coverage grid: cells of free floor
   grid_box_ = Box2{spec_.floor_min, spec_.floor_max};
@@ -276,6 +278,7 @@ constexpr double kSeenCell = 0.5;         // m, the squares that datagram is cou
 constexpr int kSeenMinCells = 25;         // a square counts as seen when the camera looked at this many of its map cells
 constexpr double kMapEvery = 6.0;         // s between a built-in robot's "what my laser mapped" datagrams
 constexpr double kMapCell = 0.1;          // m, the squares that datagram is drawn in (world frame)
+constexpr double kBaseMapEvery = 10.0;    // s between the base's submissions of the team's map
 
 /// The squares (kSeenCell, world frame) where an explorer's own camera has looked, as a
 /// "seen" datagram (mission/datagram_json); nothing when it has looked nowhere yet.
@@ -484,13 +487,14 @@ void Session::mission_step() {
         }
       }
     }
-    // and what its laser has mapped, as often
+    // and what its laser has mapped, as often, to the base too
     if (s.time >= c.next_map[r]) {
       if (const auto bytes = map_datagram(*ex, c.X_WO[r])) {
         c.next_map[r] = s.time + SimTime::from_seconds(kMapEvery);
         for (std::size_t k = 0; k < n; ++k) {
           if (k != r && c.explorers[k]) mission_->send(ri, sim_->world().robots[k].name, *bytes);
         }
+        mission_->send(ri, "base", *bytes);
       }
     }
     // what it heard lately becomes its claims, in its own map frame
@@ -504,6 +508,68 @@ void Session::mission_step() {
     }
     ex->set_claims(std::move(claims_M));
   }
+  // the base reads only what the built-in robots send it (a team driven from outside submits
+  // its own map on /rescue/map)
+  if (std::any_of(c.explorers.begin(), c.explorers.end(), [](const auto& e) { return e != nullptr; })) base_map_step();
+}
+
+namespace {
+/// The team's map from the robots' newest maps (kMapCell squares of the world, every map of that
+/// cell): occupied where any says occupied, else free where any says free, else unknown; as a
+/// nav_msgs/OccupancyGrid in the map frame (the world's). Nothing when there is no map yet.
+std::optional<msg::OccupancyGrid> team_map(const std::vector<std::optional<MapSquares>>& maps, SimTime stamp) {
+  int i0 = std::numeric_limits<int>::max(), j0 = i0, i1 = std::numeric_limits<int>::min(), j1 = i1;
+  for (const auto& m : maps) {
+    if (!m || m->cell != kMapCell) continue;
+    i0 = std::min(i0, m->origin.first), j0 = std::min(j0, m->origin.second);
+    i1 = std::max(i1, m->origin.first + m->width - 1), j1 = std::max(j1, m->origin.second + m->height - 1);
+  }
+  if (i0 > i1) return std::nullopt;
+  const long w = static_cast<long>(i1) - i0 + 1, h = static_cast<long>(j1) - j0 + 1;
+  if (w * h > 4 * kMaxMapSquares) return std::nullopt;  // (each map is within kMaxSeenSide; together they stay sane)
+  std::vector<std::uint8_t> states(static_cast<std::size_t>(w * h), MapSquares::unknown);
+  for (const auto& m : maps) {
+    if (!m || m->cell != kMapCell) continue;
+    for (int j = 0; j < m->height; ++j) {
+      for (int i = 0; i < m->width; ++i) {
+        const std::size_t at = static_cast<std::size_t>((m->origin.second + j - j0) * w + (m->origin.first + i - i0));
+        states[at] = std::max(states[at], m->states[static_cast<std::size_t>(j) * static_cast<std::size_t>(m->width) + static_cast<std::size_t>(i)]);
+      }
+    }
+  }
+  msg::OccupancyGrid g;
+  g.header = {stamp, "map"};
+  g.map_load_time = stamp;
+  g.resolution = static_cast<float>(kMapCell);
+  g.width = static_cast<std::uint32_t>(w);
+  g.height = static_cast<std::uint32_t>(h);
+  g.origin = Pose3::from_pose2({i0 * kMapCell, j0 * kMapCell, 0.0});
+  g.data.resize(states.size());
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    g.data[k] = states[k] == MapSquares::occupied ? std::int8_t{100} : (states[k] == MapSquares::free ? std::int8_t{0} : std::int8_t{-1});
+  }
+  return g;
+}
+}  // namespace
+
+void Session::base_map_step() {
+  Controllers& c = *controllers_;
+  for (std::size_t b = 0; b < mission_->base_nodes().size(); ++b) {
+    for (const Datagram& d : mission_->take_base_inbox(b)) {
+      for (std::size_t k = 0; k < c.explorers.size(); ++k) {
+        if (!c.explorers[k] || mission_->robot_node(static_cast<int>(k)) != d.from) continue;
+        if (auto m = read_map_datagram(d.bytes)) {
+          c.base_maps[k] = std::move(*m);
+          c.base_map_new = true;
+        }
+      }
+    }
+  }
+  const SimTime now = sim_->state().time;
+  if (!c.base_map_new || now < c.next_base_map) return;
+  c.next_base_map = now + SimTime::from_seconds(kBaseMapEvery);
+  c.base_map_new = false;
+  if (const auto g = team_map(c.base_maps, now)) mission_->score_map(*g);
 }
 
 void Session::command_look(int robot, double yaw) {

@@ -150,6 +150,9 @@ class Session {
   bool thin_trajectory();
   /// After every step with a mission: its links and datagrams, and the built-in controllers' reports.
   void mission_step();
+  /// The base station's side of the built-in team: takes the maps the robots got through to it
+  /// and submits the team's map to the referee (Controllers::base_maps).
+  void base_map_step();
   void write_camera_frames(const std::filesystem::path& dir) const;
   /// Robot `robot`'s last thermal frame as mono8 through its sensor's temperature window (the
   /// picture of a built-in report), or nothing when its thermal camera does not render.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "autonomy/explorer.h"
+#include "mission/datagram_json.h"
 #include "session/session.h"
 
 namespace rescuesim {
@@ -69,6 +70,13 @@ struct Session::Controllers {
   /// teammate's explorer then takes no trip to a frontier already mapped beyond
   /// (Explorer::add_team_map).
   std::vector<SimTime> next_map;                             // per robot
+  /// The base station's side (Session::base_map_step): each built-in robot sends its map to the
+  /// base too; the base keeps the newest that got through from each and, every kBaseMapEvery
+  /// when something new came, submits the team's map to the referee's map scoring (a square
+  /// is what the robots' newest maps say, occupied over free over unknown).
+  std::vector<std::optional<MapSquares>> base_maps;          // per robot
+  bool base_map_new = false;                                 // a map came since the last submission
+  SimTime next_base_map;
 };
 
 }  // namespace rescuesim

@@ -30,6 +30,9 @@ struct SessionExtras {
   std::vector<SimTime> next_share;
   std::vector<SimTime> next_seen;
   std::vector<SimTime> next_map;
+  std::vector<std::optional<MapSquares>> base_maps;
+  bool base_map_new = false;
+  SimTime next_base_map;
 };
 
 SessionSnapshot Session::snapshot() {
@@ -57,6 +60,9 @@ SessionSnapshot Session::snapshot() {
   extras->next_share = controllers_->next_share;
   extras->next_seen = controllers_->next_seen;
   extras->next_map = controllers_->next_map;
+  extras->base_maps = controllers_->base_maps;
+  extras->base_map_new = controllers_->base_map_new;
+  extras->next_base_map = controllers_->next_base_map;
   return SessionSnapshot{sim_->snapshot(), std::move(extras)};
 }
 
@@ -96,6 +102,9 @@ void Session::restore(const SessionSnapshot& snapshot) {
   controllers_->next_share = x.next_share;
   controllers_->next_seen = x.next_seen;
   controllers_->next_map = x.next_map;
+  controllers_->base_maps = x.base_maps;
+  controllers_->base_map_new = x.base_map_new;
+  controllers_->next_base_map = x.next_base_map;
 }
 
 }  // namespace rescuesim

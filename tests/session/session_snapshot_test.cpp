@@ -219,6 +219,35 @@ TEST(SessionMission, TeammatesTellEachOtherWhereTheyAreOverTheRadio) {
   EXPECT_EQ(session.result().mission->datagrams_dropped, 0u);
 }
 
+TEST(SessionMission, TheBaseScoresTheMapsTheRobotsSendIt) {
+  // each built-in robot sends its map to the base every 6 s, the first as soon as it has one
+  // (after its first scan), which arrives at 0.2 s; the base submits the team's map when a new
+  // one has come and 10 s have passed since its last: maps keep coming, so at 0.2, 10.2, 20.2 s
+  const ModelMap models = builtin_models();
+  SessionOptions so;
+  so.cameras = false;
+  Scenario s = mission_scenario();
+  s.duration = 25;
+  s.mission->radio.model = radio_model("ideal");
+  Session session(s, models, so);
+  std::vector<nlohmann::json> scores;
+  session.sim().bus().subscribe("/rescue/map_score", [&](const Topic&, const msg::Message& m) {
+    scores.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
+  const RunResult r = session.run();
+  ASSERT_EQ(scores.size(), 3u);
+  EXPECT_NEAR(scores[0]["stamp"].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(scores[1]["stamp"].get<double>(), 10.2, 1e-9);
+  EXPECT_NEAR(scores[2]["stamp"].get<double>(), 20.2, 1e-9);
+  ASSERT_TRUE(r.mission->map.has_value());
+  EXPECT_EQ(r.mission->map->maps, 3);
+  // the team's map lies on the walls (most of its occupied squares are within a truth cell of
+  // one), holds nearly every wall the lasers could have seen, and grows as the robots drive
+  EXPECT_GT(r.mission->map->precision, 0.8);
+  EXPECT_GT(r.mission->map->recall, 0.9);
+  EXPECT_GT(scores[2]["map_occupied"].get<long>(), scores[0]["map_occupied"].get<long>());
+}
+
 TEST(SessionMission, TheFinderReportsWhatItSawWhereItBelievesItIs) {
   const ModelMap models = builtin_models();
   SessionOptions so;
