@@ -91,6 +91,15 @@ TEST(Mission, BeyondTheCutOffADatagramNeverArrivesAndReportsAreOutOfContact) {
   ASSERT_TRUE(mission.send(0, "base", {7}).accepted);
   steps(sim, mission, 0.1);
   EXPECT_EQ(mission.network().inbox(mission.base_nodes()[0]).size(), 1u);
+  // a base's inbox nobody takes keeps only the newest kInboxKeep (1,024): 1,100 more sent, the
+  // oldest 77 are gone; take_base_inbox empties it
+  for (int i = 0; i < 1100; ++i) ASSERT_TRUE(mission.send(0, "base", {static_cast<std::uint8_t>(i % 256)}).accepted);
+  steps(sim, mission, 0.1);
+  const std::vector<Datagram> at_base = mission.take_base_inbox(0);
+  ASSERT_EQ(at_base.size(), Mission::kInboxKeep);
+  EXPECT_EQ(at_base.front().bytes, std::vector<std::uint8_t>{static_cast<std::uint8_t>((1100 - 1024) % 256)});
+  EXPECT_EQ(at_base.back().bytes, std::vector<std::uint8_t>{static_cast<std::uint8_t>(1099 % 256)});
+  EXPECT_TRUE(mission.network().inbox(mission.base_nodes()[0]).empty());
 
   // no victims here: a report in contact is false (−0.5), one out of contact is refused at no cost
   EXPECT_EQ(mission.report(1, {40, 0, 0}).outcome, ReportOutcome::out_of_contact);
