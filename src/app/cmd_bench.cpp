@@ -18,6 +18,7 @@
 #include "app/bench_soak.h"
 #include "app/data_dir.h"
 #include "app/bench_mission.h"
+#include "app/bench_scale.h"
 #include "app/bench_sdf.h"
 #include "app/bench_urdf.h"
 #include "app/commands.h"
@@ -63,6 +64,9 @@ struct BenchOptions {
   BenchRosOptions ros_options;
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
   double soak_hours = 10;       ///< sim hours of the soak run
+  bool scale = false;           ///< only the scale figures (bench_scale.h)
+  std::vector<int> scale_robots = {1, 10, 30, 100};
+  double scale_time = 10;       ///< sim seconds of each scale run
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -326,6 +330,15 @@ int run_bench(const BenchOptions& given) {
     return kExitOk;
   }
   const RunChild child_without_cameras = [&](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); };
+  if (o.scale) {
+    // the plot beside the report: --out's name with .png, else scale.png here
+    const std::filesystem::path png = o.out.empty() ? std::filesystem::path("scale.png") : std::filesystem::path(o.out).replace_extension(".png");
+    report["scale"] = bench_scale(o.scale_robots, o.scale_time, child_without_cameras, png);
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   if (o.mission_only) {
     report["mission"] = bench_mission(o.mission_scenario, std::min(o.scenario_time, 60.0), child_without_cameras);
     const std::string text = report.dump(2) + "\n";
@@ -421,7 +434,9 @@ void add_bench_command(CLI::App& app, Action& action) {
       "box primitives.\n"
       "Mission (mission; docs/missions.md): the --mission-scenario's real-time factor with its mission\n"
       "(referee and radio) beside the same run without it (median of 3, target >= 0.9x), and the cost\n"
-      "of one radio link update for 4, 10 and 30 radios in its world.");
+      "of one radio link update for 4, 10 and 30 radios in its world.\n"
+      "Scale (--scale; docs/performance.md): the scale scenario for 1, 10, 30 and 100 robots, e.g.\n"
+      "  rescuesim bench --scale --scale-robots 1,10,30,100,300 --out scale.json   (writes scale.png too)");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
@@ -449,6 +464,14 @@ void add_bench_command(CLI::App& app, Action& action) {
                 "attached, memory and real-time factor every sim minute, every message checked for NaN; writes soak.csv, "
                 "soak.json and soak.png into --out (a folder, default runs/soak); Ctrl-C stops early and still writes them");
   cmd->add_option("--soak-hours", o->soak_hours, "sim hours of the soak run")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_flag("--scale", o->scale,
+                "only the scale figures: the scale scenario (a 20 m maze, N robots with 1081-beam 30 m lidars at 10 Hz, wall "
+                "following, no cameras) for each --scale-robots count, in a child process each; real-time factor beside N "
+                "robots costing N times the first count, lidar rays/s, peak memory, CPU use per core; the plot goes beside "
+                "--out (its name with .png; scale.png without --out)");
+  cmd->add_option("--scale-robots", o->scale_robots, "robot counts of the scale figures")
+      ->capture_default_str()->check(CLI::Range(1, 10000))->delimiter(',');
+  cmd->add_option("--scale-time", o->scale_time, "sim seconds of each scale run")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
   add_bench_probe_command(app, action);
 }
