@@ -157,6 +157,36 @@ std::optional<SquareBox> read_square_box(const nlohmann::json& s, const char* da
   if (origin->first + size->first - 1 > kMaxSeenSide || origin->second + size->second - 1 > kMaxSeenSide) return std::nullopt;
   return box;
 }
+
+/// The JSON of a "seen" or "map" datagram: {kind: {"cell", "origin", "size", data_key: data in base64}}.
+std::vector<std::uint8_t> box_datagram(const char* kind, double cell, std::pair<int, int> origin, std::pair<int, int> size,
+                                       const char* data_key, const std::uint8_t* data, std::size_t n) {
+  std::string b64;
+  msg::append_base64(b64, data, n);
+  nlohmann::json j;
+  j[kind] = {{"cell", cell}, {"origin", {origin.first, origin.second}}, {"size", {size.first, size.second}}, {data_key, b64}};
+  const std::string text = j.dump();
+  return {text.begin(), text.end()};
+}
+
+/// A "seen" or "map" datagram read back: its box and its data out of base64.
+struct BoxDatagram {
+  SquareBox box;
+  std::vector<std::uint8_t> data;
+};
+
+/// Reads a datagram written by box_datagram(kind, ..., data_key, ...); nothing for any other
+/// bytes, a malformed box (read_square_box) or data that is not base64.
+std::optional<BoxDatagram> read_box_datagram(const std::vector<std::uint8_t>& bytes, const char* kind, const char* data_key) {
+  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains(kind) || !j[kind].is_object()) return std::nullopt;
+  const nlohmann::json& s = j[kind];
+  auto box = read_square_box(s, data_key);
+  if (!box) return std::nullopt;
+  auto data = msg::decode_base64(s[data_key].get_ref<const std::string&>());
+  if (!data) return std::nullopt;
+  return BoxDatagram{*box, std::move(*data)};
+}
 }  // namespace
 
 std::vector<std::uint8_t> seen_datagram(const SeenSquares& seen) {
@@ -172,29 +202,21 @@ std::vector<std::uint8_t> seen_datagram(const SeenSquares& seen) {
     const long k = static_cast<long>(j - j0) * w + (i - i0);
     bits[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint8_t>(1u << (k % 8));
   }
-  std::string b64;
-  msg::append_base64(b64, bits.data(), bits.size());
-  nlohmann::json j;
-  j["seen"] = {{"cell", seen.cell}, {"origin", {i0, j0}}, {"size", {w, h}}, {"bits", b64}};
-  const std::string text = j.dump();
-  return {text.begin(), text.end()};
+  return box_datagram("seen", seen.cell, {i0, j0}, {w, h}, "bits", bits.data(), bits.size());
 }
 
 std::optional<SeenSquares> read_seen_datagram(const std::vector<std::uint8_t>& bytes) {
-  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("seen") || !j["seen"].is_object()) return std::nullopt;
-  const nlohmann::json& s = j["seen"];
-  const auto box = read_square_box(s, "bits");
-  if (!box) return std::nullopt;
+  const auto d = read_box_datagram(bytes, "seen", "bits");
+  if (!d) return std::nullopt;
   SeenSquares out;
-  out.cell = box->cell;
-  const auto [w, h] = box->size;
-  const auto [i0, j0] = box->origin;
-  const auto bits = msg::decode_base64(s["bits"].get_ref<const std::string&>());
+  out.cell = d->box.cell;
+  const auto [w, h] = d->box.size;
+  const auto [i0, j0] = d->box.origin;
+  const std::vector<std::uint8_t>& bits = d->data;
   const long n = static_cast<long>(w) * h;
-  if (!bits || bits->size() != static_cast<std::size_t>((n + 7) / 8)) return std::nullopt;
+  if (bits.size() != static_cast<std::size_t>((n + 7) / 8)) return std::nullopt;
   for (long k = 0; k < n; ++k) {
-    if (!((*bits)[static_cast<std::size_t>(k / 8)] >> (k % 8) & 1u)) continue;
+    if (!(bits[static_cast<std::size_t>(k / 8)] >> (k % 8) & 1u)) continue;
     out.squares.emplace_back(i0 + static_cast<int>(k % w), j0 + static_cast<int>(k / w));
   }
   return out;
@@ -217,33 +239,24 @@ std::vector<std::uint8_t> map_datagram(const MapSquares& map) {
   std::vector<std::uint8_t> packed(packed_size);
   const int z = compress2(packed.data(), &packed_size, map.states.data(), static_cast<uLong>(n), Z_DEFAULT_COMPRESSION);
   RS_DEMAND(z == Z_OK, "map_datagram: zlib compress2 failed");
-  std::string b64;
-  msg::append_base64(b64, packed.data(), packed_size);
-  nlohmann::json j;
-  j["map"] = {{"cell", map.cell}, {"origin", {map.origin.first, map.origin.second}}, {"size", {map.width, map.height}}, {"zlib", b64}};
-  const std::string text = j.dump();
-  return {text.begin(), text.end()};
+  return box_datagram("map", map.cell, map.origin, {map.width, map.height}, "zlib", packed.data(), packed_size);
 }
 
 std::optional<MapSquares> read_map_datagram(const std::vector<std::uint8_t>& bytes) {
-  const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("map") || !j["map"].is_object()) return std::nullopt;
-  const nlohmann::json& s = j["map"];
-  const auto box = read_square_box(s, "zlib");
-  if (!box) return std::nullopt;
-  const long n = static_cast<long>(box->size.first) * box->size.second;
+  const auto d = read_box_datagram(bytes, "map", "zlib");
+  if (!d) return std::nullopt;
+  const long n = static_cast<long>(d->box.size.first) * d->box.size.second;
   if (n > kMaxMapSquares) return std::nullopt;  // before inflating: the size bounds the work
-  const auto packed = msg::decode_base64(s["zlib"].get_ref<const std::string&>());
-  if (!packed) return std::nullopt;
+  const std::vector<std::uint8_t>& packed = d->data;
   MapSquares out;
-  out.cell = box->cell;
-  out.origin = box->origin;
-  out.width = box->size.first;
-  out.height = box->size.second;
+  out.cell = d->box.cell;
+  out.origin = d->box.origin;
+  out.width = d->box.size.first;
+  out.height = d->box.size.second;
   out.states.resize(static_cast<std::size_t>(n));
   // inflates into exactly n bytes: more is Z_BUF_ERROR, fewer leaves `size` short
   uLongf size = static_cast<uLongf>(n);
-  if (uncompress(out.states.data(), &size, packed->data(), static_cast<uLong>(packed->size())) != Z_OK || size != static_cast<uLongf>(n)) {
+  if (uncompress(out.states.data(), &size, packed.data(), static_cast<uLong>(packed.size())) != Z_OK || size != static_cast<uLongf>(n)) {
     return std::nullopt;
   }
   if (!std::all_of(out.states.begin(), out.states.end(), [](std::uint8_t v) { return v <= MapSquares::occupied; })) return std::nullopt;
