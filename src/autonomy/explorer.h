@@ -174,8 +174,9 @@ class Explorer {
   /// centred on the points (map frame), each free or occupied. A frontier of this robot's map
   /// whose unknown side a teammate has mapped is no longer worth a trip (the teammate has been
   /// there); such frontiers are not even a last resort. The team's word is kept beside this
-  /// robot's own map, never in it: it feeds neither the scan matching nor the plans, so a
-  /// teammate's misplaced map cannot mislead either. Ignored before the first scan.
+  /// robot's own map, never in it: scan matching and the paths themselves use this robot's map
+  /// alone, so a teammate's misplaced map cannot pull it off the walls or into one. Ignored
+  /// before the first scan.
   void add_team_map(const std::vector<std::pair<Vec2, CellState>>& squares_M, double cell);
   /// True when a teammate has said cell `c` (inside the map) is free or occupied.
   bool team_mapped(Cell c) const {
