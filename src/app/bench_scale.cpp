@@ -44,6 +44,16 @@ void plot(const json& runs, const std::filesystem::path& png) {
     const int x = p.x() + 6 + text_width(label) > kW - 2 ? static_cast<int>(p.x()) - 6 - text_width(label) : static_cast<int>(p.x()) + 6;
     c.text(x, static_cast<int>(p.y()) - 12, label, colour);
   };
+  // one value per run: a line through the points, each dot labelled with its value
+  const auto series = [&](const std::vector<double>& ys, const auto& y_px, Rgb8 colour, Rgb8 text, const auto& format) {
+    std::vector<Vec2> pts;
+    for (std::size_t i = 0; i < n.size(); ++i) pts.push_back({x_px(n[i]), y_px(ys[i])});
+    if (pts.size() > 1) c.polyline(pts, colour, 2.0);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      c.fill_circle(pts[i], 4, colour);
+      label_at(pts[i], format(ys[i]), text);
+    }
+  };
   const auto axes = [&](int top, const std::string& title) {
     const int bottom = top + panel_h;
     c.line({double(kLeft), double(bottom)}, {double(right), double(bottom)}, {0, 0, 0});
@@ -71,13 +81,7 @@ void plot(const json& runs, const std::filesystem::path& png) {
     }
     c.line({double(kLeft), y_px(1)}, {double(right), y_px(1)}, {200, 120, 120});  // real time
     for (std::size_t i = 1; i < n.size(); ++i) c.line({x_px(n[i - 1]), y_px(ideal[i - 1])}, {x_px(n[i]), y_px(ideal[i])}, {150, 150, 150});
-    std::vector<Vec2> pts;
-    for (std::size_t i = 0; i < n.size(); ++i) pts.push_back({x_px(n[i]), y_px(rtf[i])});
-    if (pts.size() > 1) c.polyline(pts, {30, 140, 60}, 2.0);
-    for (std::size_t i = 0; i < n.size(); ++i) {
-      c.fill_circle(pts[i], 4, {30, 140, 60});
-      label_at(pts[i], fmt::format("{:.2f}x", rtf[i]), {30, 100, 40});
-    }
+    series(rtf, y_px, {30, 140, 60}, {30, 100, 40}, [](double v) { return fmt::format("{:.2f}x", v); });
   }
   // peak memory, linear
   {
@@ -86,13 +90,7 @@ void plot(const json& runs, const std::filesystem::path& png) {
     const auto y_px = [&](double v) { return bottom - v / hi * panel_h; };
     c.text(4, kTop + panel_h + kGap, fmt::format("{:.0f}", hi), {0, 0, 0});
     c.text(4, bottom - 8, "0", {0, 0, 0});
-    std::vector<Vec2> pts;
-    for (std::size_t i = 0; i < n.size(); ++i) pts.push_back({x_px(n[i]), y_px(mem[i])});
-    if (pts.size() > 1) c.polyline(pts, {40, 90, 200}, 2.0);
-    for (std::size_t i = 0; i < n.size(); ++i) {
-      c.fill_circle(pts[i], 4, {40, 90, 200});
-      label_at(pts[i], fmt::format("{:.0f}", mem[i]), {30, 60, 150});
-    }
+    series(mem, y_px, {40, 90, 200}, {30, 60, 150}, [](double v) { return fmt::format("{:.0f}", v); });
   }
   c.write_png(png);
 }
