@@ -8,6 +8,7 @@
 #include <map>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/rng.h"
 #include "raycast/ray_scene.h"
 #include "sensors/lidar.h"
@@ -145,12 +146,12 @@ void BM_RaySceneCast(benchmark::State& state) {
   const RayScene scene(world);
   const std::vector<Ray> rays = scan_rays();
   std::vector<RayHit> hits(rays.size());
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   for (auto _ : state) {
     scene.cast(rays, hits);
     benchmark::DoNotOptimize(hits.data());
   }
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(rays.size()));
   state.counters["triangles"] = static_cast<double>(scene.triangle_count());
 }
@@ -200,9 +201,9 @@ void BM_Lidar1080(benchmark::State& state) {
   scene.update(s);
   const SensorSpec& spec = world.robots[0].spec.sensors[0];
   Rng rng(1, "scan");
-  RayScene::set_threads(static_cast<int>(state.range(0)));
+  set_worker_threads(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(sample_lidar(world, s, scene, 0, spec, SimTime{}, rng));
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   state.SetItemsProcessed(state.iterations() * kBeams);
   state.counters["scans/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }

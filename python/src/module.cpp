@@ -10,8 +10,8 @@
 
 #include "bindings.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "env_core.h"
-#include "raycast/ray_scene.h"
 #include "robots/rescue_robot.h"
 #include "batch/batch_trial.h"
 #include "vector_env_core.h"
@@ -172,6 +172,6 @@ PYBIND11_MODULE(_rescuesim, m) {
   python::bind_scenarios(m);
   python::bind_environments(m);
   python::bind_batch(m);
-  m.def("set_ray_threads", &RayScene::set_threads, py::arg("n"),
-        "limit the threads every ray scene of this process uses (0 = all cores; 1 when running one trial per core)");
+  m.def("set_ray_threads", &set_worker_threads, py::arg("n"),
+        "limit the worker threads of this process (ray casting, sensors, physics groups; 0 = all cores; 1 when running one trial per core)");
 }

@@ -20,7 +20,7 @@
 #include <thread>
 
 #include "core/error.h"
-#include "raycast/ray_scene.h"
+#include "core/parallel.h"
 
 namespace rescuesim {
 
@@ -89,7 +89,7 @@ std::string describe_exit(int status) {
   std::signal(SIGTERM, SIG_DFL);
   std::signal(SIGPIPE, SIG_DFL);
   // one trial per core: J trials at once already fill J cores
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   if (const char* crash = std::getenv(kCrashTrialVariable); crash && *crash && std::atoi(crash) == trial) std::raise(SIGSEGV);
   const TrialRecord rec = run_trial(scenario, models, trial, seed, options, fingerprint);
   const std::string line = to_json_line(rec);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/parallel.h"
 #include "physics/bullet_convert.h"
 #include "physics/physics_internal.h"
 #include "world/robot_lumping.h"
@@ -32,6 +33,9 @@ int sub_of(int code) { return (code >> 16) & 0xfff; }
 
 /// How far apart two shapes may be for Bullet to keep a (speculative) contact between them (m).
 constexpr double kContactDistance = 0.03;
+/// How far apart (m, each side) two bodies' bounding boxes must stay for them to step in
+/// different groups: 10 cm beyond the contact distance, besides four steps of their speed.
+constexpr double kGroupMargin = kContactDistance + 0.1;
 
 /// A rigid body's sleeping state in State's terms, and back in Bullet's.
 BodyState::Sleep sleep_of(const btCollisionObject& b) {
@@ -68,58 +72,103 @@ struct RobotBody {
   std::vector<btMultiBodyJointMotor*> motors;       // per original joint, nullptr when uncontrolled
   std::vector<Pose3> X_BF;                  // per body: Bullet's frame (centre of mass, principal axes) in the body frame
   std::vector<char> top;                    // per original link: it is its body's own frame
+  std::vector<btMultiBodyConstraint*> constraints;  // motors and limits, in build order
 };
 
-struct Physics::Impl {
-  const World& world;
-  PhysicsOptions options;
+/// One Bullet world of its own: a share of the robots and rubble, and its own static body for
+/// every static object (the shapes are shared, and only read while stepping). Groups share no
+/// mutable Bullet object, so they step at the same time on different threads. Debian's Bullet
+/// is built without BT_THREADSAFE, which rules out stepping the islands of one world in parallel;
+/// worlds of their own need nothing of Bullet but that two instances be independent. What is
+/// left shared are Bullet's statistics counters (plain ints such as gNumManifold), whose value
+/// nothing reads. Its profiler is compiled out (no BT_ENABLE_PROFILE).
+struct PhysicsGroup {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
   btMultiBodyDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &config};
+  std::vector<std::unique_ptr<btRigidBody>> statics;  // one per static object (or one compound), build order
+
+  explicit PhysicsGroup(const btDefaultCollisionConstructionInfo& info) : config(info) {}
+};
+
+struct Physics::Impl {
+  const World& world;
+  PhysicsOptions options;
   bullet::ShapeStore shapes;
   std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
-  std::vector<std::unique_ptr<btRigidBody>> statics;     // static geometry (one or one compound)
+  /// The static objects' shapes, poses, materials and user codes, built once for every group.
+  struct StaticPart {
+    btCollisionShape* shape;
+    Pose3 X;
+    int material;
+    int code;
+  };
+  std::vector<StaticPart> static_parts;
   std::vector<std::unique_ptr<btRigidBody>> rubble;      // per World::dynamics
   std::vector<std::unique_ptr<btMultiBody>> multibodies;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
   std::vector<RobotBody> robots;
+  std::vector<std::unique_ptr<PhysicsGroup>> groups;
+  std::vector<int> robot_group;   // per robot: the group whose world holds it (-1: none yet)
+  std::vector<int> rubble_group;  // per rubble body
 
   Impl(const World& w, const PhysicsOptions& o) : world(w), options(o) {
     // contacts are kept from 3 cm apart for every shape (Bullet's default scales the distance
     // down for small shapes), so bodies meet the ground on the step they reach it
-    dispatcher.setDispatcherFlags(dispatcher.getDispatcherFlags() & ~btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
     gContactBreakingThreshold = btScalar(kContactDistance);
-    dynamics.setGravity(btVector3(0, 0, btScalar(-w.gravity)));
-    dynamics.getSolverInfo().m_numIterations = o.solver_iterations;
+    const int n_groups = group_count(o.groups, static_cast<int>(w.robots.size()));
+    btDefaultCollisionConstructionInfo info;
+    // Bullet's pools (4096 manifolds and algorithms, about 4 MB) are sized for one world; a group
+    // holds a share of the bodies, and a pool that runs out falls back to the heap
+    info.m_defaultMaxPersistentManifoldPoolSize = std::max(256, 4096 / n_groups);
+    info.m_defaultMaxCollisionAlgorithmPoolSize = std::max(256, 4096 / n_groups);
+    for (int g = 0; g < n_groups; ++g) {
+      auto group = std::make_unique<PhysicsGroup>(info);
+      group->dispatcher.setDispatcherFlags(group->dispatcher.getDispatcherFlags() & ~btCollisionDispatcher::CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD);
+      group->dynamics.setGravity(btVector3(0, 0, btScalar(-w.gravity)));
+      group->dynamics.getSolverInfo().m_numIterations = o.solver_iterations;
+      groups.push_back(std::move(group));
+    }
     build_statics();
+    for (auto& g : groups) add_statics(*g);
     build_rubble();
     for (std::size_t r = 0; r < w.robots.size(); ++r) build_robot(static_cast<int>(r));
+    robot_group.assign(robots.size(), -1);
+    rubble_group.assign(rubble.size(), -1);
+    regroup();
   }
 
   ~Impl() {
-    for (auto& c : constraints) dynamics.removeMultiBodyConstraint(c.get());
-    for (auto& mb : multibodies) dynamics.removeMultiBody(mb.get());
-    for (auto& c : colliders) dynamics.removeCollisionObject(c.get());
-    for (auto& b : rubble) dynamics.removeRigidBody(b.get());
-    for (auto& b : statics) dynamics.removeRigidBody(b.get());
+    for (std::size_t r = 0; r < robots.size(); ++r) detach_robot(r);
+    for (std::size_t i = 0; i < rubble.size(); ++i) detach_rubble(i);
+    for (auto& g : groups) {
+      for (auto& b : g->statics) g->dynamics.removeRigidBody(b.get());
+    }
+  }
+
+  /// How many groups: `requested`, or with 0 one per 8 robots (up to 32), and a single group
+  /// below 8 robots, where splitting gains little (see docs/physics.md). A function of the
+  /// scenario alone, never of the machine, so results do not depend on the thread count.
+  static int group_count(int requested, int robots) {
+    if (requested > 0) return requested;
+    if (robots < 8) return 1;
+    return std::clamp(robots / 8, 2, 32);
   }
 
   const MaterialSpec& material(int i) const { return world.materials[static_cast<std::size_t>(i)]; }
 
-  btRigidBody* add_body(btCollisionShape* shape, const Pose3& X, double mass, const Vec3& inertia, const MaterialSpec& m, int code) {
-    motion_states.push_back(std::make_unique<btDefaultMotionState>(to_bt(X)));
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motion_states.back().get(), shape, to_bt(inertia));
+  static std::unique_ptr<btRigidBody> make_body(btCollisionShape* shape, btMotionState* motion, const Pose3& X, double mass,
+                                                const Vec3& inertia, const MaterialSpec& m, int code) {
+    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motion, shape, to_bt(inertia));
+    info.m_startWorldTransform = to_bt(X);
     info.m_friction = btScalar(m.friction);
     info.m_restitution = btScalar(m.restitution);
     auto body = std::make_unique<btRigidBody>(info);
     body->setUserIndex(code);
-    btRigidBody* raw = body.get();
-    dynamics.addRigidBody(raw);
-    (mass > 0 ? rubble : statics).push_back(std::move(body));
-    return raw;
+    return body;
   }
 
   void build_statics() {
@@ -129,25 +178,36 @@ struct Physics::Impl {
       for (std::size_t i = 0; i < world.statics.size(); ++i) {
         all->addChildShape(to_bt(world.statics[i].X_WO), shapes.make(world.statics[i].geometry));
       }
-      add_body(all, Pose3{}, 0, Vec3::Zero(), material(world.statics[0].material), encode(kStatic, 0));
+      static_parts.push_back({all, Pose3{}, world.statics[0].material, encode(kStatic, 0)});
       return;
     }
     for (std::size_t i = 0; i < world.statics.size(); ++i) {
       const StaticObject& s = world.statics[i];
+      // the floor as a plane at z = 0: plane contacts are found before bodies touch, so a
+      // falling body lands on the step it arrives rather than one step late
       if (s.kind == ObjectKind::floor) {
-        // the floor as a plane at z = 0: plane contacts are found before bodies touch, so a
-        // falling body lands on the step it arrives rather than one step late
-        add_body(shapes.plane(), Pose3{}, 0, Vec3::Zero(), material(s.material), encode(kStatic, static_cast<int>(i)));
-        continue;
+        static_parts.push_back({shapes.plane(), Pose3{}, s.material, encode(kStatic, static_cast<int>(i))});
+      } else {
+        static_parts.push_back({shapes.make(s.geometry), s.X_WO, s.material, encode(kStatic, static_cast<int>(i))});
       }
-      add_body(shapes.make(s.geometry), s.X_WO, 0, Vec3::Zero(), material(s.material), encode(kStatic, static_cast<int>(i)));
+    }
+  }
+
+  /// A group's own static bodies, in build order.
+  void add_statics(PhysicsGroup& g) const {
+    for (const StaticPart& part : static_parts) {
+      g.statics.push_back(make_body(part.shape, nullptr, part.X, 0, Vec3::Zero(), material(part.material), part.code));
+      g.dynamics.addRigidBody(g.statics.back().get());
     }
   }
 
   void build_rubble() {
     for (std::size_t i = 0; i < world.dynamics.size(); ++i) {
       const DynamicObject& d = world.dynamics[i];
-      btRigidBody* b = add_body(shapes.make(d.geometry), d.X_WO, d.mass, d.inertia, material(d.material), encode(kDynamic, static_cast<int>(i)));
+      motion_states.push_back(std::make_unique<btDefaultMotionState>(to_bt(d.X_WO)));
+      rubble.push_back(make_body(shapes.make(d.geometry), motion_states.back().get(), d.X_WO, d.mass, d.inertia, material(d.material),
+                                 encode(kDynamic, static_cast<int>(i))));
+      btRigidBody* b = rubble.back().get();
       b->setRollingFriction(0.002f);
       b->setSpinningFriction(0.002f);
       // rubble resting on the ground starts asleep, until something touches it
@@ -218,7 +278,6 @@ struct Physics::Impl {
     mb->setLinearDamping(0.0f);
     mb->setAngularDamping(0.0f);
     mb->setUseGyroTerm(true);
-    dynamics.addMultiBody(mb.get());
 
     // colliders: each body's shapes, placed relative to its Bullet frame
     body.colliders.assign(spec.links.size(), nullptr);
@@ -241,7 +300,6 @@ struct Physics::Impl {
       col->setRestitution(btScalar(restitution));
       if (ls.friction_scale != Vec3::Ones()) col->setAnisotropicFriction(to_bt(ls.friction_scale));
       col->setUserIndex(encode(kRobot, static_cast<int>(l), r));
-      dynamics.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
       if (body.bt_link[l] < 0) {
         mb->setBaseCollider(col.get());
       } else {
@@ -268,12 +326,12 @@ struct Physics::Impl {
         const double force = passive ? js.friction : js.max_effort;
         auto motor = std::make_unique<btMultiBodyJointMotor>(mb.get(), bt, 0.0f, btScalar(force * options.dt));
         if (!passive) body.motors[j] = motor.get();
-        dynamics.addMultiBodyConstraint(motor.get());
+        body.constraints.push_back(motor.get());
         constraints.push_back(std::move(motor));
       }
       if (js.type == JointSpec::Type::revolute || js.type == JointSpec::Type::prismatic) {
         auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(mb.get(), bt, btScalar(js.lower), btScalar(js.upper));
-        dynamics.addMultiBodyConstraint(limit.get());
+        body.constraints.push_back(limit.get());
         constraints.push_back(std::move(limit));
       }
     }
@@ -351,36 +409,168 @@ struct Physics::Impl {
     s.base.v_WB = v_com + w.cross(s.base.X_WB.q * (-lr.spec.links[0].com));
   }
 
+  /// Puts a robot's multibody, its colliders and its motors and limits into group `g`'s world,
+  /// in build order.
+  void attach_robot(std::size_t r, int g) {
+    RobotBody& b = robots[r];
+    btMultiBodyDynamicsWorld& w = groups[static_cast<std::size_t>(g)]->dynamics;
+    w.addMultiBody(b.mb);
+    for (btMultiBodyLinkCollider* c : b.colliders) {
+      if (c) w.addCollisionObject(c, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    }
+    for (btMultiBodyConstraint* c : b.constraints) w.addMultiBodyConstraint(c);
+    robot_group[r] = g;
+  }
+
+  /// Takes a robot out of its group's world, in reverse build order. Bullet removes by swapping
+  /// with the last element, so that taking out the newest first leaves the rest in place.
+  void detach_robot(std::size_t r) {
+    if (robot_group[r] < 0) return;
+    RobotBody& b = robots[r];
+    btMultiBodyDynamicsWorld& w = groups[static_cast<std::size_t>(robot_group[r])]->dynamics;
+    for (auto it = b.constraints.rbegin(); it != b.constraints.rend(); ++it) w.removeMultiBodyConstraint(*it);
+    for (auto it = b.colliders.rbegin(); it != b.colliders.rend(); ++it) {
+      if (*it) w.removeCollisionObject(*it);
+    }
+    w.removeMultiBody(b.mb);
+    robot_group[r] = -1;
+  }
+
+  void attach_rubble(std::size_t i, int g) {
+    groups[static_cast<std::size_t>(g)]->dynamics.addRigidBody(rubble[i].get());
+    rubble_group[i] = g;
+  }
+
+  void detach_rubble(std::size_t i) {
+    if (rubble_group[i] < 0) return;
+    groups[static_cast<std::size_t>(rubble_group[i])]->dynamics.removeRigidBody(rubble[i].get());
+    rubble_group[i] = -1;
+  }
+
+  /// Which group each robot (entities 0..R-1) and rubble body (R..R+D-1) belongs in: bodies that
+  /// could touch within the next step share a group, and the rest keep a home of their own.
+  /// Each body's bounding box is grown by kGroupMargin plus the distance its speed carries it over
+  /// four steps; bodies whose grown boxes overlap, directly or through others, form a cluster,
+  /// and a cluster lives in group (its lowest entity) mod G. So a robot alone is always in group
+  /// r mod G, and the grouping is a function of the bodies' poses and speeds alone: a restore
+  /// rebuilds it exactly, and it never depends on the thread count.
+  std::pair<std::vector<int>, std::vector<int>> grouping() const {
+    const std::size_t R = robots.size(), D = rubble.size(), n = R + D;
+    const int G = static_cast<int>(groups.size());
+    std::vector<int> rg(R, 0), dg(D, 0);
+    if (G == 1) return {rg, dg};
+    struct Box {
+      btVector3 lo, hi;
+    };
+    std::vector<Box> box(n);
+    const btScalar step = btScalar(4 * options.dt);
+    auto grow = [&](Box& bx, const btVector3& v) {
+      const btScalar m = btScalar(kGroupMargin) + v.length() * step;
+      bx.lo -= btVector3(m, m, m);
+      bx.hi += btVector3(m, m, m);
+    };
+    for (std::size_t r = 0; r < R; ++r) {
+      Box& bx = box[r];
+      bool first = true;
+      for (const btMultiBodyLinkCollider* c : robots[r].colliders) {
+        if (!c) continue;
+        btVector3 lo, hi;
+        c->getCollisionShape()->getAabb(c->getWorldTransform(), lo, hi);
+        if (first) {
+          bx = {lo, hi};
+          first = false;
+        } else {
+          bx.lo.setMin(lo);
+          bx.hi.setMax(hi);
+        }
+      }
+      if (first) bx = {robots[r].mb->getBasePos(), robots[r].mb->getBasePos()};
+      grow(bx, robots[r].mb->getBaseVel());
+    }
+    for (std::size_t i = 0; i < D; ++i) {
+      const btRigidBody& b = *rubble[i];
+      b.getCollisionShape()->getAabb(b.getWorldTransform(), box[R + i].lo, box[R + i].hi);
+      grow(box[R + i], b.getLinearVelocity());
+    }
+    // union-find, the root of a set its lowest entity; overlaps by sweeping boxes sorted on x
+    std::vector<std::size_t> parent(n);
+    for (std::size_t e = 0; e < n; ++e) parent[e] = e;
+    auto find = [&](std::size_t e) {
+      while (parent[e] != e) e = parent[e] = parent[parent[e]];
+      return e;
+    };
+    std::vector<std::size_t> order(n);
+    for (std::size_t e = 0; e < n; ++e) order[e] = e;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return box[a].lo.x() < box[b].lo.x() || (box[a].lo.x() == box[b].lo.x() && a < b);
+    });
+    for (std::size_t k = 0; k < n; ++k) {
+      const Box& a = box[order[k]];
+      // boxes with NaN corners (a body in trouble) compare false and touch nothing
+      for (std::size_t l = k + 1; l < n && box[order[l]].lo.x() <= a.hi.x(); ++l) {
+        const Box& b = box[order[l]];
+        if (b.lo.y() > a.hi.y() || a.lo.y() > b.hi.y() || b.lo.z() > a.hi.z() || a.lo.z() > b.hi.z()) continue;
+        const std::size_t ra = find(order[k]), rb = find(order[l]);
+        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
+    }
+    for (std::size_t r = 0; r < R; ++r) rg[r] = static_cast<int>(find(r) % static_cast<std::size_t>(G));
+    for (std::size_t i = 0; i < D; ++i) dg[i] = static_cast<int>(find(R + i) % static_cast<std::size_t>(G));
+    return {rg, dg};
+  }
+
+  /// Moves every body whose group changed into its new group's world: rubble first, then robots,
+  /// each in index order (the order they were built in, so one group holds its bodies as the single
+  /// world of earlier versions did). A body that moves leaves its contact manifolds behind, and
+  /// with them one step's warm start.
+  void regroup() {
+    const auto [rg, dg] = grouping();
+    for (std::size_t i = 0; i < rubble.size(); ++i) {
+      if (rubble_group[i] == dg[i]) continue;
+      detach_rubble(i);
+      attach_rubble(i, dg[i]);
+    }
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      if (robot_group[r] == rg[r]) continue;
+      detach_robot(r);
+      attach_robot(r, rg[r]);
+    }
+  }
+
   /// Puts Bullet's hidden state into the one canonical form that depends only on the bodies'
-  /// poses (Bullet's advice for repeatable runs): every collision object is taken out of the
-  /// world — which frees their broadphase proxies, overlapping pairs and contact manifolds with
-  /// the warm-start impulses in them — the then empty broadphase is reset (tree, ids, staging)
-  /// and the solver's seed zeroed, and the objects go back in the order they were built in.
-  /// Multibodies and their motors and limits stay: their order never changes and they keep no
-  /// memory between steps beyond what State holds.
+  /// poses (Bullet's advice for repeatable runs): the bodies are regrouped, then everything is
+  /// taken out of every group's world — which frees their broadphase proxies, overlapping pairs
+  /// and contact manifolds with the warm-start impulses in them — the then empty broadphase is
+  /// reset (tree, ids, staging) and the solver's seed zeroed, and everything goes back in the
+  /// order it was built in.
   void canonicalise() {
-    for (auto it = colliders.rbegin(); it != colliders.rend(); ++it) dynamics.removeCollisionObject(it->get());
-    for (auto it = rubble.rbegin(); it != rubble.rend(); ++it) dynamics.removeRigidBody(it->get());
-    for (auto it = statics.rbegin(); it != statics.rend(); ++it) dynamics.removeRigidBody(it->get());
-    broadphase.resetPool(&dispatcher);
-    solver.reset();
-    for (auto& b : statics) dynamics.addRigidBody(b.get());
-    for (auto& b : rubble) dynamics.addRigidBody(b.get());
-    for (auto& c : colliders) dynamics.addCollisionObject(c.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    for (std::size_t r = robots.size(); r-- > 0;) detach_robot(r);
+    for (std::size_t i = rubble.size(); i-- > 0;) detach_rubble(i);
+    const auto [rg, dg] = grouping();
+    for (auto& g : groups) {
+      for (auto it = g->statics.rbegin(); it != g->statics.rend(); ++it) g->dynamics.removeRigidBody(it->get());
+      g->broadphase.resetPool(&g->dispatcher);
+      g->solver.reset();
+      for (auto& b : g->statics) g->dynamics.addRigidBody(b.get());
+    }
+    for (std::size_t i = 0; i < rubble.size(); ++i) attach_rubble(i, dg[i]);
+    for (std::size_t r = 0; r < robots.size(); ++r) attach_robot(r, rg[r]);
   }
 
   /// Names of what touches each robot, and whether a new collision began.
   void read_contacts(State& state) {
     std::vector<std::vector<int>> touching(robots.size());
-    const int n = dispatcher.getNumManifolds();
+    for (const auto& g : groups) {
+    const int n = g->dispatcher.getNumManifolds();
     for (int i = 0; i < n; ++i) {
-      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
+      const btPersistentManifold* m = g->dispatcher.getManifoldByIndexInternal(i);
       bool contact = false;
       for (int k = 0; k < m->getNumContacts() && !contact; ++k) contact = m->getContactPoint(k).getDistance() < 0.002f;
       if (!contact) continue;
       const int a = m->getBody0()->getUserIndex(), b = m->getBody1()->getUserIndex();
       if (tag_of(a) == kRobot) touching[static_cast<std::size_t>(sub_of(a))].push_back(b);
       if (tag_of(b) == kRobot) touching[static_cast<std::size_t>(sub_of(b))].push_back(a);
+    }
     }
     for (std::size_t r = 0; r < robots.size(); ++r) {
       // the robot's own links touching each other are not contacts with the world
@@ -465,8 +655,10 @@ void Physics::init_state(State& state) const {
 
 void Physics::step(State& state) {
   Impl& m = *impl_;
+  if (m.groups.size() > 1) m.regroup();
   for (std::size_t r = 0; r < m.robots.size(); ++r) m.apply_targets(m.world.robots[r].spec, m.robots[r], state.robots[r]);
-  m.dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt));
+  // each group on a thread of its own: they share nothing Bullet writes to
+  parallel_for(m.groups.size(), [&](std::size_t g) { m.groups[g]->dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt)); });
   // read back
   for (std::size_t i = 0; i < m.rubble.size(); ++i) {
     const btRigidBody& b = *m.rubble[i];
@@ -514,7 +706,8 @@ void Physics::restore(const State& state) {
 
 PhysicsStats Physics::stats() const {
   PhysicsStats s;
-  s.static_bodies = static_cast<int>(impl_->statics.size());
+  s.static_bodies = static_cast<int>(impl_->static_parts.size());
+  s.groups = static_cast<int>(impl_->groups.size());
   s.dynamic_bodies = static_cast<int>(impl_->rubble.size());
   s.multibodies = static_cast<int>(impl_->robots.size());
   for (const auto& r : impl_->robots) s.multibody_links += r.mb->getNumLinks();
@@ -523,7 +716,11 @@ PhysicsStats Physics::stats() const {
 
 namespace physics_internal {
 
-btMultiBodyDynamicsWorld& bullet_world(Physics::Impl& impl) { return impl.dynamics; }
+std::vector<btMultiBodyDynamicsWorld*> bullet_worlds(Physics::Impl& impl) {
+  std::vector<btMultiBodyDynamicsWorld*> out;
+  for (auto& g : impl.groups) out.push_back(&g->dynamics);
+  return out;
+}
 
 void hold_velocity_joints(const World& world, Physics::Impl& impl, double speed) {
   for (std::size_t r = 0; r < impl.robots.size(); ++r) {

@@ -24,6 +24,13 @@ struct PhysicsOptions {
   int solver_iterations = 10;     ///< constraint solver iterations per step
   bool compound_statics = false;  ///< all static geometry as one compound body instead of one body each
   double escape_distance = 100.0; ///< m beyond the floor after which a body counts as flung away
+  /// Independent Bullet worlds the bodies are spread over, stepped at the same time on the
+  /// worker threads (core/parallel.h). Bodies that could touch in the next step always share a
+  /// world; the others keep a home world (robot r in world r mod groups). 0 = automatic: one
+  /// world below 8 robots, else one per 8 robots, up to 32. The results depend on the number of
+  /// groups (bodies in one world are solved together) but never on the number of threads.
+  /// See docs/physics.md.
+  int groups = 0;
 };
 
 /// Counts of what the engine simulates.
@@ -32,6 +39,7 @@ struct PhysicsStats {
   int dynamic_bodies = 0;
   int multibodies = 0;
   int multibody_links = 0;
+  int groups = 0;  ///< independent Bullet worlds (PhysicsOptions::groups)
 };
 
 /// Bullet, set up from a World.

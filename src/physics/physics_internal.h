@@ -6,12 +6,15 @@
 
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
+#include <vector>
+
 #include "physics/physics.h"
 
 namespace rescuesim::physics_internal {
 
-/// The Bullet world of a Physics (its statics, rubble and robot multibodies as built from World).
-btMultiBodyDynamicsWorld& bullet_world(Physics::Impl& impl);
+/// The Bullet worlds of a Physics, one per group (PhysicsOptions::groups), which between them
+/// hold its statics (each world a copy), rubble and robot multibodies as built from World.
+std::vector<btMultiBodyDynamicsWorld*> bullet_worlds(Physics::Impl& impl);
 
 /// Sets every robot joint motor: velocity-controlled joints to `speed` (rad/s), the others held
 /// at zero velocity; `world` is the World the Physics was built from.

@@ -1,17 +1,15 @@
 #include "raycast/ray_scene.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <atomic>
 #include <cstdint>
 #include <list>
-#include <mutex>
 #include <string>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "raycast/embree_support.h"
 
 namespace rescuesim {
@@ -26,11 +24,6 @@ constexpr std::size_t kParallelMinRays = 384;
 constexpr std::size_t kPacketsPerTask = 4;
 /// Surfaces this close to the end of an occlusion segment do not occlude it (m).
 constexpr double kOcclusionSlack = 1e-4;
-
-// the thread limit shared by every scene (and, through TBB, by Embree's builders)
-std::mutex g_threads_mutex;
-std::unique_ptr<tbb::global_control> g_thread_limit;
-std::atomic<int> g_threads{0};
 
 /// Embree's intersect context with the robot whose links rays must not see. Embree hands the
 /// context pointer back to filter functions unchanged, so it can carry our own fields.
@@ -287,7 +280,7 @@ void RayScene::cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignor
   // each packet writes only its own hits, so any split over threads gives the same answer; the
   // work is isolated so a thread waiting here never picks up its caller's other tasks (callers
   // keep per-thread buffers across this call)
-  if (n < kParallelMinRays || g_threads.load(std::memory_order_relaxed) == 1) {
+  if (n < kParallelMinRays || worker_threads() == 1) {
     run(0, packets);
   } else {
     tbb::this_task_arena::isolate([&] {
@@ -322,14 +315,5 @@ bool RayScene::occluded(const Vec3& from, const Vec3& to, int ignore_robot) cons
 }
 
 std::size_t RayScene::triangle_count() const { return impl_->triangles; }
-
-void RayScene::set_threads(int n) {
-  std::lock_guard lock(g_threads_mutex);
-  g_thread_limit.reset();
-  if (n > 0) g_thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(n));
-  g_threads.store(n > 0 ? n : 0, std::memory_order_relaxed);
-}
-
-int RayScene::threads() { return g_threads.load(std::memory_order_relaxed); }
 
 }  // namespace rescuesim

@@ -65,11 +65,6 @@ class RayScene {
   /// Triangles in the scene (each rubble and link mesh counted once).
   std::size_t triangle_count() const;
 
-  /// Limits the threads of every RayScene (and Embree's builders) to `n`; 0 = all cores.
-  static void set_threads(int n);
-  /// The limit set by set_threads (0 = all cores).
-  static int threads();
-
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

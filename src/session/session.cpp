@@ -11,6 +11,7 @@
 
 #include "core/log.h"
 #include "core/memory.h"
+#include "core/parallel.h"
 #include "mission/datagram_json.h"
 #include "sensors/camera/render_camera_service.h"
 #include "session/explorer_settings.h"
@@ -46,6 +47,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   so.seed = scenario_.seed;
   so.physics.dt = scenario_.physics_dt;
   so.physics.solver_iterations = scenario_.solver_iterations;
+  so.physics.groups = scenario_.physics_groups;
   sim_ = std::make_unique<Simulation>(std::move(world), so);
   if (any_camera) {
     CameraServiceOptions co;
@@ -78,6 +80,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
 
   // controllers listen to the laser and odometry topics and answer with cmd_vel
   controllers_ = std::make_unique<Controllers>();
+  controllers_->inbox.resize(sim_->world().robots.size());  // never resized again: subscribers point into it
   const auto configs = robot_configs(scenario_, spec_, models);
   for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
     const RobotInstance& robot = sim_->world().robots[r];
@@ -141,10 +144,10 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
       }
     }
     controllers_->explorers.back() = std::make_unique<autonomy::Explorer>(X_BS.to_pose2(), ec);
-    autonomy::Explorer* ex = controllers_->explorers.back().get();
-    sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), [ex](const Topic&, const msg::Message& m) {
-      ex->on_odometry(std::get<msg::Odometry>(m));
-    });
+    // what the explorer hears waits in its inbox until the step is over (Session::run_controllers)
+    std::vector<msg::Message>* inbox = &controllers_->inbox[r];
+    const auto hear = [inbox](const Topic&, const msg::Message& m) { inbox->push_back(m); };
+    sim_->bus().subscribe(sim_->topic_name(ri, odom->topic), hear);
     // the victim camera's pan: where it stands, and the swing the explorer asks for (a head
     // joint is commanded with the whole head, the others held at their starting positions)
     if (!ec.look.yaw_joint.empty()) {
@@ -156,20 +159,9 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
         pan.head.push_back(robot.spec.joints[static_cast<std::size_t>(robot.spec.joint_index(hj[k]))].initial);
         if (hj[k] == ec.look.yaw_joint) pan.in_head = static_cast<int>(k);
       }
-      if (joints) {
-        sim_->bus().subscribe(sim_->topic_name(ri, joints->topic), [ex](const Topic&, const msg::Message& m) {
-          ex->on_joint_state(std::get<msg::JointState>(m));
-        });
-      }
+      if (joints) sim_->bus().subscribe(sim_->topic_name(ri, joints->topic), hear);
     }
-    sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), [this, ex, ri](const Topic&, const msg::Message& m) {
-      const auto& scan = std::get<msg::LaserScan>(m);
-      ex->on_scan(scan);
-      const msg::Twist cmd = ex->command(scan.header.stamp);
-      sim_->command_velocity(ri, cmd);
-      controllers_->queued[static_cast<std::size_t>(ri)] = cmd;
-      if (const auto yaw = ex->look_command(scan.header.stamp)) command_look(ri, *yaw);
-    });
+    sim_->bus().subscribe(sim_->topic_name(ri, laser->topic), hear);
   }
 
   const std::size_t robots = sim_->world().robots.size();
@@ -588,11 +580,51 @@ void Session::command_look(int robot, double yaw) {
   controllers_->queued_look[static_cast<std::size_t>(robot)] = yaw;
 }
 
+void Session::run_controllers() {
+  Controllers& c = *controllers_;
+  std::vector<std::size_t> busy;
+  for (std::size_t r = 0; r < c.inbox.size(); ++r) {
+    if (!c.inbox[r].empty()) busy.push_back(r);
+  }
+  // each robot's explorer hears its own messages in the order they were published, on a worker
+  // thread (explorers share nothing); what they ask for is then commanded in robot order
+  struct Asked {
+    msg::Twist cmd;
+    std::optional<double> look;
+  };
+  std::vector<std::vector<Asked>> asked(busy.size());
+  parallel_for(busy.size(), [&](std::size_t i) {
+    const std::size_t r = busy[i];
+    autonomy::Explorer& ex = *c.explorers[r];
+    for (const msg::Message& m : c.inbox[r]) {
+      if (const auto* odom = std::get_if<msg::Odometry>(&m)) {
+        ex.on_odometry(*odom);
+      } else if (const auto* joints = std::get_if<msg::JointState>(&m)) {
+        ex.on_joint_state(*joints);
+      } else if (const auto* scan = std::get_if<msg::LaserScan>(&m)) {
+        ex.on_scan(*scan);
+        const msg::Twist cmd = ex.command(scan->header.stamp);
+        asked[i].push_back({cmd, ex.look_command(scan->header.stamp)});
+      }
+    }
+    c.inbox[r].clear();
+  });
+  for (std::size_t i = 0; i < busy.size(); ++i) {
+    const int ri = static_cast<int>(busy[i]);
+    for (const Asked& a : asked[i]) {
+      sim_->command_velocity(ri, a.cmd);
+      c.queued[busy[i]] = a.cmd;
+      if (a.look) command_look(ri, *a.look);
+    }
+  }
+}
+
 void Session::step_once() {
   // what the controllers queue during this step is for the next one
   for (auto& q : controllers_->queued) q.reset();
   for (auto& q : controllers_->queued_look) q.reset();
   sim_->step();
+  run_controllers();
   record();
   if (mission_) mission_step();
 }

@@ -143,6 +143,9 @@ class Session {
   struct Controllers;
   /// One Simulation step with what a run does around it: the trajectory, the mission.
   void step_once();
+  /// Hands each built-in controller what it heard during the step just taken (robots in
+  /// parallel) and commands what they ask for.
+  void run_controllers();
   void command_look(int robot, double yaw);  // the explorer's camera swing, through the head or the joint
   void record();
   /// Drops every other sample time from the trajectory and doubles the interval; true when the

@@ -29,6 +29,9 @@ struct TeamClaim {
 /// The built-in controllers, one per robot that asked for one, fed from the Bus.
 struct Session::Controllers {
   std::vector<std::unique_ptr<autonomy::Explorer>> explorers;  // per robot, null when none
+  /// Per robot: the odometry, joint states and scans its explorer subscribed to, as published
+  /// during the step being taken; Session::run_controllers hands them over once it is done.
+  std::vector<std::vector<msg::Message>> inbox;
   std::vector<Pose2> X_WO;                                     // per robot: odom frame in the world (its start pose)
   /// Per robot: the cmd_vel its controller queued during the step that ran last, which the next
   /// step applies; a snapshot carries it, since the Simulation's command queue is not State.

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "robots/drive_controller.h"
 #include "sensors/contact.h"
 #include "sensors/ground_truth.h"
@@ -359,10 +360,29 @@ void Simulation::post_step() {
     bus_.publish(clock_topic_, msg::Clock{now});
     due.next_clock = options_.clock_rate > 0 ? due.next_clock + period_of(options_.clock_rate) : now + SimTime{1};
   }
-  for (const auto& s : sensors_) {
+  // the ray sensors due now (lidars and sonars: most of the sampling work) sample at the same
+  // time on the worker threads, each from the const state with its own RNG stream into its own
+  // message; then every due sensor publishes in the fixed sensor order, so subscribers see the
+  // same messages in the same order whatever the thread count
+  std::vector<std::size_t> due_rays;
+  for (std::size_t k = 0; k < sensors_.size(); ++k) {
+    if (now >= state_.sensors[static_cast<std::size_t>(sensors_[k].slot)].next_due && ray_sensor(sensors_[k].spec.type)) due_rays.push_back(k);
+  }
+  std::vector<msg::Message> ray_messages(due_rays.size());
+  if (!due_rays.empty()) {
+    const RayScene& scene = current_rays();
+    parallel_for(due_rays.size(), [&](std::size_t i) { ray_messages[i] = sample_rays(sensors_[due_rays[i]], scene); });
+  }
+  std::size_t next_ray = 0;
+  for (std::size_t k = 0; k < sensors_.size(); ++k) {
+    const SensorInstance& s = sensors_[k];
     SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
     if (now < slot.next_due) continue;
-    sample(s);
+    if (next_ray < due_rays.size() && due_rays[next_ray] == k) {
+      bus_.publish(s.topic, std::move(ray_messages[next_ray++]));
+    } else {
+      sample(s);
+    }
     ++slot.count;
     // the next due time keeps the nominal grid, even if a step overshot this one
     while (slot.next_due <= now) slot.next_due += s.period;
@@ -378,29 +398,38 @@ void Simulation::post_step() {
   }
 }
 
+bool Simulation::ray_sensor(SensorSpec::Type type) { return type == SensorSpec::Type::lidar || type == SensorSpec::Type::sonar; }
+
+const RayScene& Simulation::current_rays() {
+  if (!rays_current_) {
+    rays_->update(state_);
+    rays_current_ = true;
+  }
+  return *rays_;
+}
+
+msg::Message Simulation::sample_rays(const SensorInstance& s, const RayScene& scene) {
+  // samplers take the spec framed at set-up (namespaced frame_id) and this sensor's slot, whose
+  // RNG stream only this call draws from
+  const SensorSpec& spec = s.spec;
+  Rng& rng = state_.sensors[static_cast<std::size_t>(s.slot)].rng;
+  const SimTime now = state_.time;
+  if (spec.type == SensorSpec::Type::sonar) return sample_sonar(world_, state_, scene, s.robot, spec, now, rng);
+  RS_DEMAND(spec.type == SensorSpec::Type::lidar, "Simulation::sample_rays: not a ray sensor");
+  if (spec.lidar.layers > 1) return sample_lidar_cloud(world_, state_, scene, s.robot, spec, now, rng);
+  return sample_lidar(world_, state_, scene, s.robot, spec, now, rng);
+}
+
 void Simulation::sample(const SensorInstance& s) {
   // samplers take the spec framed at set-up (namespaced frame_id) and this sensor's slot
   const SensorSpec& spec = s.spec;
   SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
   const SimTime now = state_.time;
-  auto rays = [&]() -> const RayScene& {
-    if (!rays_current_) {
-      rays_->update(state_);
-      rays_current_ = true;
-    }
-    return *rays_;
-  };
   // the robot's root link (base_link for the rescue robot, maybe base_footprint for a URDF robot)
   const auto root_frame = [&] { return frame_name(s.robot, world_.robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
   switch (spec.type) {
     case SensorSpec::Type::lidar:
-      if (spec.lidar.layers > 1) {
-        bus_.publish(s.topic, sample_lidar_cloud(world_, state_, rays(), s.robot, spec, now, slot.rng));
-      } else {
-        bus_.publish(s.topic, sample_lidar(world_, state_, rays(), s.robot, spec, now, slot.rng));
-      }
-      break;
-    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_sonar(world_, state_, rays(), s.robot, spec, now, slot.rng)); break;
+    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_rays(s, current_rays())); break;
     case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, spec, now, slot)); break;
     case SensorSpec::Type::odometry: {
       // odom -> root link on /tf from wheel odometry, unless ground truth gives it
@@ -479,13 +508,9 @@ void Simulation::publish_tf() {
 }
 
 void Simulation::check_victims() {
-  if (!rays_current_) {
-    rays_->update(state_);
-    rays_current_ = true;
-  }
   // one detector, picked at set-up (line of sight, or thermal images: those robots' victims are
   // recorded as their frames are delivered)
-  victim_detector_->check(world_, state_, *rays_);
+  victim_detector_->check(world_, state_, current_rays());
 }
 
 void Simulation::set_victim_detector(std::unique_ptr<VictimDetector> detector) {

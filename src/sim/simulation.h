@@ -148,6 +148,11 @@ class Simulation : public BridgeHost {
   void pre_step();
   void post_step();
   void sample(const SensorInstance& s);
+  static bool ray_sensor(SensorSpec::Type type);
+  /// The ray scene, brought up to state_ first if it is not (not while another thread casts).
+  const RayScene& current_rays();
+  /// A lidar's or sonar's message now; safe to call for different sensors at once.
+  msg::Message sample_rays(const SensorInstance& s, const RayScene& scene);
   void publish_tf_static();
   void publish_descriptions();
   void publish_tf();

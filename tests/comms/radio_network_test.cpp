@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "radio_test_worlds.h"
 
 namespace rescuesim {
@@ -315,11 +316,11 @@ TEST(RadioNetworkDeterminism, SameLinksAtOneAndTwoRayThreads) {
   const World world = walls_across_x({1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5});
   const RayScene scene(world);
   const WallCounter walls(scene, world);
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   const std::vector<RadioLink> one = ten_radio_links(walls, 1);
-  RayScene::set_threads(2);
+  set_worker_threads(2);
   const std::vector<RadioLink> two = ten_radio_links(walls, 200);  // 200 updates: also the cost seen in the test time
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].walls, two[i].walls) << i;

@@ -9,6 +9,7 @@
 #include <map>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/rng.h"
 
 namespace rescuesim {
@@ -290,13 +291,13 @@ TEST(RaySceneDeterminism, OneThreadAndAllThreadsGiveIdenticalHits) {
   const std::vector<Ray> rays = random_rays(10000, 7);
 
   // build and cast on one thread, then build and cast again on all cores
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   std::vector<RayHit> one(rays.size());
   {
     const RayScene scene(world);
     scene.cast(rays, one, 0);
   }
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   std::vector<RayHit> all(rays.size());
   {
     const RayScene scene(world);

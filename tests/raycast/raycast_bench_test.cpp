@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "raycast/ray_scene.h"
+#include "core/parallel.h"
 
 namespace rescuesim {
 namespace {
@@ -17,11 +17,11 @@ TEST(RayThroughput, MeasuresBothAndRestoresTheThreadLimit) {
   spec.walls.push_back(WallSpec{{5, 0}, {5, 10}, 0.1, 1.0, "wall", {}});
   spec.walls.push_back(WallSpec{{0, 5}, {10, 5}, 0.1, 1.0, "wall", {}});
   const World world = compile_world(spec, {});
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   const RayBenchResult r = measure_ray_throughput(world, Vec3(2, 2, 0.3), 100, 0.02);
   EXPECT_GT(r.bare_rays_per_s, 0);
   EXPECT_GT(r.scene_rays_per_s, 0);
-  EXPECT_EQ(RayScene::threads(), 0);
+  EXPECT_EQ(worker_threads(), 0);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "raycast/ray_scene.h"
+#include "core/parallel.h"
 #include "sim/drive_pattern.h"
 
 namespace rescuesim {
@@ -37,24 +37,24 @@ const std::vector<std::pair<std::string, std::uint64_t>> kGolden = {
     {"dynamics[10]", 0xbedf4d04a0f3614aull},
     {"dynamics[11]", 0x5f6d0558e6460b78ull},
     {"robots", 0x89cd31291d2aefa4ull},
-    {"robots[0].base", 0x72ad3f0caefb1291ull},
-    {"robots[0].links", 0x1367e23620b92b8aull},
-    {"robots[0].joints", 0x28bbce510373d09aull},
-    {"robots[0].commands", 0x9e2c8b72cda04f7bull},
-    {"robots[0].odometry", 0xe64aba3b3bb334d4ull},
-    {"robots[0].contacts", 0x7d6425912d5a48efull},
+    {"robots[0].base", 0x4d8aefb6f1ab996cull},
+    {"robots[0].links", 0x9e1aaf1a85bb892eull},
+    {"robots[0].joints", 0x6f7c34dcad7e5528ull},
+    {"robots[0].commands", 0x6ab3b33303289cbull},
+    {"robots[0].odometry", 0x5efb0c220c825d69ull},
+    {"robots[0].contacts", 0x5e466a68a08bbbbeull},
     {"victims", 0x2cdcdc0dfc5d1141ull},
     {"victims[0]", 0xe26a2a692e4c4f7dull},
     {"victims[1]", 0xe26a2a692e4c4f7dull},
     {"victims[2]", 0xe26a2a692e4c4f7dull},
     {"victims[3]", 0xe26a2a692e4c4f7dull},
     {"sensors", 0x5b84d4d48e81828ull},
-    {"sensors[0]", 0xf21cb1716c7f6bc6ull},
-    {"sensors[1]", 0xe9dcce43cafea13ull},
+    {"sensors[0]", 0xcc3aa9826cc42c2full},
+    {"sensors[1]", 0x8ad4bc92bd1e95efull},
     {"sensors[2]", 0xcf05707cc1a77e31ull},
     {"sensors[3]", 0x6801e15c1c320a51ull},
     {"sensors[4]", 0xef08b8c888f0afa2ull},
-    {"sensors[5]", 0xc703031f3aa19cd3ull},
+    {"sensors[5]", 0xbc19fa3510e54df1ull},
     {"sensors[6]", 0x55cf3e554f5b57e6ull},
     {"sensors[7]", 0xd314a478fb30c793ull},
     {"sensors[8]", 0xe22c6a7798d23758ull},
@@ -64,7 +64,7 @@ const std::vector<std::pair<std::string, std::uint64_t>> kGolden = {
     {"sensors[12]", 0x32c509fa5e2bd98cull},
     {"schedule", 0x1ccc27888be14b6cull},
     {"trouble", 0x88201fb960ff6465ull},
-    {"total", 0x231d2a4678a0e440ull},
+    {"total", 0x65bd8ebbd154f148ull},
 };
 
 /// Runs the scenario, compares with kGolden, and says which parts changed.
@@ -88,13 +88,13 @@ void check_golden() {
 }
 
 TEST(GoldenHash, DefaultScenarioAfter1000StepsOnOneRayThread) {
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   check_golden();
-  RayScene::set_threads(0);
+  set_worker_threads(0);
 }
 
 TEST(GoldenHash, DefaultScenarioAfter1000StepsOnAllRayThreads) {
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   check_golden();
 }
 

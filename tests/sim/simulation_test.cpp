@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/parallel.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
 #include "support/rig.h"
@@ -287,9 +288,9 @@ TEST(Determinism, SameSeedGivesIdenticalStateAndMessages) {
 }
 
 TEST(Determinism, OneRayThreadOrAllGiveTheSameRun) {
-  RayScene::set_threads(1);
+  set_worker_threads(1);
   const auto one = fingerprint(10.0);
-  RayScene::set_threads(0);
+  set_worker_threads(0);
   const auto all = fingerprint(10.0);
   EXPECT_EQ(one.first, all.first);
   EXPECT_EQ(one.second, all.second);

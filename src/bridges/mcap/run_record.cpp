@@ -45,6 +45,7 @@ void describe_run(McapOptions& o, const Scenario& s, const WorldSpec& world, boo
                          {"duration_s", exact(s.duration)},
                          {"physics_dt_s", exact(s.physics_dt)},
                          {"solver_iterations", std::to_string(s.solver_iterations)},
+                         {"physics_groups", std::to_string(s.physics_groups)},
                          {"cameras", cameras ? "on" : "off"},
                          {"render_quality", s.render_quality},
                          {"world", world.name},
@@ -100,6 +101,7 @@ RecordedRun rebuild_run(const mcap::McapReader& reader, const ModelMap& models) 
   s.duration = number("duration_s", s.duration);
   s.physics_dt = number("physics_dt_s", s.physics_dt);
   s.solver_iterations = number("solver_iterations", s.solver_iterations);
+  s.physics_groups = number("physics_groups", s.physics_groups);
   s.svg.reset();
   s.maze.reset();
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "raycast/embree_support.h"
 #include "raycast/ray_scene.h"
 
@@ -84,8 +85,8 @@ RayBenchResult measure_ray_throughput(const World& world, const Vec3& origin, in
   std::vector<RayHit> hits(fan.size());
 
   // alternate the two in short rounds so machine noise falls on both alike
-  const int previous_threads = RayScene::threads();
-  RayScene::set_threads(1);
+  const int previous_threads = worker_threads();
+  set_worker_threads(1);
   const int rounds = 4;
   double bare_time = 0, scene_time = 0;
   long bare_rays = 0, scene_rays = 0;
@@ -105,7 +106,7 @@ RayBenchResult measure_ray_throughput(const World& world, const Vec3& origin, in
     } while (seconds_since(t0) < seconds / (2 * rounds));
     scene_time += seconds_since(t0);
   }
-  RayScene::set_threads(previous_threads);
+  set_worker_threads(previous_threads);
   RS_DEMAND(checksum >= 0, "measure_ray_throughput: impossible hit count");
   return {static_cast<double>(bare_rays) / bare_time, static_cast<double>(scene_rays) / scene_time};
 }

@@ -154,6 +154,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   const bool dt_given = physics.has("dt");
   s.physics_dt = physics.number("dt", s.physics_dt, 1e-4, 0.05);
   s.solver_iterations = static_cast<int>(physics.integer("solver_iterations", s.solver_iterations, 1, 1000));
+  s.physics_groups = static_cast<int>(physics.integer("groups", s.physics_groups, 0, 256));
   physics.finish();
 
   const YamlNode w = root.map("world");

@@ -45,6 +45,7 @@ struct Scenario {
   double physics_dt = 0.005;        ///< s
   bool physics_dt_given = false;    ///< physics.dt was in the file (else an SDF world's step may set it)
   int solver_iterations = 10;
+  int physics_groups = 0;           ///< independent Bullet worlds (PhysicsOptions::groups); 0 = automatic
   bool stop_when_all_found = false; ///< end the run once every victim has been seen
   std::string render_quality = "low";  ///< camera images: low, medium or high (see docs/rendering.md)
   double render_latency = -1;       ///< s from a camera's sample to its delivery; < 0: one camera period
