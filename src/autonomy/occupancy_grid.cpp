@@ -82,8 +82,8 @@ void OccupancyMapper::allocate(const Vec2& origin_O, int width, int height) {
   origin_O_ = origin_O;
   width_ = width;
   height_ = height;
-  log_odds_.assign(static_cast<std::size_t>(width) * height, 0.0f);
-  scan_mark_.assign(log_odds_.size(), 0);
+  tiles_x_ = (width + kTileSide - 1) / kTileSide;
+  tiles_ = Tiles(static_cast<std::size_t>(tiles_x_) * static_cast<std::size_t>((height + kTileSide - 1) / kTileSide));
 }
 
 void OccupancyMapper::allocate_around(const Vec2& p_O) {
@@ -115,18 +115,25 @@ std::optional<std::pair<Cell, Cell>> OccupancyMapper::observed_box() const {
 }
 
 void OccupancyMapper::set_state(Cell c, CellState s) {
-  const int i = index(c);
-  log_odds_[i] = s == CellState::unknown ? 0.0f : (s == CellState::free ? config_.min_log_odds : config_.max_log_odds);
-  scan_mark_[i] = s == CellState::unknown ? 0 : 1;  // 1: observed, by no scan
+  Tile& t = tiles_.at(tile_index(c));
+  const int k = in_tile(c);
+  t.log_odds[k] = s == CellState::unknown ? 0.0f : (s == CellState::free ? config_.min_log_odds : config_.max_log_odds);
+  t.mark[k] = s == CellState::unknown ? 0 : 1;  // 1: observed, by no scan
   grow_observed(c);
 }
 
-int OccupancyMapper::update(int i, float delta, std::uint32_t mark) {
-  float& l = log_odds_[i];
-  const bool first_look = scan_mark_[i] == 0;
+int OccupancyMapper::update(Tile& t, int k, float delta, std::uint32_t mark) {
+  float& l = t.log_odds[k];
+  const bool first_look = t.mark[k] == 0;
   l = std::clamp(l + delta, config_.min_log_odds, config_.max_log_odds);
-  scan_mark_[i] = mark;
+  t.mark[k] = mark;
   return first_look ? 1 : 0;
+}
+
+std::size_t OccupancyMapper::cell_bytes() const {
+  std::size_t n = tiles_.size() * sizeof(std::unique_ptr<Tile>);
+  for (std::size_t i = 0; i < tiles_.size(); ++i) n += tiles_[i] ? sizeof(Tile) : 0;
+  return n;
 }
 
 int OccupancyMapper::integrate(const msg::LaserScan& scan, const Pose2& X_OS) {
@@ -212,8 +219,11 @@ int OccupancyMapper::integrate(const msg::LaserScan& scan, const Pose2& X_OS) {
   for (const Beam& b : beams) {
     if (!b.valid || !b.hit) continue;
     const Cell c{static_cast<int>(std::floor(b.end.x())), static_cast<int>(std::floor(b.end.y()))};
-    if (!contains(c) || scan_mark_[index(c)] == hit_mark) continue;
-    learned += update(index(c), config_.hit_log_odds, hit_mark);
+    if (!contains(c)) continue;
+    Tile& t = tiles_.at(tile_index(c));
+    const int k = in_tile(c);
+    if (t.mark[k] == hit_mark) continue;
+    learned += update(t, k, config_.hit_log_odds, hit_mark);
   }
 
   // then clear the cells each beam crossed up to its guarded stretch (all the way for beams
@@ -224,8 +234,9 @@ int OccupancyMapper::integrate(const msg::LaserScan& scan, const Pose2& X_OS) {
     trace(start, clear_end, [&](int x, int y) {
       const Cell c{x, y};
       if (!contains(c)) return false;
-      const int i = index(c);
-      if (scan_mark_[i] != hit_mark && scan_mark_[i] != clear_mark) learned += update(i, config_.miss_log_odds, clear_mark);
+      Tile& t = tiles_.at(tile_index(c));
+      const int k = in_tile(c);
+      if (t.mark[k] != hit_mark && t.mark[k] != clear_mark) learned += update(t, k, config_.miss_log_odds, clear_mark);
       return true;
     });
   }
@@ -240,14 +251,14 @@ msg::OccupancyGrid OccupancyMapper::to_message(const std::string& frame_id, SimT
   m.width = static_cast<std::uint32_t>(width_);
   m.height = static_cast<std::uint32_t>(height_);
   m.origin.p = Vec3(origin_O_.x(), origin_O_.y(), 0.0);
-  m.data.resize(log_odds_.size());
-  for (std::size_t i = 0; i < log_odds_.size(); ++i) {
-    const float l = log_odds_[i];
-    if (state_of(l) == CellState::unknown) {
-      m.data[i] = -1;
-    } else {
+  m.data.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), -1);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      const float l = log_odds({x, y});
+      if (state_of(l) == CellState::unknown) continue;
       const double p = 1.0 / (1.0 + std::exp(-static_cast<double>(l)));
-      m.data[i] = static_cast<std::int8_t>(std::lround(100.0 * p));
+      m.data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] =
+          static_cast<std::int8_t>(std::lround(100.0 * p));
     }
   }
   return m;

@@ -2,10 +2,14 @@
 /// Occupancy mapping from planar laser scans: a fixed-size log-odds grid in the odom frame,
 /// updated by tracing every beam through the cells it crosses (free) up to its return
 /// (occupied). Cells are indexed row-major from the grid's lower-left corner, as in
-/// nav_msgs/OccupancyGrid.
+/// nav_msgs/OccupancyGrid. The cells are stored in tiles of 32 x 32 allocated when a scan
+/// first touches them, so a map costs memory in proportion to the ground it has seen, not to
+/// its box (a 40 m box is 5 MB whole; a robot that has seen one room of it holds a few tiles).
 
 #include <compare>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,12 +79,15 @@ class OccupancyMapper {
   msg::OccupancyGrid to_message(const std::string& frame_id, SimTime stamp) const;
 
   /// The believed state of a cell inside the grid.
-  CellState state(Cell c) const { return state_of(log_odds_[index(c)]); }
+  CellState state(Cell c) const { return state_of(log_odds(c)); }
   bool is_free(Cell c) const { return state(c) == CellState::free; }
   bool is_occupied(Cell c) const { return state(c) == CellState::occupied; }
   bool is_unknown(Cell c) const { return state(c) == CellState::unknown; }
   /// Log-odds of a cell inside the grid (0 = never observed).
-  float log_odds(Cell c) const { return log_odds_[index(c)]; }
+  float log_odds(Cell c) const {
+    const Tile* t = tiles_[tile_index(c)].get();
+    return t ? t->log_odds[in_tile(c)] : 0.0f;
+  }
   /// Sets a cell to a firm belief (for known maps and tests): the clamp value of its state.
   void set_state(Cell c, CellState s);
 
@@ -106,22 +113,64 @@ class OccupancyMapper {
   /// nothing before the first observation. Planners limit their work to it.
   std::optional<std::pair<Cell, Cell>> observed_box() const;
 
+  /// Bytes the cells take: the tiles allocated so far (8 KiB each) and their index.
+  std::size_t cell_bytes() const;
+
  private:
+  static constexpr int kTileBits = 5, kTileSide = 1 << kTileBits, kTileCells = kTileSide * kTileSide;
+  /// 32 x 32 cells, row-major: their log-odds and the last scan that touched each (2n: hit,
+  /// 2n + 1: cleared, 1: set by set_state, 0: never).
+  struct Tile {
+    float log_odds[kTileCells] = {};
+    std::uint32_t mark[kTileCells] = {};
+  };
+  /// The tiles, row-major over the grid; null until a cell of it is first written. Copies copy
+  /// the tiles (an Explorer is copied by snapshots).
+  class Tiles {
+   public:
+    Tiles() = default;
+    explicit Tiles(std::size_t n) : t_(n) {}
+    Tiles(const Tiles& o) : t_(o.t_.size()) {
+      for (std::size_t i = 0; i < t_.size(); ++i) {
+        if (o.t_[i]) t_[i] = std::make_unique<Tile>(*o.t_[i]);
+      }
+    }
+    Tiles& operator=(const Tiles& o) {
+      if (this != &o) *this = Tiles(o);
+      return *this;
+    }
+    Tiles(Tiles&&) noexcept = default;
+    Tiles& operator=(Tiles&&) noexcept = default;
+    const std::unique_ptr<Tile>& operator[](std::size_t i) const { return t_[i]; }
+    Tile& at(std::size_t i) {
+      if (!t_[i]) t_[i] = std::make_unique<Tile>();
+      return *t_[i];
+    }
+    std::size_t size() const { return t_.size(); }
+
+   private:
+    std::vector<std::unique_ptr<Tile>> t_;
+  };
+  std::size_t tile_index(Cell c) const {
+    return static_cast<std::size_t>(c.y >> kTileBits) * static_cast<std::size_t>(tiles_x_) + static_cast<std::size_t>(c.x >> kTileBits);
+  }
+  static int in_tile(Cell c) { return ((c.y & (kTileSide - 1)) << kTileBits) | (c.x & (kTileSide - 1)); }
   CellState state_of(float l) const {
     return l > config_.occupied_threshold ? CellState::occupied
                                           : (l < config_.free_threshold ? CellState::free : CellState::unknown);
   }
   void allocate(const Vec2& origin_O, int width, int height);
   void grow_observed(Cell c);
-  // one update of a cell for the current scan; returns 1 on the cell's first observation
-  int update(int i, float delta, std::uint32_t mark);
+  // one update of a cell (slot k of tile t) for the current scan; returns 1 on the cell's
+  // first observation
+  int update(Tile& t, int k, float delta, std::uint32_t mark);
 
   OccupancyMapperConfig config_;
   double resolution_;
   Vec2 origin_O_ = Vec2::Zero();
   int width_ = 0, height_ = 0;
-  std::vector<float> log_odds_;
-  std::vector<std::uint32_t> scan_mark_;  // per cell: last scan (2n: hit, 2n + 1: cleared) that touched it, 0: never
+  int tiles_x_ = 0;  // tiles per row of the grid
+  Tiles tiles_;
   std::uint32_t scan_count_ = 0;
   Cell observed_min_{0, 0}, observed_max_{-1, -1};
 };

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "autonomy/kinematic_sim.h"
@@ -86,6 +87,31 @@ TEST(OccupancyMapper, RepeatedScansSettleAndLearnNothingNew) {
   EXPECT_EQ(map.integrate(scan, X_OS), 0);
   const Cell wall = *map.world_to_cell({1.975, 0.0});
   EXPECT_FLOAT_EQ(map.log_odds(wall), 1.8f);  // two hits of 0.9
+}
+
+TEST(OccupancyMapper, MemoryGrowsWithTheGroundSeenNotWithTheBox) {
+  // a 40 m box (800 x 800 cells: 625 tiles of 32 x 32 cells, 5 MB whole) around a sensor in a
+  // 2 m square room: the room's 40 x 40 cells and the walls lie within 1.0 m of the sensor, which
+  // at 1.6 m a tile side spans at most 3 x 3 tiles
+  OccupancyMapperConfig c;
+  c.origin_O = {-20, -20};
+  c.size = {40, 40};
+  OccupancyMapper map(c);
+  const std::size_t index_bytes = 625 * sizeof(void*), tile_bytes = 32 * 32 * (sizeof(float) + sizeof(std::uint32_t));
+  EXPECT_EQ(map.cell_bytes(), index_bytes);  // nothing seen, no tile
+  const auto room = testing::box(-0.975, -0.975, 0.975, 0.975);
+  const Pose2 X_OS{0.0, 0.0, 0.0};
+  map.integrate(scan_of(room, X_OS), X_OS);
+  EXPECT_GT(map.cell_bytes(), index_bytes);
+  EXPECT_LE(map.cell_bytes(), index_bytes + 9 * tile_bytes);
+  // a copy holds the same cells in tiles of its own
+  OccupancyMapper copy = map;
+  map.set_state(*map.world_to_cell({0, 0}), CellState::occupied);
+  EXPECT_TRUE(copy.is_free(*copy.world_to_cell({0, 0})));
+  EXPECT_TRUE(copy.is_occupied(*copy.world_to_cell({0.975, 0})));
+  EXPECT_EQ(copy.cell_bytes(), map.cell_bytes());
+  // a cell in a tile never touched reads unknown
+  EXPECT_TRUE(map.is_unknown(*map.world_to_cell({15, 15})));
 }
 
 TEST(OccupancyMapper, InfiniteBeamsClearUpToTheCap) {
