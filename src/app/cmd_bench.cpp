@@ -18,6 +18,7 @@
 #include "app/bench_soak.h"
 #include "app/data_dir.h"
 #include "app/bench_mission.h"
+#include "app/bench_cold_start.h"
 #include "app/bench_scale.h"
 #include "app/bench_sdf.h"
 #include "app/bench_urdf.h"
@@ -65,6 +66,7 @@ struct BenchOptions {
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
   double soak_hours = 10;       ///< sim hours of the soak run
   bool scale = false;           ///< only the scale figures (bench_scale.h)
+  bool cold_start = false;      ///< only the cold start figure (bench_cold_start.h)
   std::vector<int> scale_robots = {1, 10, 30, 100};
   double scale_time = 10;       ///< sim seconds of each scale run
 };
@@ -306,6 +308,13 @@ int run_bench(const BenchOptions& given) {
     if (!o.out.empty()) write_file_atomic(o.out, text);
     return kExitOk;
   }
+  if (o.cold_start) {
+    report["cold_start"] = bench_cold_start();
+    const std::string text = report.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  }
   if (o.reset_only) {
     report["reset"] = bench_reset(def, models);
     const std::string text = report.dump(2) + "\n";
@@ -436,7 +445,8 @@ void add_bench_command(CLI::App& app, Action& action) {
       "(referee and radio) beside the same run without it (median of 3, target >= 0.9x), and the cost\n"
       "of one radio link update for 4, 10 and 30 radios in its world.\n"
       "Scale (--scale; docs/performance.md): the scale scenario for 1, 10, 30 and 100 robots, e.g.\n"
-      "  rescuesim bench --scale --scale-robots 1,10,30,100,300 --out scale.json   (writes scale.png too)");
+      "  rescuesim bench --scale --scale-robots 1,10,30,100,300 --out scale.json   (writes scale.png too)\n"
+      "Cold start (--cold-start; docs/performance.md): exec to the first /scan, target < 1 s.");
   cmd->add_option("--out,-o", o->out, "also write the report to this file");
   cmd->add_option("--seconds", o->seconds, "wall seconds per ray measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--scenario-time", o->scenario_time, "sim seconds of the default scenario")->capture_default_str()->check(CLI::PositiveNumber);
@@ -472,6 +482,9 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--scale-robots", o->scale_robots, "robot counts of the scale figures")
       ->capture_default_str()->check(CLI::Range(1, 10000))->delimiter(',');
   cmd->add_option("--scale-time", o->scale_time, "sim seconds of each scale run")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_flag("--cold-start", o->cold_start,
+                "only the cold start figure: seconds from exec to the first /scan of `rescuesim run` (default scenario, "
+                "with cameras and without; median of 5) beside exec to exit of `rescuesim --version`");
   cmd->final_callback([o, &action] { action = [o] { return run_bench(*o); }; });
   add_bench_probe_command(app, action);
 }

@@ -16,6 +16,7 @@
 #include "app/data_dir.h"
 #include "app/commands.h"
 #include "core/log.h"
+#include "core/process_clock.h"
 #include "robots/rescue_robot.h"
 #include "session/run_mode.h"
 #include "session/scenario_load.h"
@@ -96,6 +97,15 @@ int run(const RunCommand& c) {
     std::printf("  bridge        %s started\n", b->name().c_str());
   }
   std::fflush(stdout);
+  // the cold start: from the exec of this process to the first laser scan on the Bus (printed
+  // at the end; `rescuesim bench --cold-start` reads it)
+  double first_scan_s = -1;
+  std::string first_scan_topic;
+  const SubscriptionId first_scan = session.sim().bus().subscribe("", [&](const Topic& t, const msg::Message& m) {
+    if (first_scan_s >= 0 || !std::holds_alternative<msg::LaserScan>(m)) return;
+    first_scan_s = seconds_since_process_start();
+    first_scan_topic = t.name;
+  });
 
   // Ctrl-C stops the run cleanly: the outputs of what ran are still written
   g_interrupted = false;
@@ -114,6 +124,7 @@ int run(const RunCommand& c) {
   });
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  session.sim().bus().unsubscribe(first_scan);
   if (session.sync_timeouts() > 0) {
     std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), mode.sync_timeout);
   }
@@ -131,6 +142,7 @@ int run(const RunCommand& c) {
   session.write_outputs(out, r);
   std::printf("%.1f s simulated in %.2f s (%.1fx real time); stopped: %s\n", r.sim_time, r.wall_time, r.real_time_factor,
               r.stop_reason.c_str());
+  if (first_scan_s >= 0) std::printf("cold start: first scan (%s) %.2f s after the process started\n", first_scan_topic.c_str(), first_scan_s);
   std::printf("victims found %d/%zu", r.victims_found, r.victims.size());
   for (const auto& v : r.victims) {
     if (v.found) std::printf(", %s at %.1f s", v.name.c_str(), v.time);

@@ -252,6 +252,18 @@ TEST(RunCameras, WithoutCamerasNoEglIsNeeded) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+TEST(RunCommand, SaysHowLongAfterItsStartTheFirstScanCame) {
+  // the default scenario's laser scans at 0 s of sim time: the line names /scan and a time since
+  // exec (a count of the kernel's clock ticks; no bound on it here, that is the bench's)
+  const auto r = testing::rescuesim("run --duration 0.2 -q --no-cameras --out '" + temp_dir("cold-start").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.out.find("cold start: first scan (/scan) ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double s = std::stod(r.out.substr(at + std::string("cold start: first scan (/scan) ").size()));
+  EXPECT_GT(s, 0.0);
+  EXPECT_NE(r.out.find(" s after the process started", at), std::string::npos) << r.out;
+}
+
 TEST(RunCameras, ZeroOrHugeResolutionAndBadFovAreRejected) {
   const auto dir = testing::temp_dir("cam-bad");
   const char* bad[] = {"color_camera: {width: 0}", "depth_camera: {height: 100000}", "thermal_camera: {hfov: 180}",

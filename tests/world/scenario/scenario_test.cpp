@@ -76,6 +76,15 @@ TEST(Scenario, OutOfRangeValueSaysTheRange) {
   EXPECT_NE(e.find("[0, 1]"), std::string::npos) << e;
 }
 
+TEST(Scenario, PhysicsGroupsAreACountOfWorldsOrZeroForAutomatic) {
+  EXPECT_EQ(parse_scenario("physics:\n  groups: 4\n", "s.yaml", builtin_models()).physics_groups, 4);
+  EXPECT_EQ(parse_scenario("name: x\n", "s.yaml", builtin_models()).physics_groups, 0);
+  for (const char* bad : {"physics:\n  groups: -1\n", "physics:\n  groups: 257\n", "physics:\n  groups: two\n"}) {
+    const std::string e = error_of(bad);
+    EXPECT_NE(e.find("physics.groups"), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST(Scenario, StartCellOutsideTheGrid) {
   const std::string e = error_of("world:\n  maze:\n    cols: 3\n    rows: 3\n    start_cell: [3, 0]\n");
   EXPECT_NE(e.find("world.maze.start_cell"), std::string::npos) << e;

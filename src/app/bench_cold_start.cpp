@@ -1,0 +1,86 @@
+#include "app/bench_cold_start.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rescuesim::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+/// The standard output of a shell command, or nothing when it could not be started.
+std::string output_of(const std::string& command) {
+  std::string out;
+  FILE* p = ::popen(command.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  ::pclose(p);
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return -1;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// A path in single quotes for the shell.
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+json bench_cold_start(int runs) {
+  const std::string exe = quoted(fs::read_symlink("/proc/self/exe").string());
+  const fs::path out = fs::temp_directory_path() / ("rescuesim-cold-" + std::to_string(::getpid()));
+  json report;
+  std::vector<double> bare;
+  for (int k = 0; k < runs; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    output_of(exe + " --version");
+    bare.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  for (const bool cameras : {true, false}) {
+    std::vector<double> first;
+    std::string error;
+    for (int k = 0; k < runs; ++k) {
+      const std::string text =
+          output_of(exe + " run --duration 0.5 -q --out " + quoted(out.string()) + (cameras ? "" : " --no-cameras") + " 2>&1");
+      const std::size_t at = text.find("cold start: first scan");
+      double s = -1;
+      if (at == std::string::npos || std::sscanf(text.c_str() + text.find(')', at) + 1, " %lf", &s) != 1) {
+        error = "no cold start line in the run's output";
+        continue;
+      }
+      first.push_back(s);
+    }
+    json fig = {{"value", median(first)},
+                {"unit", "s from exec to the first /scan"},
+                {"baseline", median(bare)},
+                {"baseline_is", "rescuesim --version from exec to exit (loading the binary and its libraries), this bench run"},
+                {"ratio", median(bare) > 0 ? median(first) / median(bare) : 0.0},
+                {"target_s", 1.0},
+                {"meets_target", !first.empty() && median(first) < 1.0},
+                {"runs", first}};
+    if (!error.empty()) fig["error"] = error;
+    report[cameras ? "default_scenario" : "default_scenario_no_cameras"] = fig;
+  }
+  std::error_code ec;
+  fs::remove_all(out, ec);
+  return report;
+}
+
+}  // namespace rescuesim::app
