@@ -264,6 +264,26 @@ TEST(RunCommand, SaysHowLongAfterItsStartTheFirstScanCame) {
   EXPECT_NE(r.out.find(" s after the process started", at), std::string::npos) << r.out;
 }
 
+TEST(RunCommand, OneWorkerThreadOrTwoWriteTheSameTrajectories) {
+  // three robots with built-in controllers: sensors and controllers run on the worker threads
+  std::string traj[2];
+  for (int threads : {1, 2}) {
+    const auto dir = temp_dir("threads-" + std::to_string(threads));
+    const auto r = testing::rescuesim("--threads " + std::to_string(threads) + " run worlds/team.yaml --duration 5 -q --no-cameras --out '" +
+                                      dir.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    traj[threads - 1] = testing::slurp(dir / "trajectory.csv");
+  }
+  EXPECT_GT(traj[0].size(), 1000u);
+  EXPECT_EQ(traj[0], traj[1]);
+}
+
+TEST(RunCommand, ThreadsMustBeACount) {
+  const auto r = testing::rescuesim("--threads -1 run");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+}
+
 TEST(RunCameras, ZeroOrHugeResolutionAndBadFovAreRejected) {
   const auto dir = testing::temp_dir("cam-bad");
   const char* bad[] = {"color_camera: {width: 0}", "depth_camera: {height: 100000}", "thermal_camera: {hfov: 180}",
