@@ -61,6 +61,26 @@ TEST(PhysicsGroups, RobotsOfDifferentHomeWorldsStillMeetWhenTheyDriveIntoEachOth
   EXPECT_NE(std::find(touching.begin(), touching.end(), "robot2"), touching.end());
 }
 
+TEST(PhysicsGroups, ARobotPushesRubbleOfAnotherWorld) {
+  // robot 0 lives in world 0; the box is entity 1 (robots first, then rubble), so world 1
+  WorldSpec spec = room_spec(10.0, {-1.5, 0, 0});
+  RubbleSpec box;
+  box.pose = {0, 0, 0};
+  box.size = {0.3, 0.6, 0.2};
+  box.mass = 2.0;
+  spec.rubble.push_back(box);
+  PhysicsOptions o;
+  o.groups = 2;
+  Rig rig(spec, o);
+  const double x0 = rig.state.dynamics[0].X_WB.p.x();
+  // the bumper (0.3 m ahead of the base) reaches the box's face (0.15 m before its centre) after
+  // 1.05 m; 4 s at 0.5 m/s drives 2 m, so the box is pushed about 0.95 m
+  rig.drive(0.5, 0, 4.0);
+  EXPECT_GT(rig.state.dynamics[0].X_WB.p.x() - x0, 0.5);
+  // and it stays ahead of the robot: the bumper never passes through it
+  EXPECT_GT(rig.state.dynamics[0].X_WB.p.x() - rig.robot().base.X_WB.p.x(), 0.4);
+}
+
 TEST(PhysicsGroups, OneWorldGivesTheSameMeeting) {
   PhysicsOptions o;
   o.groups = 1;
