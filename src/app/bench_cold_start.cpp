@@ -2,12 +2,12 @@
 
 #include <unistd.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "app/bench_figures.h"
 
 namespace rescuesim::app {
 
@@ -28,12 +28,6 @@ std::string output_of(const std::string& command) {
   return out;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return -1;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 /// A path in single quotes for the shell.
 std::string quoted(const std::string& s) {
   std::string q = "'";
@@ -47,12 +41,7 @@ json bench_cold_start(int runs) {
   const std::string exe = quoted(fs::read_symlink("/proc/self/exe").string());
   const fs::path out = fs::temp_directory_path() / ("rescuesim-cold-" + std::to_string(::getpid()));
   json report;
-  std::vector<double> bare;
-  for (int k = 0; k < runs; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    output_of(exe + " --version");
-    bare.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
+  const double bare = median_seconds(runs, [&] { output_of(exe + " --version"); });
   for (const bool cameras : {true, false}) {
     std::vector<double> first;
     std::string error;
@@ -67,14 +56,11 @@ json bench_cold_start(int runs) {
       }
       first.push_back(s);
     }
-    json fig = {{"value", median(first)},
-                {"unit", "s from exec to the first /scan"},
-                {"baseline", median(bare)},
-                {"baseline_is", "rescuesim --version from exec to exit (loading the binary and its libraries), this bench run"},
-                {"ratio", median(bare) > 0 ? median(first) / median(bare) : 0.0},
-                {"target_s", 1.0},
-                {"meets_target", !first.empty() && median(first) < 1.0},
-                {"runs", first}};
+    json fig = ratio_figure(median(first), "s from exec to the first /scan", bare,
+                            "rescuesim --version from exec to exit (loading the binary and its libraries), this bench run");
+    fig["target_s"] = 1.0;
+    fig["meets_target"] = !first.empty() && median(first) < 1.0;
+    fig["runs"] = first;
     if (!error.empty()) fig["error"] = error;
     report[cameras ? "default_scenario" : "default_scenario_no_cameras"] = fig;
   }

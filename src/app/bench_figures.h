@@ -22,6 +22,12 @@ double median_seconds(int repeats, F&& f) {
   return t[t.size() / 2];
 }
 
+/// The median of `v` (the upper one of an even count); 0 when empty.
+inline double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
 /// {value, unit, baseline, baseline_is, ratio = value / baseline}.
 inline nlohmann::ordered_json ratio_figure(double value, const char* unit, double baseline, const char* baseline_is) {
   return {{"value", value}, {"unit", unit}, {"baseline", baseline}, {"baseline_is", baseline_is}, {"ratio", baseline > 0 ? value / baseline : 0.0}};

@@ -15,15 +15,6 @@ namespace rescuesim::app {
 
 using json = nlohmann::ordered_json;
 
-namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-}  // namespace
-
 json bench_mission(const std::filesystem::path& scenario_file, double sim_seconds, const RunChild& run_child) {
   if (!std::filesystem::exists(scenario_file)) {
     return {{"skipped", scenario_file.string() + " not found (run the bench from the source folder, or give --mission-scenario)"}};

@@ -299,61 +299,47 @@ int run_bench(const BenchOptions& given) {
   const World world = compile_scenario(def, spec, models);
 
   json report;
+  // the report on stdout, and in --out when given
+  const auto print_report = [&o](const json& r) {
+    const std::string text = r.dump(2) + "\n";
+    std::fputs(text.c_str(), stdout);
+    if (!o.out.empty()) write_file_atomic(o.out, text);
+    return kExitOk;
+  };
   report["rescuesim"] = RESCUESIM_VERSION;
   report["machine"] = {{"cores", std::thread::hardware_concurrency()}};
   if (o.ros_only) {
     report["ros"] = bench_ros(def, models, o.ros_options);
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   if (o.cold_start) {
     report["cold_start"] = bench_cold_start();
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   if (o.reset_only) {
     report["reset"] = bench_reset(def, models);
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   if (o.urdf_only) {
     report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
                                 [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   const std::vector<std::filesystem::path> sdf_paths(o.sdf_resource_paths.begin(), o.sdf_resource_paths.end());
   if (o.sdf_only) {
     report["sdf"] = bench_sdf(o.sdf_world, sdf_paths, o.seconds);
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   const RunChild child_without_cameras = [&](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); };
   if (o.scale) {
     // the plot beside the report: --out's name with .png, else scale.png here
     const std::filesystem::path png = o.out.empty() ? std::filesystem::path("scale.png") : std::filesystem::path(o.out).replace_extension(".png");
     report["scale"] = bench_scale(o.scale_robots, o.scale_time, child_without_cameras, png);
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   if (o.mission_only) {
     report["mission"] = bench_mission(o.mission_scenario, std::min(o.scenario_time, 60.0), child_without_cameras);
-    const std::string text = report.dump(2) + "\n";
-    std::fputs(text.c_str(), stdout);
-    if (!o.out.empty()) write_file_atomic(o.out, text);
-    return kExitOk;
+    return print_report(report);
   }
   std::fprintf(stderr, "bench: physics ...\n");
   report["physics"] = bench_physics(world, o.physics_steps);
@@ -406,11 +392,7 @@ int run_bench(const BenchOptions& given) {
   report["reset"] = bench_reset(def, models);
   report["python_step"] = bench_python_step();
   if (o.ros) report["ros"] = bench_ros(def, models, o.ros_options);
-
-  const std::string text = report.dump(2) + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!o.out.empty()) write_file_atomic(o.out, text);
-  return kExitOk;
+  return print_report(report);
 }
 
 }  // namespace

@@ -98,14 +98,22 @@ int run(const RunCommand& c) {
   }
   std::fflush(stdout);
   // the cold start: from the exec of this process to the first laser scan on the Bus (printed
-  // at the end; `rescuesim bench --cold-start` reads it)
+  // at the end; `rescuesim bench --cold-start` reads it). Only the laser topics are watched, so
+  // the rest of the run's messages pass no extra subscriber
   double first_scan_s = -1;
   std::string first_scan_topic;
-  const SubscriptionId first_scan = session.sim().bus().subscribe("", [&](const Topic& t, const msg::Message& m) {
-    if (first_scan_s >= 0 || !std::holds_alternative<msg::LaserScan>(m)) return;
-    first_scan_s = seconds_since_process_start();
-    first_scan_topic = t.name;
-  });
+  std::vector<std::string> scan_topics;
+  for (const Topic& t : session.sim().bus().topics()) {
+    if (t.type == "sensor_msgs/LaserScan") scan_topics.push_back(t.name);
+  }
+  std::vector<SubscriptionId> first_scan;
+  for (const std::string& name : scan_topics) {
+    first_scan.push_back(session.sim().bus().subscribe(name, [&](const Topic& topic, const msg::Message&) {
+      if (first_scan_s >= 0) return;
+      first_scan_s = seconds_since_process_start();
+      first_scan_topic = topic.name;
+    }));
+  }
 
   // Ctrl-C stops the run cleanly: the outputs of what ran are still written
   g_interrupted = false;
@@ -124,7 +132,7 @@ int run(const RunCommand& c) {
   });
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  session.sim().bus().unsubscribe(first_scan);
+  for (SubscriptionId id : first_scan) session.sim().bus().unsubscribe(id);
   if (session.sync_timeouts() > 0) {
     std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), mode.sync_timeout);
   }

@@ -429,7 +429,10 @@ void Simulation::sample(const SensorInstance& s) {
   const auto root_frame = [&] { return frame_name(s.robot, world_.robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
   switch (spec.type) {
     case SensorSpec::Type::lidar:
-    case SensorSpec::Type::sonar: bus_.publish(s.topic, sample_rays(s, current_rays())); break;
+    case SensorSpec::Type::sonar:
+      // post_step samples these itself, in parallel; this is the one-at-a-time way
+      bus_.publish(s.topic, sample_rays(s, current_rays()));
+      break;
     case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, spec, now, slot)); break;
     case SensorSpec::Type::odometry: {
       // odom -> root link on /tf from wheel odometry, unless ground truth gives it
