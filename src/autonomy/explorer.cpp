@@ -133,6 +133,15 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   const Pose2 X_MB = X_MO_ * *X_OB;
   if (compared || pinned || !have_trusted_) trusted_X_MB_ = X_MB;
   have_trusted_ = true;
+  // a wall follower steers by the laser: its map may be drawn at map_period (half a
+  // millisecond short of it counts, so a 0.5 s period at 10 Hz maps every fifth scan)
+  const bool map_due = config_.map_period <= 0 || mode_ != ExplorerMode::wall_following || stats_.scans == 0 ||
+                       (scan.header.stamp - last_mapped_).seconds() >= config_.map_period - 5e-4;
+  if (!map_due) {
+    if (config_.post_radius > 0) find_masts(X_MB);
+    return;
+  }
+  last_mapped_ = scan.header.stamp;
   const int learned = mapper_.integrate(scan, X_MB * X_BS_);
   if (config_.post_radius > 0) find_masts(X_MB);
   if (config_.look.enabled) {

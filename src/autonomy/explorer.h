@@ -81,6 +81,10 @@ struct ExplorerConfig {
   double stuck_distance = 0.3;       ///< m
   SlipDetectorConfig slip;           ///< odometry checked against the laser and the scan matcher: slipping wheels mean stuck
   bool scan_matching = true;         ///< false: the map frame stays the odom frame (X_MO the identity)
+  /// s; least sim time between two scans mapped while wall following (0: every scan). Paths
+  /// (frontier trips, goals and reversing) always map every scan; a wall follower steers by
+  /// the laser alone, so a map that only feeds the run's outputs may be drawn at a lower rate.
+  double map_period = 0;
   /// scan-to-map matching; the likelihood field is rebuilt every 5 scans (0.5 s at 10 Hz)
   ScanMatcherConfig matcher = [] {
     ScanMatcherConfig c;
@@ -265,6 +269,7 @@ class Explorer {
   std::vector<ScanPoint> points_B_;               // latest scan in base_link
   SimTime scan_stamp_;
   bool have_scan_ = false;
+  SimTime last_mapped_;                           // stamp of the last scan integrated into the map
   bool sees_behind_ = false;                      // the laser's fan covers the robot's rear
   Pose2 trusted_X_MB_;                            // pose of the last scan that fitted odometry or the map
   bool have_trusted_ = false;

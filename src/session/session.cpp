@@ -23,6 +23,7 @@ namespace rescuesim {
 namespace {
 constexpr double kCoverageCell = 0.5;    // m
 constexpr double kCoverageRadius = 1.0;  // m around the path counts as covered
+constexpr double kWallFollowerMapPeriod = 0.5;  // s between scans a wall follower outside a mission maps
 }  // namespace
 
 Session::Session(const Scenario& scenario, const ModelMap& models, SessionOptions options)
@@ -123,6 +124,9 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     // wall follower outside a mission) steers by the laser alone, and matching was a fifth of
     // the work of 100 such robots (docs/performance.md)
     if (!ec.frontier_trips && !mission_) ec.scan_matching = false;
+    // for the same reason such a robot maps at 2 Hz, not at its laser's 10 Hz: mapping every
+    // scan was a quarter of the work of 100 wall followers (docs/performance.md)
+    if (!ec.frontier_trips && !mission_) ec.map_period = kWallFollowerMapPeriod;
     // the map covers the whole floor (and a margin) wherever the robot starts: the square the
     // mapper allocates around the start by default (auto_size, 40 m) would leave the far side
     // of a larger world unmapped, and a robot in a corner of a 30 m maze could map only half

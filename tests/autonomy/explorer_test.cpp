@@ -194,6 +194,50 @@ TEST(Explorer, WithoutFrontierTripsItOnlyFollowsWalls) {
   EXPECT_EQ(sim.collisions(), 0);
 }
 
+TEST(Explorer, AWallFollowerMapsAtItsMapPeriodAndSteersTheSame) {
+  // the laser at 10 Hz for 60 s: 600 scans. With map_period 0.5 s one scan in five is mapped,
+  // the robot drives exactly as when it maps every scan (it steers by the laser), and the
+  // map holds the same walls
+  const auto run_with = [](double period, Pose2& end, long& occupied) {
+    KinematicSim sim(testing::box(0, 0, 8, 6), {4.0, 1.0, 0.0}, kLaserMount, kRadius, 3.0);
+    ExplorerConfig config;
+    config.frontier_trips = false;
+    config.scan_matching = false;
+    config.map_period = period;
+    Explorer explorer(kLaserMount, config);
+    drive(explorer, sim, 60.0, 1.0);
+    end = sim.pose();
+    occupied = 0;
+    const OccupancyMapper& map = explorer.mapper();
+    for (int y = 0; y < map.height(); ++y) {
+      for (int x = 0; x < map.width(); ++x) occupied += map.is_occupied({x, y});
+    }
+    return explorer.stats().scans;
+  };
+  Pose2 every_end, fifth_end;
+  long every_occupied = 0, fifth_occupied = 0;
+  EXPECT_EQ(run_with(0.0, every_end, every_occupied), 600);
+  EXPECT_EQ(run_with(0.5, fifth_end, fifth_occupied), 120);
+  EXPECT_EQ(fifth_end.x, every_end.x);
+  EXPECT_EQ(fifth_end.y, every_end.y);
+  EXPECT_EQ(fifth_end.yaw, every_end.yaw);
+  // the walls' outline: 2 x (8 + 6) m at 0.05 m cells is about 560 cells
+  EXPECT_GT(every_occupied, 450);
+  EXPECT_NEAR(static_cast<double>(fifth_occupied), static_cast<double>(every_occupied), 0.05 * every_occupied);
+}
+
+TEST(Explorer, ADrivenPathMapsEveryScanWhateverTheMapPeriod) {
+  KinematicSim sim(testing::carve_maze(4, 1.5, 3), {0.75, 0.75, 0.0}, kLaserMount, kRadius);
+  ExplorerConfig config;
+  config.frontier_trips = false;
+  config.map_period = 0.5;
+  Explorer explorer(kLaserMount, config);
+  explorer.set_goal({5.25, 5.25});
+  drive(explorer, sim, 10.0, 1.5);
+  ASSERT_EQ(explorer.mode(), ExplorerMode::to_goal);
+  EXPECT_EQ(explorer.stats().scans + explorer.stats().slipping_scans, 100);
+}
+
 // the explorer with a forward camera of 60 degrees and 4 m modelled (no joint turns it)
 ExplorerConfig with_camera() {
   ExplorerConfig config;
