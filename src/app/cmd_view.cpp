@@ -2,11 +2,14 @@
 // following the robot), keyboard teleop, and the robot's sensor feeds live in the seed paper's
 // Fig. 2 layout. No GL here: the window (render/viewer_window.h) shows CPU images.
 //
-// Threads: the UI thread owns the window and the simulation, stepping it in realtime between
-// frames; the sensor panels show the images the robot's sensors publish on the Bus (rendered by
-// the session's own camera thread). A render thread of ours (app/view_render_worker.h) draws the
-// main view from State copies handed to it at whatever rate it manages. The frame loop is the
-// Viewer class: handle_mouse, handle_teleop, advance_sim, submit_render, upload_feeds, draw_frame.
+// Threads: the UI thread owns the window; the simulation steps on a thread of its own
+// (app/view_sim_loop.h), paced to the wall clock, so the window keeps its frame rate whatever a
+// step costs. Once a frame the UI thread holds the simulation still for a moment
+// (Viewer::sync): it copies the State, places the main view's camera, hands over commands and
+// takes the sensor messages that arrived (published on the Bus, the cameras rendered by the
+// session's own camera thread). A render thread of ours (app/view_render_worker.h) draws the
+// main view from the State copies at whatever rate it manages. The frame loop is the Viewer
+// class: handle_mouse, handle_teleop, sync, submit_render, upload_feeds, draw_frame.
 
 #include <imgui.h>
 
@@ -26,6 +29,7 @@
 #include "app/data_dir.h"
 #include "app/figure.h"
 #include "app/view_render_worker.h"
+#include "app/view_sim_loop.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/viewer_window.h"
@@ -152,7 +156,8 @@ struct HeadRoles {
 };
 
 /// The robot's sensor messages as published on the Bus, each with a flag set when a new one
-/// arrives (the UI thread steps the simulation, so the callbacks run on it).
+/// arrives (the callbacks run on the simulation thread, under its lock; Viewer::sync takes
+/// them over to the UI thread).
 struct SensorFeeds {
   msg::LaserScan scan;
   msg::Image color, depth, thermal;
@@ -183,7 +188,32 @@ class Viewer {
   /// gives up (kExitFailure).
   int run() {
     const auto start = Clock::now();
-    last_ = rtf_since_ = start;
+    last_ = fps_since_ = start;
+    state_ = sim_.state();  // the simulation thread has not started: nothing steps yet
+    ViewSimLoop loop(session_, controls());
+    loop_ = &loop;
+    const int code = frames(start);
+    {
+      const auto hold = loop.lock();
+      const RunResult r = session_.result();
+      std::printf("rescuesim view: stopped at sim time %.2f s; %.2f m driven\n", r.sim_time, r.distance);
+    }
+    loop_ = nullptr;
+    return code;
+  }
+
+ private:
+  ViewControls controls() const {
+    ViewControls c;
+    c.paused = v_.paused;
+    c.rate = v_.rate;
+    c.autonomous = v_.autonomous;
+    c.teleop = v_.teleop;
+    return c;
+  }
+
+  /// The frame loop: until the window closes or Esc, or --screenshot is done.
+  int frames(Clock::time_point start) {
     for (;;) {
       // paused with nothing left to draw: idle until input (or a tenth of a second)
       window_.poll(v_.paused && v_.step_request == 0 && !worker_.busy() ? 0.1 : 0);
@@ -192,10 +222,11 @@ class Viewer {
       const double dt = std::min(0.1, std::chrono::duration<double>(now - last_).count());
       last_ = now;
       const ViewLayout l = view_layout(window_.width(), window_.height());
-      handle_mouse(l, sim_.state().robots[0].base.X_WB);
+      handle_mouse(l, state_.robots[0].base.X_WB);
       handle_teleop(dt);
-      advance_sim(dt);
-      submit_render(l);
+      const CameraView main_view = sync(l);
+      count_frame();
+      submit_render(l, main_view);
       upload_feeds(l);
       if (std::optional<int> done = draw_frame(l)) return *done;
       // at most 30 frames a second (the main view renders at about that on a CPU rasteriser),
@@ -209,7 +240,6 @@ class Viewer {
     return kExitOk;
   }
 
- private:
   /// Keeps the robot's laser and camera messages as they are published.
   void subscribe_feeds() {
     const auto keep = [this](const SensorSpec* spec, auto& into, bool& fresh) {
@@ -273,44 +303,50 @@ class Viewer {
     };
     move(HeadRoles::head_tilt, tilt);
     move(HeadRoles::mast_yaw, pan);
-    sim_.command_head(0, v_.head);
+    head_moved_ = true;
   }
 
-  /// Steps the simulation towards the wall clock × rate (or the requested step when paused), for
-  /// at most 40 ms of wall time a frame; in teleop each step's command comes after the
-  /// controller's, so it wins. Keeps the real-time factor and frames per second over ~1 s.
-  void advance_sim(double dt) {
-    const double sim_before = sim_.time().seconds();
-    const double advance = v_.paused ? std::exchange(v_.step_request, 0.0f) : dt * v_.rate;
-    const SimTime target = sim_.time() + SimTime::from_seconds(advance);
-    const auto budget = Clock::now() + std::chrono::milliseconds(40);
-    while (sim_.time() < target && Clock::now() < budget && !sim_.in_trouble()) {
-      sim_.step();
-      if (!v_.autonomous) sim_.command_velocity(0, v_.teleop);
+  /// Holds the simulation still for a moment: hands over the controls and a moved head,
+  /// copies the State, places the main view's camera (pulled in front of walls through the ray
+  /// scene) and takes the sensor messages that arrived. Returns the main view.
+  CameraView sync(const ViewLayout& l) {
+    if (v_.step_request > 0) loop_->request_step(std::exchange(v_.step_request, 0.0f));
+    loop_->set_controls(controls());
+    const int mw = std::max(16, static_cast<int>(l.main_w)), mh = std::max(16, static_cast<int>(l.main_h));
+    CameraView main_view;
+    {
+      const auto hold = loop_->lock();
+      if (std::exchange(head_moved_, false)) sim_.command_head(0, v_.head);
+      state_ = sim_.state();
+      trouble_ = sim_.in_trouble();
+      main_view = v_.camera.view(state_.robots[0].base.X_WB, Intrinsics::from_hfov(mw, mh, 65 * std::numbers::pi / 180), sim_.ray_scene());
+      std::swap(shown_, feeds_);
+      feeds_.new_scan = feeds_.new_color = feeds_.new_depth = feeds_.new_thermal = false;
     }
-    if (sim_.in_trouble()) v_.paused = true;
-    rtf_sim_since_ += sim_.time().seconds() - sim_before;
+    if (trouble_) v_.paused = true;
+    return main_view;
+  }
+
+  /// Frames per second and the simulation's real-time factor, over about a second.
+  void count_frame() {
     ++frames_;
-    const double window_s = std::chrono::duration<double>(Clock::now() - rtf_since_).count();
+    const double window_s = std::chrono::duration<double>(Clock::now() - fps_since_).count();
     if (window_s > 1.0) {
-      v_.rtf = rtf_sim_since_ / window_s;
+      v_.rtf = loop_->real_time_factor();
       v_.fps = frames_ / window_s;
-      rtf_since_ = Clock::now();
-      rtf_sim_since_ = 0;
+      fps_since_ = Clock::now();
       frames_ = 0;
     }
   }
 
   /// Hands the render thread the State when it is free and the picture would change; uploads
   /// the main view it finished.
-  void submit_render(const ViewLayout& l) {
+  void submit_render(const ViewLayout& l, const CameraView& main_view) {
     const int mw = std::max(16, static_cast<int>(l.main_w)), mh = std::max(16, static_cast<int>(l.main_h));
-    const CameraView main_view =
-        v_.camera.view(sim_.state().robots[0].base.X_WB, Intrinsics::from_hfov(mw, mh, 65 * std::numbers::pi / 180), sim_.ray_scene());
-    const auto key = std::make_tuple(sim_.state().step, main_view.X_WC.p, main_view.X_WC.q.coeffs(), mw, mh, v_.quality);
+    const auto key = std::make_tuple(state_.step, main_view.X_WC.p, main_view.X_WC.q.coeffs(), mw, mh, v_.quality);
     if (!worker_.busy() && key != v_.drawn) {
       RenderRequest r;
-      r.state = sim_.state();
+      r.state = state_;
       r.main = main_view;
       r.quality = static_cast<Quality>(v_.quality);
       worker_.submit(std::move(r));
@@ -326,18 +362,18 @@ class Viewer {
   /// Sensor panels: each new message uploaded, in false colour where it needs one.
   void upload_feeds(const ViewLayout& l) {
     try {
-      if (std::exchange(feeds_.new_color, false)) {
-        const ColorImage img = color_image_of(feeds_.color);
+      if (std::exchange(shown_.new_color, false)) {
+        const ColorImage img = color_image_of(shown_.color);
         window_.upload("color", img.width, img.height, img.rgb.data());
-        v_.color_time = feeds_.color.header.stamp.seconds();
+        v_.color_time = shown_.color.header.stamp.seconds();
       }
-      if (std::exchange(feeds_.new_depth, false)) {
+      if (std::exchange(shown_.new_depth, false)) {
         const CameraSpec& cam = sensors_.depth->camera;
-        const Canvas img = depth_canvas(depth_image_of(feeds_.depth), cam.min_range, cam.max_range);
+        const Canvas img = depth_canvas(depth_image_of(shown_.depth), cam.min_range, cam.max_range);
         window_.upload("depth", img.width(), img.height(), img.pixels().data());
       }
-      if (std::exchange(feeds_.new_thermal, false)) {
-        const ThermalImage t = thermal_image_of(feeds_.thermal);
+      if (std::exchange(shown_.new_thermal, false)) {
+        const ThermalImage t = thermal_image_of(shown_.thermal);
         const Canvas img = thermal_canvas(t, sensors_.thermal->camera.mono8_min, sensors_.thermal->camera.mono8_max);
         window_.upload("thermal", img.width(), img.height(), img.pixels().data());
         v_.hottest = *std::max_element(t.kelvin.begin(), t.kelvin.end()) - 273.15;
@@ -345,8 +381,8 @@ class Viewer {
     } catch (const Error& e) {
       v_.feed_error = e.what();
     }
-    if (std::exchange(feeds_.new_scan, false)) {
-      const Canvas plot = laser_canvas(feeds_.scan, 2 * static_cast<int>(l.image_w), 2 * static_cast<int>(l.image_h), 5.0, 2);
+    if (std::exchange(shown_.new_scan, false)) {
+      const Canvas plot = laser_canvas(shown_.scan, 2 * static_cast<int>(l.image_w), 2 * static_cast<int>(l.image_h), 5.0, 2);
       window_.upload("laser", plot.width(), plot.height(), plot.pixels().data());
     }
   }
@@ -355,7 +391,7 @@ class Viewer {
   /// its first image, saves it and returns kExitOk.
   std::optional<int> draw_frame(const ViewLayout& l) {
     const auto ready = [&](const SensorSpec* spec, const char* tex) { return spec == nullptr || !spec->enabled || window_.texture(tex) != nullptr; };
-    const double t = sim_.time().seconds();
+    const double t = state_.time.seconds();
     const bool shoot = !c_.screenshot.empty() && t >= c_.after && v_.frame_time >= c_.after && ready(sensors_.laser, "laser") &&
                        ready(sensors_.color, "color") && ready(sensors_.depth, "depth") && ready(sensors_.thermal, "thermal");
     ColorImage shot;
@@ -384,7 +420,7 @@ class Viewer {
 
   /// Run/Pause, Step, speed, the run's time and victims, follow, autonomous, quality.
   void draw_toolbar(const ViewLayout& l) {
-    const State& st = sim_.state();
+    const State& st = state_;
     int found = 0;
     for (const VictimState& vs : st.victims) found += vs.first_seen.ns >= 0;
     ImGui::SetNextWindowPos({0, 0});
@@ -445,7 +481,7 @@ class Viewer {
 
   /// Run facts, victims, problems and the controls.
   void draw_info(const ViewLayout& l) {
-    const State& st = sim_.state();
+    const State& st = state_;
     const Scenario& s = session_.scenario();
     ImGui::SetNextWindowPos({l.main_w, l.info_y});
     ImGui::SetNextWindowSize({2 * l.panel_w, std::max(40.0f, window_.height() - l.info_y)});
@@ -459,7 +495,8 @@ class Viewer {
       else ImGui::TextDisabled("%s: not found yet", name);
     }
     const ImVec4 red{1, 0.4f, 0.3f, 1};
-    if (sim_.in_trouble()) ImGui::TextColored(red, "stopped: %s", st.trouble.first.c_str());
+    if (trouble_) ImGui::TextColored(red, "stopped: %s", st.trouble.first.c_str());
+    if (const std::string e = loop_->error(); !e.empty()) ImGui::TextColored(red, "simulation: %s", e.c_str());
     if (!worker_.error().empty()) ImGui::TextColored(red, "render: %s", worker_.error().c_str());
     if (!v_.feed_error.empty()) ImGui::TextColored(red, "sensor image: %s", v_.feed_error.c_str());
     ImGui::Separator();
@@ -480,9 +517,13 @@ class Viewer {
   const FigureSensors sensors_;
   std::vector<const JointSpec*> head_joints_;  ///< in RobotSpec::head_joints order
   ViewerState v_;
-  SensorFeeds feeds_;
-  Clock::time_point last_, rtf_since_;  ///< the previous frame; the start of the rate window
-  double rtf_sim_since_ = 0;            ///< sim seconds stepped in the rate window
+  ViewSimLoop* loop_ = nullptr;  ///< the simulation thread, while run() runs
+  SensorFeeds feeds_;            ///< filled on the simulation thread, under its lock
+  SensorFeeds shown_;            ///< taken over by sync(), for the UI thread
+  State state_;                  ///< the State as of the last sync()
+  bool trouble_ = false;         ///< the simulation stopped on numerical trouble (as of the last sync())
+  bool head_moved_ = false;      ///< head targets changed since the last sync()
+  Clock::time_point last_, fps_since_;  ///< the previous frame; the start of the rate window
   int frames_ = 0;                      ///< frames in the rate window
 };
 

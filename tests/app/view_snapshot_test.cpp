@@ -262,5 +262,25 @@ TEST(ViewSnapshot, WindowScreenshotShowsMainViewAndFourPanels) {
   EXPECT_GT(warm_fraction(img, thermal), 0.005) << "no warm victim in the thermal panel";
 }
 
+TEST(ViewSnapshot, TheScenariosControllerDrivesTheRobotInTheWindow) {
+  // the default scenario's explorer drives off at up to 0.3 m/s; the simulation steps on its own
+  // thread, with the built-in controller run after every step as in rescuesim run. By 8 s of
+  // sim time it has driven more than a metre (a robot standing still drives 0 m).
+  if (run_command("command -v xvfb-run").exit_code != 0) {
+    std::printf("skipping: xvfb-run is not installed (Debian package xvfb)\n");
+    GTEST_SKIP() << "xvfb-run is not installed";
+  }
+  const auto png = temp_dir("view-default") / "view.png";
+  const auto r = run_command(std::string("xvfb-run -a -s '-screen 0 1280x800x24' '") + RESCUESIM_EXE + "' view --screenshot '" +
+                             png.string() + "' --after 8");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  double t = 0, driven = -1;
+  const auto at = r.out.find("rescuesim view: stopped at sim time");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "rescuesim view: stopped at sim time %lf s; %lf m driven", &t, &driven), 2) << r.out;
+  EXPECT_GE(t, 8.0);
+  EXPECT_GT(driven, 1.0) << r.out;
+}
+
 }  // namespace
 }  // namespace rescuesim
