@@ -1,9 +1,9 @@
 // rescuesim bench, ROS part. Latency: a realtime run with one bridge notes the wall clock at
 // which each /scan and colour image is published on the Bus; a probe process (a real roscpp
-// node, or a Cyclone DDS reader) notes when it receives each one; the two are joined by stamp.
-// Cost: the same lockstep run without bridges, then with --ros1 --ros2 and both probes
-// subscribed (to /scan and the image, then to /scan alone), each in a child process. roscore
-// runs on a free port with its own ROS_HOME.
+// node, a Cyclone DDS reader, or a Foxglove WebSocket client) notes when it receives each one;
+// the two are joined by stamp. Cost: the same lockstep run without bridges, then with --ros1
+// --ros2 --foxglove and a probe on each subscribed (to /scan and the image, then to /scan
+// alone), each in a child process. roscore runs on a free port with its own ROS_HOME.
 
 #include "app/bench_ros.h"
 
@@ -42,6 +42,9 @@
 #ifdef RESCUESIM_HAS_ROS2
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/ros2_conventions.h"
+#endif
+#ifdef RESCUESIM_HAS_FOXGLOVE
+#include "bridges/foxglove/foxglove_probe.h"
 #endif
 
 extern char** environ;
@@ -168,16 +171,21 @@ class Spawned {
 
 /// The probe as a child: `rescuesim bench-probe` subscribed to the timed topics.
 /// With `scan_only`, the probe subscribes to /scan alone.
-std::unique_ptr<Spawned> start_probe(const std::string& transport, const fs::path& dir, bool scan_only = false) {
+std::unique_ptr<Spawned> start_probe(const std::string& transport, const fs::path& dir, bool scan_only = false, int foxglove_port = 0) {
   std::vector<std::string> argv = {fs::read_symlink("/proc/self/exe").string(), "bench-probe", "--transport", transport};
+  if (transport == "foxglove") {
+    argv.push_back("--port");
+    argv.push_back(std::to_string(foxglove_port));
+  }
   for (const auto& [topic, type] : kTimed) {
     if (scan_only && topic != "/scan") continue;
     argv.push_back("--topic");
     argv.push_back(topic + "=" + type);
   }
   auto p = std::make_unique<Spawned>(argv, dir / ("probe-" + transport + ".out"), dir / ("probe-" + transport + ".err"));
-  // ready once subscribed (or gone, when it could not start)
-  wait_until([&] { return !p->running() || p->err().find("probe ready") != std::string::npos; }, 20s);
+  // ready once subscribed (or gone, when it could not start); a Foxglove client can only
+  // subscribe once the run's server is up, which the run's settling time allows for
+  if (transport != "foxglove") wait_until([&] { return !p->running() || p->err().find("probe ready") != std::string::npos; }, 20s);
   return p;
 }
 
@@ -267,7 +275,8 @@ json latency_json(const LatencySummary& s) {
 
 /// One transport's latency run: the probe first, then the simulation in realtime with the bridge.
 json measure_latency(const std::string& transport, const Scenario& scenario, const ModelMap& models, const fs::path& dir, double seconds) {
-  auto probe = start_probe(transport, dir);
+  const int foxglove_port = transport == "foxglove" ? free_local_port() : 0;
+  auto probe = start_probe(transport, dir, false, foxglove_port);
   if (!probe->running()) return json{{"error", "the probe did not start: " + tail(probe->err())}};
   Scenario s = scenario;
   s.realtime = true;
@@ -276,7 +285,8 @@ json measure_latency(const std::string& transport, const Scenario& scenario, con
   BridgeFlags flags;
   flags.ros1 = transport == "ros1";
   flags.ros2 = transport == "ros2";
-  // DDS discovery takes longer than a ROS 1 connection
+  if (foxglove_port > 0) flags.foxglove = foxglove_port;
+  // DDS discovery takes longer than a ROS 1 connection or a WebSocket's
   const json run = run_bridged(s, models, flags, transport == "ros2" ? 2s : 1s);
   // what is still on its way arrives within this (stop() flushed the bridge's queue)
   std::this_thread::sleep_for(300ms);
@@ -297,9 +307,14 @@ json cost_run(const Scenario& s, const ModelMap& models, const BridgeFlags& flag
   std::vector<std::unique_ptr<Spawned>> probes;
   if (flags.ros1) probes.push_back(start_probe("ros1", dir, scan_only));
   if (flags.ros2) probes.push_back(start_probe("ros2", dir, scan_only));
-  std::fprintf(stderr, "bench: ROS: real-time factor with%s%s, subscribed to %s, %.0f s lockstep ...\n", flags.ros1 ? " --ros1" : "",
-               flags.ros2 ? " --ros2" : "", scan_only ? "/scan" : "/scan and the image", s.duration);
-  json run = run_bridged(s, models, flags, 2s);
+  BridgeFlags with = flags;
+  if (flags.foxglove) {
+    with.foxglove = free_local_port();  // a port of this run's own
+    probes.push_back(start_probe("foxglove", dir, scan_only, *with.foxglove));
+  }
+  std::fprintf(stderr, "bench: ROS: real-time factor with%s%s%s, subscribed to %s, %.0f s lockstep ...\n", flags.ros1 ? " --ros1" : "",
+               flags.ros2 ? " --ros2" : "", flags.foxglove ? " --foxglove" : "", scan_only ? "/scan" : "/scan and the image", s.duration);
+  json run = run_bridged(s, models, with, 2s);
   std::this_thread::sleep_for(300ms);
   std::size_t got = 0;
   for (auto& p : probes) {
@@ -371,8 +386,8 @@ json measure_cost(const Scenario& scenario, const ModelMap& models, const Bridge
   json j;
   j["bridge_cost"] = cost_figure(without, with, s.duration);
   j["bridge_cost"]["note"] =
-      "ratio = best real-time factor with the bridges attached / best without, over the rounds; per transport a subscriber "
-      "process on /scan and the colour image (the bridges send only topics somebody subscribes to); the default scenario "
+      "ratio = best real-time factor with the bridges attached (ROS 1, ROS 2, Foxglove) / best without, over the rounds; per "
+      "transport a subscriber process on /scan and the colour image (the bridges send only topics somebody subscribes to); the default scenario "
       "with the colour camera at 640x480 10 Hz, depth and thermal cameras off";
   j["bridge_cost_scan_only"] = cost_figure(without, scan_only, s.duration);
   j["bridge_cost_scan_only"]["note"] = "as bridge_cost, with subscribers on /scan alone: the images are rendered but not sent";
@@ -405,6 +420,10 @@ json bench_ros(const Scenario& def, const ModelMap& models, const BenchRosOption
 #ifndef RESCUESIM_HAS_ROS2
   no_ros2 = "built without the ROS 2 bridge (Cyclone DDS not found at build time)";
 #endif
+  std::string no_foxglove;
+#ifndef RESCUESIM_HAS_FOXGLOVE
+  no_foxglove = "built without the Foxglove bridge (Boost.Beast not found at build time)";
+#endif
   const fs::path dir = fs::temp_directory_path() / ("rescuesim-bench-ros-" + std::to_string(::getpid()));
   fs::create_directories(dir / "ros_home/log");
   EnvGuard env;
@@ -430,7 +449,8 @@ json bench_ros(const Scenario& def, const ModelMap& models, const BenchRosOption
   }
   const Scenario scenario = ros_scenario(def);
   json lat;
-  for (const auto& [transport, missing] : {std::pair<std::string, std::string>{"ros1", no_ros1}, {"ros2", no_ros2}}) {
+  for (const auto& [transport, missing] :
+       {std::pair<std::string, std::string>{"ros1", no_ros1}, {"ros2", no_ros2}, {"foxglove", no_foxglove}}) {
     if (!missing.empty()) {
       lat[transport] = {{"skipped", missing}};
       continue;
@@ -440,22 +460,25 @@ json bench_ros(const Scenario& def, const ModelMap& models, const BenchRosOption
   }
   lat["note"] = "wall clock (CLOCK_REALTIME) from publication on the Bus to receipt in a subscriber process on loopback, "
                 "matched by header stamp; realtime runs, colour camera 640x480 rgb8 at 10 Hz, /scan at 10 Hz; "
-                "ROS 1: a roscpp node (TCPROS, tcp_nodelay); ROS 2: a Cyclone DDS reader (reliable, depth 10)";
+                "ROS 1: a roscpp node (TCPROS, tcp_nodelay); ROS 2: a Cyclone DDS reader (reliable, depth 10); "
+                "Foxglove: a WebSocket client (Boost.Beast) subscribed to the cdr channels";
   j["latency"] = lat;
 
-  // the real-time factor with both bridges (and a subscriber on each) beside none
-  if (no_ros1.empty() || no_ros2.empty()) {
+  // the real-time factor with every bridge (and a subscriber on each) beside none
+  if (no_ros1.empty() || no_ros2.empty() || no_foxglove.empty()) {
     BridgeFlags flags;
     flags.ros1 = no_ros1.empty();
     flags.ros2 = no_ros2.empty();
+    if (no_foxglove.empty()) flags.foxglove = 0;  // cost_run picks a free port per run
     json costs = measure_cost(scenario, models, flags, dir, o);
     for (const char* key : {"bridge_cost", "bridge_cost_scan_only"}) {
       if (!no_ros1.empty()) costs[key]["ros1_skipped"] = no_ros1;
       if (!no_ros2.empty()) costs[key]["ros2_skipped"] = no_ros2;
+      if (!no_foxglove.empty()) costs[key]["foxglove_skipped"] = no_foxglove;
       j[key] = costs[key];
     }
   } else {
-    j["bridge_cost"] = {{"skipped", "no ROS bridge can run here: " + no_ros1 + "; " + no_ros2}};
+    j["bridge_cost"] = {{"skipped", "no bridge can run here: " + no_ros1 + "; " + no_ros2 + "; " + no_foxglove}};
   }
   if (core) core->stop(SIGINT, 15s);
   std::error_code ec;
@@ -470,6 +493,7 @@ void on_probe_signal(int) { g_probe_stop = true; }
 
 struct ProbeOptions {
   std::string transport;
+  int port = 8765;                  ///< Foxglove: the server's port on 127.0.0.1
   std::vector<std::string> topics;  ///< "name=ros1/Type"
   double seconds = 120;
 };
@@ -491,6 +515,14 @@ int run_probe(const ProbeOptions& o) {
   };
   const auto ready = [] { std::fprintf(stderr, "probe ready\n"); };
   try {
+    if (o.transport == "foxglove") {
+#ifdef RESCUESIM_HAS_FOXGLOVE
+      run_foxglove_probe("127.0.0.1", o.port, names, report, ready, g_probe_stop, o.seconds);
+      return kExitOk;
+#else
+      throw Error("bench-probe: built without the Foxglove bridge");
+#endif
+    }
     if (o.transport == "ros1") {
 #ifdef RESCUESIM_HAS_ROS1
       run_ros1_probe("rescuesim_bench_probe", names, report, ready, g_probe_stop, o.seconds);
@@ -540,7 +572,8 @@ void add_bench_probe_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ProbeOptions>();
   CLI::App* cmd = app.add_subcommand("bench-probe", "the subscriber process of `rescuesim bench` (internal)");
   cmd->group("");  // hidden: not listed in --help
-  cmd->add_option("--transport", o->transport, "ros1 or ros2")->required()->check(CLI::IsMember({"ros1", "ros2"}));
+  cmd->add_option("--transport", o->transport, "ros1, ros2 or foxglove")->required()->check(CLI::IsMember({"ros1", "ros2", "foxglove"}));
+  cmd->add_option("--port", o->port, "foxglove: the server's port on 127.0.0.1")->capture_default_str();
   cmd->add_option("--topic", o->topics, "TOPIC=ROS1_TYPE to subscribe to (repeatable)")->required();
   cmd->add_option("--seconds", o->seconds, "give up after this many wall seconds")->capture_default_str();
   cmd->final_callback([o, &action] { action = [o] { return run_probe(*o); }; });

@@ -16,7 +16,7 @@ bool return_free_memory() {
 
 void tune_allocator_for_long_runs() {
 #if defined(__GLIBC__)
-  ::mallopt(M_MMAP_THRESHOLD, 256 * 1024);
+  ::mallopt(M_MMAP_THRESHOLD, 4 * 1024 * 1024);
   ::mallopt(M_TRIM_THRESHOLD, 4 * 1024 * 1024);
 #endif
 }

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cmath>
 #include <regex>
+#include <sstream>
 #include <thread>
 
 #include "bridges/foxglove/foxglove_bridge.h"
@@ -484,6 +485,40 @@ TEST(FoxgloveCli, PortFlagTakesAnOptionalValue) {
   const auto port = testing::rescuesim("run room.yaml --foxglove=70000 --duration 0.2 --no-cameras --out out", dir);
   EXPECT_EQ(port.exit_code, 2);
   EXPECT_NE(port.err.find("--foxglove"), std::string::npos) << port.err;
+}
+
+TEST(FoxgloveProbe, TheBenchsClientReportsEveryScanWithItsStamp) {
+  // `rescuesim bench`'s Foxglove client (bridges/foxglove/foxglove_probe.h) against a realtime
+  // run of the room: the laser publishes at 10 Hz from sim time 0, so every stamp it reports is
+  // a whole multiple of 0.1 s, each 0.1 s after the one before (none lost on loopback), and in
+  // 3 s of wall time about 30 of them come
+  const auto dir = testing::temp_dir("fox-probe");
+  testing::write_room(dir);
+  Background sim(dir, "run room.yaml --foxglove=0 --no-cameras --duration 60 --out out");
+  ASSERT_GT(sim.port(), 0) << sim.err();
+  const auto r = testing::run_command(std::string("'") + RESCUESIM_EXE + "' bench-probe --transport foxglove --port " + std::to_string(sim.port()) +
+                             " --topic /scan=sensor_msgs/LaserScan --seconds 3");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("probe ready"), std::string::npos) << r.err;
+  std::vector<long long> stamps;
+  std::istringstream lines(r.out);
+  std::string topic;
+  long long stamp = 0, wall = 0;
+  while (lines >> topic >> stamp >> wall) {
+    EXPECT_EQ(topic, "/scan");
+    stamps.push_back(stamp);
+  }
+  ASSERT_GE(stamps.size(), 20u) << r.out << r.err;
+  EXPECT_LE(stamps.size(), 40u);
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    EXPECT_EQ(stamps[i] % 100'000'000, 0) << stamps[i];
+    if (i > 0) EXPECT_EQ(stamps[i] - stamps[i - 1], 100'000'000) << i;
+  }
+  // nothing listening: a clear error once its time to connect (here 1 s) has passed
+  const auto none = testing::run_command(std::string("'") + RESCUESIM_EXE + "' bench-probe --transport foxglove --port " +
+                                         std::to_string(free_local_port()) + " --topic /scan=sensor_msgs/LaserScan --seconds 1");
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_NE(none.err.find("cannot connect to the Foxglove server"), std::string::npos) << none.err;
 }
 
 }  // namespace
