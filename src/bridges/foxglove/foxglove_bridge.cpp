@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "bridges/common/outbox.h"
+#include "bridges/common/shared_cdr.h"
 #include "bridges/foxglove/bridge_impl.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -269,9 +270,8 @@ void FoxgloveBridge::handle(const OutboxItem& item) {
     const auto it = channels_.find(channel);
     if (it == channels_.end() || (!it->second.latched && it->second.subscribers.empty())) return;
   }
-  auto bytes = std::make_shared<std::vector<std::uint8_t>>();
-  msg::to_cdr(*item.message, *bytes);
-  const Payload payload = std::move(bytes);
+  // a large message's bytes are shared with the other CDR bridges (bridges/common/shared_cdr.h)
+  const Payload payload = shared_cdr(item.message);
   const auto stamp = static_cast<std::uint64_t>(std::max<std::int64_t>(item.at.ns, 0));
   std::vector<std::pair<ClientId, std::uint32_t>> subs;
   {

@@ -6,6 +6,8 @@
 #include <mutex>
 #include <thread>
 
+#include "bridges/common/outbox.h"
+#include "bridges/common/shared_cdr.h"
 #include "core/bounded_queue.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -124,11 +126,16 @@ struct McapRecorder::Impl {
       }
       try {
         if (const std::uint16_t ch = channel_for(*item->topic)) {
-          cdr.clear();
-          msg::to_cdr(*item->message, cdr);
           const std::int64_t stamp = msg::stamp_of(*item->message).ns;
           const std::uint64_t publish = stamp > 0 ? static_cast<std::uint64_t>(stamp) : item->log_time;
-          writer->write_message(ch, item->sequence, item->log_time, publish, cdr);
+          if (Outbox::approx_bytes(*item->message) >= kSharedCdrMinBytes) {
+            // a large message's bytes are shared with the other CDR bridges (bridges/common/shared_cdr.h)
+            writer->write_message(ch, item->sequence, item->log_time, publish, *shared_cdr(item->message));
+          } else {
+            cdr.clear();
+            msg::to_cdr(*item->message, cdr);
+            writer->write_message(ch, item->sequence, item->log_time, publish, cdr);
+          }
         }
       } catch (const std::exception& e) {
         // a full disk or an unwritable file: stop writing, keep draining so the simulation never waits

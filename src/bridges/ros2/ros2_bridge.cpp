@@ -19,6 +19,7 @@
 
 #include "bridges/common/commands.h"
 #include "bridges/common/outbox.h"
+#include "bridges/common/shared_cdr.h"
 #include "bridges/ros2/command_input.h"
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/ros2_conventions.h"
@@ -66,7 +67,7 @@ class Ros2Bridge final : public Bridge {
 
   void send_loop();
   void refresh_listened();
-  void send(int writer, const msg::Message& m, std::vector<std::uint8_t>& buffer);
+  void send(int writer, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer);
   void receive_loop();
   void receive(Input& input, std::span<const std::uint8_t> bytes);
 
@@ -205,7 +206,7 @@ void Ros2Bridge::send_loop() {
       next_refresh = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
     }
     // a round is at most one message per topic, oldest first
-    for (const OutboxItem& item : round) send(writer_of_topic_[static_cast<std::size_t>(item.topic)], *item.message, buffer);
+    for (const OutboxItem& item : round) send(writer_of_topic_[static_cast<std::size_t>(item.topic)], item.message, buffer);
     if (outbox_.drained()) return;
     // stop() waits for what is queued, but not for ever
     if (took && outbox_.closed()) {
@@ -223,12 +224,23 @@ void Ros2Bridge::refresh_listened() {
   }
 }
 
-void Ros2Bridge::send(int writer, const msg::Message& m, std::vector<std::uint8_t>& buffer) {
-  buffer.clear();
-  msg::to_cdr(m, buffer);
-  ros2::adapt_to_distro(m, options_.distro, buffer);
+void Ros2Bridge::send(int writer, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer) {
+  const msg::Message& m = *message;
+  // a large message's bytes are encoded once for every CDR bridge (bridges/common/shared_cdr.h);
+  // the distro adaptations touch only small messages, so those are what this bridge encodes
+  SharedBytes shared;
+  std::span<const std::uint8_t> bytes;
+  if (!ros2::distro_changes(m, options_.distro) && Outbox::approx_bytes(m) >= kSharedCdrMinBytes) {
+    shared = shared_cdr(message);
+    bytes = *shared;
+  } else {
+    buffer.clear();
+    msg::to_cdr(m, buffer);
+    ros2::adapt_to_distro(m, options_.distro, buffer);
+    bytes = buffer;
+  }
   std::string error;
-  if (dds_->write(writer, buffer, &error)) {
+  if (dds_->write(writer, bytes, &error)) {
     ++sent_;
     return;
   }

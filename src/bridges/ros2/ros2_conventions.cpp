@@ -62,9 +62,13 @@ std::string participant_user_data() { return "enclave=/;"; }
 
 std::size_t gid_size(Ros2Distro distro) { return distro == Ros2Distro::humble ? 24 : 16; }
 
+bool distro_changes(const msg::Message& m, Ros2Distro distro) {
+  return distro == Ros2Distro::iron_or_newer && std::holds_alternative<msg::Range>(m);
+}
+
 void adapt_to_distro(const msg::Message& m, Ros2Distro distro, std::vector<std::uint8_t>& cdr) {
   // Range's last field is a float32 at a 4-byte aligned offset, so variance follows it directly
-  if (distro == Ros2Distro::iron_or_newer && std::holds_alternative<msg::Range>(m)) cdr.insert(cdr.end(), 4, 0);
+  if (distro_changes(m, distro)) cdr.insert(cdr.end(), 4, 0);
 }
 
 namespace {

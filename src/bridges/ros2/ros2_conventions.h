@@ -61,6 +61,9 @@ std::string participant_user_data();
 /// Bytes of a Gid in rmw_dds_common: 24 up to Humble, 16 from Iron on.
 std::size_t gid_size(Ros2Distro distro);
 
+/// True when adapt_to_distro changes the bytes of `m` for `distro` (the bridge then encodes
+/// them itself rather than share another bridge's).
+bool distro_changes(const msg::Message& m, Ros2Distro distro);
 /// Adapts our serialiser's CDR (ROS 2 Humble layouts) to `distro` in place: from Iron on,
 /// sensor_msgs/Range ends with `float32 variance`, which gets 0 (unknown).
 void adapt_to_distro(const msg::Message& m, Ros2Distro distro, std::vector<std::uint8_t>& cdr);
