@@ -117,12 +117,13 @@ json bench_physics(const World& world, int steps) {
 /// Lidar rays: RayScene beside bare rtcIntersect16, and a whole laser scan (noise, REP-117) per second.
 json bench_rays(const World& world, double seconds) {
   const Vec3 origin = world.robots[0].X_W_start.p + Vec3(0.26, 0, 0.16);
-  const RayBenchResult r = measure_ray_throughput(world, origin, 1080, seconds);
+  // the scene as a run starts: resting rubble asleep
+  State s;
+  Physics(world).init_state(s);
+  const RayBenchResult r = measure_ray_throughput(world, origin, 1080, seconds, &s);
   json j = figure(r.scene_rays_per_s, "rays/s", r.bare_rays_per_s, "bare Embree rtcIntersect16, same triangles, one thread", 0.7);
   // the whole laser sampler: rays, noise, message
   RayScene scene(world);
-  State s;
-  Physics(world).init_state(s);
   scene.update(s);
   const SensorSpec& laser = *world.robots[0].spec.find_sensor("laser");
   Rng rng(1, "bench");

@@ -75,42 +75,80 @@ struct Instance {
 
 }  // namespace
 
+/// Who owns a triangle of the flat geometry: a static object or a sleeping rubble body.
+struct FlatOwner {
+  RayHit::Source source = RayHit::Source::static_object;
+  int index = -1;  ///< World::statics or World::dynamics index
+};
+
 struct RayScene::Impl {
   RTCScene top = nullptr;
   std::vector<RTCScene> prototypes;          ///< owned prototype scenes (rubble, links)
   /// Unit triangle normals of each prototype (a list, so their addresses stay put as it grows):
   /// looking them up is cheaper than normalising embree's geometric normal on every hit.
   std::list<std::vector<Vec3>> prototype_normals;
-  std::vector<Instance> instances;           ///< by geomID in `top`
-  std::vector<int> static_owner;             ///< per static triangle: World::statics index
+  /// By geomID in `top`. Slot 0 is the flat geometry (below), attached only when it has
+  /// triangles; the others are instances of rubble and link prototypes.
+  std::vector<Instance> instances;
   std::vector<int> dynamic_instance;         ///< per World::dynamics: instance index (-1: empty mesh)
   std::vector<std::vector<int>> link_instance;  ///< per robot, per link: instance index or -1
   std::size_t triangles = 0;
+
+  /// The flat geometry: the static objects' triangles and those of every sleeping rubble body,
+  /// in the world frame, in one BVH. A ray through it visits no instance (the bare-Embree speed
+  /// the lidar bench compares against); a rubble body leaves it while awake and is traced as an
+  /// instance at its pose. Which bodies are in it is a function of State alone (their sleep),
+  /// so a run, and a run restored from a snapshot, trace the same triangles.
+  FloatMesh statics;                         ///< the static objects' triangles (world frame)
+  std::vector<int> static_owner;             ///< per static triangle: World::statics index
+  std::vector<FlatOwner> flat_owner;         ///< per flat triangle
+  std::vector<Vec3> flat_normals;            ///< per flat triangle, unit, world frame
+  std::vector<FloatMesh> rubble_mesh;        ///< per World::dynamics: its triangles in the body frame
+  std::vector<char> flat_rubble;             ///< per World::dynamics: in the flat geometry now
+  std::vector<Pose3> flat_pose;              ///< per World::dynamics: the pose it was flattened at
 
   Impl() = default;
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
   ~Impl() {
-    for (auto& i : instances) rtcReleaseGeometry(i.geometry);
+    for (auto& i : instances) {
+      if (i.geometry) rtcReleaseGeometry(i.geometry);
+    }
     if (top) rtcReleaseScene(top);
     for (RTCScene s : prototypes) rtcReleaseScene(s);
   }
 
-  /// Adds the static triangles (world frame) straight to the top-level scene: no instance to
-  /// step through, and embree's two-level build of a dynamic scene leaves their BVH alone when
-  /// only instances move.
-  void add_statics(const FloatMesh& mesh) {
-    prototype_normals.push_back(mesh.unit_normals());
-    triangles += mesh.triangle_count();
-    Instance inst;
-    inst.geometry = raycast_detail::new_triangle_geometry(mesh);
-    rtcSetGeometryBuildQuality(inst.geometry, RTC_BUILD_QUALITY_HIGH);
-    rtcCommitGeometry(inst.geometry);
-    inst.normals = &prototype_normals.back();
-    inst.source = RayHit::Source::static_object;
-    const auto id = static_cast<unsigned>(instances.size());
-    instances.push_back(inst);
-    rtcAttachGeometryByID(top, inst.geometry, id);
+  /// (Re)builds the flat geometry (slot 0) from the statics and the rubble bodies marked in
+  /// flat_rubble at flat_pose: the static triangles first, then each body's in World order.
+  void build_flat() {
+    FloatMesh mesh = statics;
+    flat_owner.clear();
+    for (int owner : static_owner) flat_owner.push_back({RayHit::Source::static_object, owner});
+    for (std::size_t i = 0; i < rubble_mesh.size(); ++i) {
+      if (!flat_rubble[i]) continue;
+      const FloatMesh& body = rubble_mesh[i];
+      const Eigen::Matrix3f R = flat_pose[i].q.toRotationMatrix().cast<float>();
+      const Eigen::Vector3f p = flat_pose[i].p.cast<float>();
+      const auto first = static_cast<unsigned>(mesh.vertex_count());
+      for (std::size_t v = 0; v < body.vertex_count(); ++v) {
+        const Eigen::Vector3f x = R * Eigen::Vector3f(body.vertices[3 * v], body.vertices[3 * v + 1], body.vertices[3 * v + 2]) + p;
+        mesh.vertices.insert(mesh.vertices.end(), {x.x(), x.y(), x.z()});
+      }
+      for (unsigned idx : body.indices) mesh.indices.push_back(first + idx);
+      flat_owner.insert(flat_owner.end(), body.triangle_count(), FlatOwner{RayHit::Source::dynamic_object, static_cast<int>(i)});
+    }
+    flat_normals = mesh.unit_normals();
+    Instance& flat = instances[0];
+    if (flat.geometry) {
+      rtcDetachGeometry(top, 0);
+      rtcReleaseGeometry(flat.geometry);
+      flat.geometry = nullptr;
+    }
+    if (mesh.triangle_count() == 0) return;
+    flat.geometry = raycast_detail::new_triangle_geometry(mesh);
+    rtcSetGeometryBuildQuality(flat.geometry, RTC_BUILD_QUALITY_HIGH);
+    rtcCommitGeometry(flat.geometry);
+    rtcAttachGeometryByID(top, flat.geometry, 0);
   }
 
   /// Keeps `prototype` (built from `mesh`) and adds an instance of it to the top-level scene at
@@ -193,12 +231,21 @@ struct RayScene::Impl {
         h.distance = NAN;
       } else if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
         const unsigned inst_id = rh.hit.instID[0][i];
-        const Instance& inst = instances[inst_id != RTC_INVALID_GEOMETRY_ID ? inst_id : rh.hit.geomID[i]];
+        const unsigned prim = rh.hit.primID[i];
         h.distance = rh.ray.tfar[i];
-        h.source = inst.source;
-        h.robot = inst.robot;
-        h.index = inst.source == RayHit::Source::static_object ? static_owner[rh.hit.primID[i]] : inst.index;
-        const Vec3 normal = inst.R_WP * (*inst.normals)[rh.hit.primID[i]];
+        Vec3 normal;
+        if (inst_id == RTC_INVALID_GEOMETRY_ID) {
+          // the flat geometry (slot 0): statics and sleeping rubble, world frame
+          h.source = flat_owner[prim].source;
+          h.index = flat_owner[prim].index;
+          normal = flat_normals[prim];
+        } else {
+          const Instance& inst = instances[inst_id];
+          h.source = inst.source;
+          h.robot = inst.robot;
+          h.index = inst.index;
+          normal = inst.R_WP * (*inst.normals)[prim];
+        }
         h.normal = normal.dot(rays[i].direction) > 0 ? Vec3(-normal) : normal;
       }
       hits[i] = h;
@@ -214,20 +261,28 @@ RayScene::RayScene(const World& world) : impl_(std::make_unique<Impl>()) {
   rtcSetSceneFlags(s.top, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(s.top, RTC_BUILD_QUALITY_LOW);
 
-  // all static objects in one high-quality triangle geometry, in the world frame
-  const FloatMesh statics = raycast_detail::static_triangles(world, &s.static_owner);
-  if (statics.triangle_count() > 0) s.add_statics(statics);
+  // slot 0: the flat geometry, all static objects (and later the sleeping rubble) in one
+  // high-quality triangle geometry in the world frame
+  s.statics = raycast_detail::static_triangles(world, &s.static_owner);
+  s.triangles += s.statics.triangle_count();
+  s.instances.emplace_back();
+  s.instances[0].source = RayHit::Source::static_object;
 
-  // each rubble body: its mesh in the body frame, instanced at its initial pose
+  // each rubble body: its mesh in the body frame, instanced at its initial pose (it joins the
+  // flat geometry when update() sees it asleep)
   for (std::size_t i = 0; i < world.dynamics.size(); ++i) {
     const DynamicObject& d = world.dynamics[i];
     FloatMesh mesh;
     mesh.append(mesh_of(d.geometry, raycast_detail::kRoundSegments), Pose3{});
     s.dynamic_instance.push_back(-1);
+    s.rubble_mesh.push_back(mesh);
     if (mesh.triangle_count() == 0) continue;
     s.dynamic_instance.back() = s.add_instance(raycast_detail::new_mesh_scene(mesh, RTC_BUILD_QUALITY_MEDIUM), mesh, d.X_WO,
                                                RayHit::Source::dynamic_object, static_cast<int>(i), -1);
   }
+  s.flat_rubble.assign(world.dynamics.size(), 0);
+  s.flat_pose.assign(world.dynamics.size(), Pose3{});
+  s.build_flat();
 
   // each robot link: all its shapes in the link frame, instanced at the start pose
   for (std::size_t r = 0; r < world.robots.size(); ++r) {
@@ -253,9 +308,23 @@ void RayScene::update(const State& state) {
   Impl& s = *impl_;
   RS_DEMAND(state.dynamics.size() == s.dynamic_instance.size(), "RayScene::update: State::dynamics does not match the World");
   RS_DEMAND(state.robots.size() == s.link_instance.size(), "RayScene::update: State::robots does not match the World");
+  // a sleeping body is part of the flat geometry at its pose; an awake one is an instance
+  bool rebuild = false;
   for (std::size_t i = 0; i < s.dynamic_instance.size(); ++i) {
-    if (s.dynamic_instance[i] >= 0) s.move_instance(s.dynamic_instance[i], state.dynamics[i].X_WB);
+    const int inst = s.dynamic_instance[i];
+    if (inst < 0) continue;
+    const BodyState& b = state.dynamics[i];
+    const bool flat = b.sleep == BodyState::Sleep::asleep;
+    if (flat != static_cast<bool>(s.flat_rubble[i]) || (flat && !(b.X_WB.p == s.flat_pose[i].p && b.X_WB.q.coeffs() == s.flat_pose[i].q.coeffs()))) {
+      s.flat_rubble[i] = flat;
+      s.flat_pose[i] = b.X_WB;
+      rebuild = true;
+      if (flat) rtcDisableGeometry(s.instances[static_cast<std::size_t>(inst)].geometry);
+      else rtcEnableGeometry(s.instances[static_cast<std::size_t>(inst)].geometry);
+    }
+    if (!flat) s.move_instance(inst, b.X_WB);
   }
+  if (rebuild) s.build_flat();
   for (std::size_t r = 0; r < s.link_instance.size(); ++r) {
     const auto& links = s.link_instance[r];
     RS_DEMAND(state.robots[r].X_WL.size() == links.size(), "RayScene::update: RobotState::X_WL needs one pose per link");

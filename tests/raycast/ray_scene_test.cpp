@@ -152,6 +152,45 @@ TEST(RaySceneDynamic, RubbleIsHitWhereUpdatePutIt) {
   EXPECT_NEAR(h.normal.y(), -1.0, 1e-6);
 }
 
+TEST(RaySceneDynamic, ASleepingBodyIsTracedInTheFlatSceneAndLeavesItWhenItWakes) {
+  WorldSpec spec = empty_spec();
+  spec.walls.push_back(wall_at_x2());
+  RubbleSpec box;
+  box.pose = {1.0, 0.0, 0.0};
+  box.size = {0.2, 0.2, 0.1};
+  spec.rubble.push_back(box);
+  const World world = compile(spec);
+  RayScene scene(world);
+  const Vec3 o(0, 0, 0.05);
+  const auto expect_box = [&](const Vec3& dir, double distance, const Vec3& normal) {
+    const RayHit h = cast_one(scene, o, dir);
+    EXPECT_NEAR(h.distance, distance, 1e-4);
+    EXPECT_EQ(h.source, RayHit::Source::dynamic_object);
+    EXPECT_EQ(h.index, 0);
+    EXPECT_NEAR((h.normal - normal).norm(), 0.0, 1e-6);
+  };
+
+  // asleep where it starts: its west face x = 0.9, now one geometry with the wall
+  State state = initial_state(world);
+  state.dynamics[0].sleep = BodyState::Sleep::asleep;
+  scene.update(state);
+  expect_box({1, 0, 0}, 0.9, {-1, 0, 0});
+  EXPECT_EQ(scene.triangle_count(), 36u);  // floor, wall and box, 12 each, counted once
+
+  // awake, moved to (0, 1) and turned 90 degrees: +x reaches the wall, +y meets the box at 0.9
+  state.dynamics[0].sleep = BodyState::Sleep::awake;
+  state.dynamics[0].X_WB = Pose3::from_pose2({0.0, 1.0, M_PI / 2}, world.dynamics[0].X_WO.p.z());
+  scene.update(state);
+  EXPECT_NEAR(cast_one(scene, o, {1, 0, 0}).distance, 2.0, 1e-4);
+  expect_box({0, 1, 0}, 0.9, {0, -1, 0});
+
+  // asleep there: the flat scene is rebuilt with the box at its new pose, nothing at the old one
+  state.dynamics[0].sleep = BodyState::Sleep::asleep;
+  scene.update(state);
+  EXPECT_EQ(cast_one(scene, o, {1, 0, 0}).source, RayHit::Source::static_object);
+  expect_box({0, 1, 0}, 0.9, {0, -1, 0});
+}
+
 /// Two box robots: "a" at (1, 0) and "b" at (−1, 0); their boxes span 0.8..1.2 m from the origin.
 World two_robot_world() {
   WorldSpec spec = empty_spec();
@@ -323,23 +362,38 @@ TEST(RaySceneDeterminism, OneThreadAndAllThreadsGiveIdenticalHits) {
   EXPECT_TRUE(bitwise_equal(all, again));
 }
 
+/// The maze with every rubble body asleep where it was put: traced in the flat scene.
+State sleeping_rubble(const World& world) {
+  State s = initial_state(world);
+  for (BodyState& b : s.dynamics) b.sleep = BodyState::Sleep::asleep;
+  return s;
+}
+
 TEST(RaySceneDeterminism, HitDoesNotDependOnPlaceInTheBatch) {
   const World world = maze_world();
-  const RayScene scene(world);
   const std::vector<Ray> rays = random_rays(3000, 11);
-  std::vector<RayHit> batch(rays.size());
-  scene.cast(rays, batch, 0);
+  // rubble as instances (awake), then in the flat scene with the walls (asleep)
+  for (const bool asleep : {false, true}) {
+    SCOPED_TRACE(asleep ? "rubble asleep" : "rubble awake");
+    RayScene scene(world);
+    if (asleep) scene.update(sleeping_rubble(world));
+    std::vector<RayHit> batch(rays.size());
+    scene.cast(rays, batch, 0);
+    int dynamics = 0;
+    for (const RayHit& h : batch) dynamics += h.source == RayHit::Source::dynamic_object;
+    EXPECT_GT(dynamics, 0);
 
-  // the same rays one lane later in their packets, and each on its own
-  std::vector<Ray> shifted = rays;
-  shifted.insert(shifted.begin(), Ray{});
-  std::vector<RayHit> shifted_hits(shifted.size());
-  scene.cast(shifted, shifted_hits, 0);
-  shifted_hits.erase(shifted_hits.begin());
-  std::vector<RayHit> single(rays.size());
-  for (std::size_t i = 0; i < rays.size(); ++i) scene.cast(std::span<const Ray>(&rays[i], 1), std::span<RayHit>(&single[i], 1), 0);
-  EXPECT_TRUE(bitwise_equal(batch, shifted_hits));
-  EXPECT_TRUE(bitwise_equal(batch, single));
+    // the same rays one lane later in their packets, and each on its own
+    std::vector<Ray> shifted = rays;
+    shifted.insert(shifted.begin(), Ray{});
+    std::vector<RayHit> shifted_hits(shifted.size());
+    scene.cast(shifted, shifted_hits, 0);
+    shifted_hits.erase(shifted_hits.begin());
+    std::vector<RayHit> single(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) scene.cast(std::span<const Ray>(&rays[i], 1), std::span<RayHit>(&single[i], 1), 0);
+    EXPECT_TRUE(bitwise_equal(batch, shifted_hits));
+    EXPECT_TRUE(bitwise_equal(batch, single));
+  }
 }
 
 }  // namespace

@@ -68,13 +68,18 @@ class BareScene {
 
 }  // namespace
 
-RayBenchResult measure_ray_throughput(const World& world, const Vec3& origin, int rays, double seconds) {
+RayBenchResult measure_ray_throughput(const World& world, const Vec3& origin, int rays, double seconds, const State* state) {
   RS_DEMAND(rays > 0, "measure_ray_throughput: rays must be positive");
   // the same world without robots for both, so both see exactly the same triangles
   World bare_world = world;
   bare_world.robots.clear();
   const BareScene bare(bare_world);
-  const RayScene scene(bare_world);
+  RayScene scene(bare_world);
+  if (state) {
+    State s = *state;
+    s.robots.clear();
+    scene.update(s);
+  }
 
   // a horizontal fan around the origin
   std::vector<Ray> fan(static_cast<std::size_t>(rays));
