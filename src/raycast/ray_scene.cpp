@@ -22,6 +22,11 @@ namespace {
 constexpr std::size_t kParallelMinRays = 384;
 /// Packets of 16 rays handed to one TBB task at a time.
 constexpr std::size_t kPacketsPerTask = 4;
+/// Above this many static triangles rubble is never folded into the flat geometry: each time a
+/// body falls asleep or wakes the flat BVH is rebuilt (about 1 ms for a maze of a few thousand
+/// triangles, tens of ms for a 100 000-triangle mesh world), which would cost more than tracing
+/// the rubble as instances saves.
+constexpr std::size_t kFlatRubbleMaxStaticTriangles = 20000;
 /// Surfaces this close to the end of an occlusion segment do not occlude it (m).
 constexpr double kOcclusionSlack = 1e-4;
 
@@ -314,7 +319,7 @@ void RayScene::update(const State& state) {
     const int inst = s.dynamic_instance[i];
     if (inst < 0) continue;
     const BodyState& b = state.dynamics[i];
-    const bool flat = b.sleep == BodyState::Sleep::asleep;
+    const bool flat = b.sleep == BodyState::Sleep::asleep && s.statics.triangle_count() <= kFlatRubbleMaxStaticTriangles;
     if (flat != static_cast<bool>(s.flat_rubble[i]) || (flat && !(b.X_WB.p == s.flat_pose[i].p && b.X_WB.q.coeffs() == s.flat_pose[i].q.coeffs()))) {
       s.flat_rubble[i] = flat;
       s.flat_pose[i] = b.X_WB;

@@ -33,8 +33,12 @@ struct RayHit {
   bool hit() const { return source != Source::none; }
 };
 
-/// The ray-tracing scene of one World. Statics are built once; rubble and robot links are
-/// instances moved by update(). Move-only. cast() and occluded() are const and may run from
+/// The ray-tracing scene of one World. Static objects, and the rubble bodies asleep in the
+/// last update()'s State, are one flat world-frame geometry (one BVH: a ray through them visits
+/// no instance); awake rubble and robot links are instances moved by update(). A body that falls
+/// asleep or wakes rebuilds the flat geometry (not in worlds of more than 20 000 static
+/// triangles, where rubble stays instanced). Which bodies are flat is a function of the State
+/// alone, so a run and the same run restored from a snapshot trace the same triangles. Move-only. cast() and occluded() are const and may run from
 /// several threads at once, but not concurrently with update().
 class RayScene {
  public:
