@@ -223,13 +223,16 @@ Scenario ros_scenario(const Scenario& def) {
 }
 
 /// Runs `scenario` in a child process with the bridges of `flags`, after `settle` of wall time
-/// for subscribers to connect. Returns its real-time factor, bridge counts and, for each timed
-/// topic, the wall clock at which each message was published on the Bus.
-json run_bridged(const Scenario& scenario, const ModelMap& models, const BridgeFlags& flags, std::chrono::duration<double> settle) {
+/// for subscribers to connect, with or without the scenario's built-in controllers. Returns its
+/// real-time factor, bridge counts and, for each timed topic, the wall clock at which each
+/// message was published on the Bus.
+json run_bridged(const Scenario& scenario, const ModelMap& models, const BridgeFlags& flags, std::chrono::duration<double> settle,
+                 bool controllers = true) {
   ChildReport child = run_in_child([&] {
     json out;
     SessionOptions so;
     so.cameras = true;
+    so.controllers = controllers;
     Session session(scenario, models, so);
     // subscribed before the bridges, so the Bus calls it first
     std::vector<StampedWallTime> published;
@@ -286,8 +289,10 @@ json measure_latency(const std::string& transport, const Scenario& scenario, con
   flags.ros1 = transport == "ros1";
   flags.ros2 = transport == "ros2";
   if (foxglove_port > 0) flags.foxglove = foxglove_port;
-  // DDS discovery takes longer than a ROS 1 connection or a WebSocket's
-  const json run = run_bridged(s, models, flags, transport == "ros2" ? 2s : 1s);
+  // DDS discovery takes longer than a ROS 1 connection or a WebSocket's. Without the built-in
+  // controllers, as `rescuesim run --ros2` (or --ros1, --foxglove) runs: the robot's
+  // controller is the user's, on the other end of the transport
+  const json run = run_bridged(s, models, flags, transport == "ros2" ? 2s : 1s, false);
   // what is still on its way arrives within this (stop() flushed the bridge's queue)
   std::this_thread::sleep_for(300ms);
   probe->stop(SIGTERM, 5s);
@@ -459,7 +464,8 @@ json bench_ros(const Scenario& def, const ModelMap& models, const BenchRosOption
     lat[transport] = measure_latency(transport, scenario, models, dir, o.latency_seconds);
   }
   lat["note"] = "wall clock (CLOCK_REALTIME) from publication on the Bus to receipt in a subscriber process on loopback, "
-                "matched by header stamp; realtime runs, colour camera 640x480 rgb8 at 10 Hz, /scan at 10 Hz; "
+                "matched by header stamp; realtime runs without the built-in controllers (as rescuesim run with a live bridge), "
+                "colour camera 640x480 rgb8 at 10 Hz, /scan at 10 Hz; "
                 "ROS 1: a roscpp node (TCPROS, tcp_nodelay); ROS 2: a Cyclone DDS reader (reliable, depth 10); "
                 "Foxglove: a WebSocket client (Boost.Beast) subscribed to the cdr channels";
   j["latency"] = lat;
