@@ -121,14 +121,19 @@ TEST(RaySceneMiss, NonFiniteRayIsNaN) {
   EXPECT_FALSE(h.hit());
 }
 
-TEST(RaySceneDynamic, RubbleIsHitWhereUpdatePutIt) {
+/// The wall at x = 2 and a 0.2 x 0.2 x 0.1 m rubble box centred on (1, 0): its west face x = 0.9.
+World wall_and_box() {
   WorldSpec spec = empty_spec();
   spec.walls.push_back(wall_at_x2());
   RubbleSpec box;
   box.pose = {1.0, 0.0, 0.0};
   box.size = {0.2, 0.2, 0.1};
   spec.rubble.push_back(box);
-  const World world = compile(spec);
+  return compile(spec);
+}
+
+TEST(RaySceneDynamic, RubbleIsHitWhereUpdatePutIt) {
+  const World world = wall_and_box();
   RayScene scene(world);
 
   // at its start the box's west face is x = 0.9
@@ -153,13 +158,7 @@ TEST(RaySceneDynamic, RubbleIsHitWhereUpdatePutIt) {
 }
 
 TEST(RaySceneDynamic, ASleepingBodyIsTracedInTheFlatSceneAndLeavesItWhenItWakes) {
-  WorldSpec spec = empty_spec();
-  spec.walls.push_back(wall_at_x2());
-  RubbleSpec box;
-  box.pose = {1.0, 0.0, 0.0};
-  box.size = {0.2, 0.2, 0.1};
-  spec.rubble.push_back(box);
-  const World world = compile(spec);
+  const World world = wall_and_box();
   RayScene scene(world);
   const Vec3 o(0, 0, 0.05);
   const auto expect_box = [&](const Vec3& dir, double distance, const Vec3& normal) {
