@@ -29,8 +29,10 @@ SharedBytes encode(const msg::Message& m) {
 
 }  // namespace
 
+bool cdr_is_shared(const msg::Message& message) { return Outbox::approx_bytes(message) >= kSharedCdrMinBytes; }
+
 SharedBytes shared_cdr(const Bus::SharedMessage& message) {
-  if (Outbox::approx_bytes(*message) < kSharedCdrMinBytes) return encode(*message);
+  if (!cdr_is_shared(*message)) return encode(*message);
   {
     std::lock_guard lock(g_mutex);
     std::erase_if(g_entries, [](const Entry& e) { return e.message.expired(); });

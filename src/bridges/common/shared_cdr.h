@@ -24,6 +24,10 @@ using SharedBytes = std::shared_ptr<const std::vector<std::uint8_t>>;
 /// Messages whose Outbox::approx_bytes reach this are encoded once and shared.
 inline constexpr std::size_t kSharedCdrMinBytes = 64 * 1024;
 
+/// True when `message` is large enough for shared_cdr to keep its bytes (a bridge that
+/// encodes small messages into a buffer of its own asks this first).
+bool cdr_is_shared(const msg::Message& message);
+
 /// The XCDR1 bytes of `message`: for a large one the bytes another bridge already encoded, or
 /// encoded now and kept while `message` lives; for a small one encoded now, not kept.
 SharedBytes shared_cdr(const Bus::SharedMessage& message);

@@ -6,7 +6,6 @@
 #include <mutex>
 #include <thread>
 
-#include "bridges/common/outbox.h"
 #include "bridges/common/shared_cdr.h"
 #include "core/bounded_queue.h"
 #include "core/error.h"
@@ -128,7 +127,7 @@ struct McapRecorder::Impl {
         if (const std::uint16_t ch = channel_for(*item->topic)) {
           const std::int64_t stamp = msg::stamp_of(*item->message).ns;
           const std::uint64_t publish = stamp > 0 ? static_cast<std::uint64_t>(stamp) : item->log_time;
-          if (Outbox::approx_bytes(*item->message) >= kSharedCdrMinBytes) {
+          if (cdr_is_shared(*item->message)) {
             // a large message's bytes are shared with the other CDR bridges (bridges/common/shared_cdr.h)
             writer->write_message(ch, item->sequence, item->log_time, publish, *shared_cdr(item->message));
           } else {

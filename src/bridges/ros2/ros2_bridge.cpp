@@ -230,7 +230,7 @@ void Ros2Bridge::send(int writer, const Bus::SharedMessage& message, std::vector
   // the distro adaptations touch only small messages, so those are what this bridge encodes
   SharedBytes shared;
   std::span<const std::uint8_t> bytes;
-  if (!ros2::distro_changes(m, options_.distro) && Outbox::approx_bytes(m) >= kSharedCdrMinBytes) {
+  if (!ros2::distro_changes(m, options_.distro) && cdr_is_shared(m)) {
     shared = shared_cdr(message);
     bytes = *shared;
   } else {
