@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/local_ports.h"
 #include "mcap_test_support.h"
 
 namespace rescuesim {
@@ -23,7 +24,7 @@ TEST(ReplayFoxglove, ClientSeesTheRecording) {
   ASSERT_EQ(testing::rescuesim("run --duration 4 --no-cameras -q --record '" + file + "' --out '" + (dir / "out").string() + "'").exit_code, 0);
 
   // the client starts first and retries until the server is up; the replay takes 4 s
-  const int port = 20000 + ::getpid() % 20000;
+  const int port = free_local_port();  // a port the kernel has just handed out, not one from the pid
   const std::string script = std::string(RESCUESIM_SOURCE_DIR) + "/tests/bridges/mcap/replay_foxglove.js";
   const auto r = testing::run_command("( NODE_PATH='" + modules.string() + "' timeout 60 node '" + script + "' ws://127.0.0.1:" +
                                       std::to_string(port) + " 6 > '" + (dir / "client.json").string() + "' & c=$!; sleep 0.5; '" +

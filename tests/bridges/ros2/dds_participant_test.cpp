@@ -5,6 +5,7 @@
 #include "bridges/ros2/dds_participant.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "msgs/serialize.h"
+#include "support/dds_domain.h"
 
 namespace rescuesim::ros2 {
 namespace {
@@ -24,9 +26,8 @@ class DdsParticipantTest : public ::testing::Test {
              "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
              1);
   }
-  // domains 161..229 (+1) for these tests, 81..160 for the bridge tests, 1..80 for interop ones:
-  // tests running in parallel (ctest -j) do not see each other
-  int domain() const { return 161 + static_cast<int>(::getpid() % 68); }
+  // domains of this process's own, so tests running in parallel (ctest -j) do not see each other
+  int domain(int index = 0) const { return testing::leased_dds_domain(index); }
 };
 
 msg::LaserScan scan() {
@@ -94,7 +95,7 @@ TEST_F(DdsParticipantTest, AnImpossibleDomainIsAClearError) {
 }
 
 TEST_F(DdsParticipantTest, DiscoveryInfoFitsTheGidSizeOfItsDistro) {
-  DdsParticipant humble(domain(), participant_user_data()), iron(domain() + 1, participant_user_data());
+  DdsParticipant humble(domain(), participant_user_data()), iron(domain(1), participant_user_data());
   const int wh = humble.create_discovery_writer(24), wi = iron.create_discovery_writer(16);
   const NodeEntities node{"/", "rescuesim", {}, {humble.writer_guid(wh)}};
   std::string error;
@@ -111,6 +112,34 @@ TEST_F(DdsParticipantTest, GuidsAreTheParticipantsPrefixPlusAnEntityId) {
   const Guid p = a.participant_guid(), g = a.writer_guid(w);
   EXPECT_TRUE(std::equal(p.begin(), p.begin() + 12, g.begin()));
   EXPECT_NE(p, g);
+}
+
+// CI once ran two DDS tests side by side on one domain, and one test's peer read the other's
+// /scan: a domain leased by one process is never handed to another while it lives.
+TEST(LeasedDdsDomain, AProcessesDomainsAreItsOwnUntilItExits) {
+  const int mine = testing::leased_dds_domain(0), second = testing::leased_dds_domain(1);
+  EXPECT_NE(mine, second);
+  EXPECT_EQ(testing::leased_dds_domain(0), mine);  // the same lease, asked again
+  EXPECT_GE(mine, testing::kFirstTestDomain);
+  EXPECT_LE(second, testing::kLastTestDomain);
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // a second test process: ours are refused to it; it leases another and exits
+    int report[3] = {testing::try_lease_dds_domain(mine), testing::try_lease_dds_domain(second), testing::lease_free_dds_domain()};
+    (void)!::write(fds[1], report, sizeof report);
+    ::_exit(0);
+  }
+  int report[3] = {-1, -1, -1};
+  ASSERT_EQ(::read(fds[0], report, sizeof report), static_cast<ssize_t>(sizeof report));
+  ::waitpid(child, nullptr, 0);
+  ::close(fds[0]), ::close(fds[1]);
+  EXPECT_EQ(report[0], 0);
+  EXPECT_EQ(report[1], 0);
+  EXPECT_NE(report[2], mine);
+  EXPECT_NE(report[2], second);
+  EXPECT_TRUE(testing::try_lease_dds_domain(report[2])) << "a dead process's domain is free again";
 }
 
 }  // namespace

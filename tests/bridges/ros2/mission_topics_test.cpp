@@ -19,6 +19,7 @@
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "support/dds_domain.h"
 #include "support/rig.h"
 
 namespace rescuesim {
@@ -31,7 +32,7 @@ TEST(Ros2MissionTopics, ADatagramCrossesTheRadioAndAReportIsAnswered) {
            "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
            "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
            1);
-  const int domain = 81 + static_cast<int>(::getpid() % 80);  // see dds_participant_test.cpp
+  const int domain = testing::leased_dds_domain();
   // two robots 4 m apart in a 20 m room, a victim at (5, 0)
   Simulation sim(compile_world(testing::two_robots_and_a_victim(), builtin_models()));
   Mission mission(MissionSpec{}, sim);  // ideal radio, RoboCup rules

@@ -12,6 +12,7 @@
 #if defined(RESCUESIM_ROS1_BRIDGE_BUILT) && !defined(ROS2_PEER_MISSING)
 #include "bridges/ros1/ros1_rig.h"
 #include "bridges/ros2/dds_loopback.h"
+#include "support/dds_domain.h"
 #endif
 
 namespace rescuesim {
@@ -28,7 +29,7 @@ TEST(Ros1Ros2Together, RostopicAndADdsPeerReadScanWhileThePeerDrives) {
   if (!missing.empty()) GTEST_SKIP() << missing;
   const fs::path dir = temp_dir("ros1-ros2-together");
   pin_dds_to_loopback(dir);
-  const int domain = 1 + static_cast<int>((::getpid() * 2 + 7) % 80);
+  const int domain = testing::leased_dds_domain();
   RosMaster master(dir);
   ASSERT_TRUE(master.start()) << "roscore did not start";
 

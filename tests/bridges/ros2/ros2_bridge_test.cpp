@@ -18,6 +18,7 @@
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
+#include "support/dds_domain.h"
 #include "support/rig.h"
 
 namespace rescuesim {
@@ -33,7 +34,7 @@ class Ros2BridgeTest : public ::testing::Test {
              "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
              1);
   }
-  int domain() const { return 81 + static_cast<int>(::getpid() % 80); }  // see dds_participant_test.cpp
+  int domain() const { return testing::leased_dds_domain(); }
 };
 
 /// Two rescue robots side by side in a 20 m room, facing +x.

@@ -17,6 +17,7 @@
 
 #include "bridges/ros2/dds_loopback.h"
 #include "support/command.h"
+#include "support/dds_domain.h"
 
 extern char** environ;
 
@@ -48,8 +49,6 @@ std::filesystem::path write_scenario(const std::filesystem::path& dir, bool came
 }
 
 
-/// A domain of this test's own, so tests running in parallel do not see each other.
-int test_domain(int salt) { return 1 + static_cast<int>((::getpid() * 2 + salt) % 80); }
 
 /// rescuesim in the background, output to files; interrupted (Ctrl-C) and reaped by finish().
 class Background {
@@ -100,11 +99,11 @@ struct Session {
 std::string peer_summary(const Session& s) { return s.report.is_discarded() ? "(none)" : s.report.dump(); }
 
 /// Runs rescuesim --ros2 on the scenario and the peer in `mode` beside it.
-Session run_with_peer(const std::string& name, const std::string& mode, bool cameras, int salt) {
+Session run_with_peer(const std::string& name, const std::string& mode, bool cameras) {
   const auto dir = temp_dir(name);
   const auto scenario = write_scenario(dir, cameras);
   pin_dds_to_loopback(dir);
-  const int domain = test_domain(salt);
+  const int domain = testing::leased_dds_domain();  // a domain of its own: tests run side by side
   Session s;
   const auto t0 = std::chrono::steady_clock::now();
   {
@@ -128,7 +127,7 @@ Session run_with_peer(const std::string& name, const std::string& mode, bool cam
 
 
 TEST(Ros2Interop, FastDdsPeerReadsSensorsDrivesTheRobotAndSeesTheNode) {
-  const Session s = run_with_peer("ros2-drive", "drive", true, 1);
+  const Session s = run_with_peer("ros2-drive", "drive", true);
   ASSERT_EQ(s.peer_exit, 0) << "peer: " << s.peer_err << "\nsim: " << s.sim_out << s.sim_err << "\nreport: " << peer_summary(s);
   const auto& r = s.report;
   ASSERT_FALSE(r.is_discarded());
@@ -191,7 +190,7 @@ TEST(Ros2Interop, FastDdsPeerReadsSensorsDrivesTheRobotAndSeesTheNode) {
 }
 
 TEST(Ros2Interop, NanMalformedAndWrongLengthCommandsAreRefusedAndTheRobotStaysPut) {
-  const Session s = run_with_peer("ros2-bad", "bad", false, 2);
+  const Session s = run_with_peer("ros2-bad", "bad", false);
   ASSERT_EQ(s.peer_exit, 0) << "peer: " << s.peer_err << "\nsim: " << s.sim_out << s.sim_err << "\nreport: " << peer_summary(s);
   const auto& r = s.report;
   EXPECT_EQ(s.sim_exit, 0) << s.sim_err;
