@@ -64,7 +64,22 @@ bool finite(const Pose3& X) {
 /// One robot as a Featherstone multibody: one Bullet link per rigid body of the robot (links
 /// joined by fixed joints are lumped into one body, see world/robot_lumping.h).
 struct RobotBody {
+  /// How one moving joint makes its child body a Bullet link (the arguments of setupRevolute and
+  /// its kin), kept to rebuild the multibody when a self-locking joint is held or let go.
+  struct LinkSetup {
+    JointSpec::Type type;
+    btScalar mass;
+    btVector3 inertia;
+    int parent;
+    btQuaternion rot_parent_to_this;  // at q = 0
+    btVector3 axis, parent_com_to_pivot, pivot_to_com;
+  };
   btMultiBody* mb = nullptr;
+  std::unique_ptr<btMultiBody> owned_mb;
+  std::vector<LinkSetup> setup;             // per Bullet link
+  std::vector<char> held;                   // per original joint: held rigid by its self-locking gear
+  std::vector<double> held_q;               // per original joint: the position it is held at
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> owned_constraints;
   LumpedRobot lumped;                       // bodies and moving joints, and where each link sits; a moving
                                             // joint's Bullet link is its lumped index (lumped.lumped_joint)
   std::vector<int> bt_link;                 // per body: Bullet link index, -1 for the base
@@ -107,9 +122,7 @@ struct Physics::Impl {
   };
   std::vector<StaticPart> static_parts;
   std::vector<std::unique_ptr<btRigidBody>> rubble;      // per World::dynamics
-  std::vector<std::unique_ptr<btMultiBody>> multibodies;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
-  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
   std::vector<RobotBody> robots;
   std::vector<std::unique_ptr<PhysicsGroup>> groups;
   std::vector<int> robot_group;   // per robot: the group whose world holds it (-1: none yet)
@@ -234,12 +247,9 @@ struct Physics::Impl {
     body.lumped = lump_fixed_joints(inst.spec);
     const RobotSpec& spec = body.lumped.spec;  // one link per rigid body, moving joints only
     const int n_links = static_cast<int>(spec.joints.size());
-    const LinkSpec& base = spec.links[0];
     body.X_BF.resize(spec.links.size());
     body.bt_link.assign(spec.links.size(), -1);
     for (std::size_t l = 0; l < spec.links.size(); ++l) body.X_BF[l] = Pose3{spec.links[l].com, spec.links[l].inertia_axes};
-
-    auto mb = std::make_unique<btMultiBody>(n_links, btScalar(base.mass), to_bt(base.inertia), false, false);
     // each moving joint makes its child body a Bullet link, numbered like the joint
     for (int j = 0; j < n_links; ++j) {
       const JointSpec& js = spec.joints[static_cast<std::size_t>(j)];
@@ -249,35 +259,19 @@ struct Physics::Impl {
       const LinkSpec& cl = spec.links[static_cast<std::size_t>(child)];
       const Pose3& X_PF = body.X_BF[static_cast<std::size_t>(parent)];
       const Pose3& X_CF = body.X_BF[static_cast<std::size_t>(child)];
-      const int bt_parent = body.bt_link[static_cast<std::size_t>(parent)];
       // Bullet frames sit at each body's centre of mass along its principal axes; ours at the joint
-      const btQuaternion rot_parent_to_this = to_bt((X_PF.q.conjugate() * js.X_PJ.q * X_CF.q).conjugate());
-      const btVector3 parent_com_to_pivot = to_bt(X_PF.q.conjugate() * (js.X_PJ.p - pl.com));
-      const btVector3 pivot_to_com = to_bt(X_CF.q.conjugate() * cl.com);
-      const btVector3 axis = to_bt(X_CF.q.conjugate() * js.axis.normalized());
-      switch (js.type) {
-        case JointSpec::Type::fixed:
-          mb->setupFixed(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
-          break;
-        case JointSpec::Type::prismatic:
-          mb->setupPrismatic(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
-          break;
-        case JointSpec::Type::revolute:
-        case JointSpec::Type::continuous:
-          mb->setupRevolute(j, btScalar(cl.mass), to_bt(cl.inertia), bt_parent, rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
-          break;
-      }
+      body.setup.push_back({js.type, btScalar(cl.mass), to_bt(cl.inertia), body.bt_link[static_cast<std::size_t>(parent)],
+                            to_bt((X_PF.q.conjugate() * js.X_PJ.q * X_CF.q).conjugate()), to_bt(X_CF.q.conjugate() * js.axis.normalized()),
+                            to_bt(X_PF.q.conjugate() * (js.X_PJ.p - pl.com)), to_bt(X_CF.q.conjugate() * cl.com)});
     }
-    mb->finalizeMultiDof();
-    mb->setBaseWorldTransform(to_bt(inst.X_W_start * body.X_BF[0]));
+    body.held.assign(inst.spec.joints.size(), 0);
+    body.held_q.assign(inst.spec.joints.size(), 0.0);
+    body.owned_mb = make_multibody(body);
+    body.mb = body.owned_mb.get();
+    body.mb->setBaseWorldTransform(to_bt(inst.X_W_start * body.X_BF[0]));
     for (int j = 0; j < n_links; ++j) {
-      if (spec.joints[static_cast<std::size_t>(j)].type != JointSpec::Type::fixed) mb->setJointPos(j, btScalar(spec.joints[static_cast<std::size_t>(j)].initial));
+      if (spec.joints[static_cast<std::size_t>(j)].type != JointSpec::Type::fixed) body.mb->setJointPos(j, btScalar(spec.joints[static_cast<std::size_t>(j)].initial));
     }
-    mb->setCanSleep(false);
-    mb->setHasSelfCollision(false);
-    mb->setLinearDamping(0.0f);
-    mb->setAngularDamping(0.0f);
-    mb->setUseGyroTerm(true);
 
     // colliders: each body's shapes, placed relative to its Bullet frame
     body.colliders.assign(spec.links.size(), nullptr);
@@ -294,51 +288,168 @@ struct Physics::Impl {
         restitution = m.restitution;
       }
       if (compound->getNumChildShapes() == 0) continue;
-      auto col = std::make_unique<btMultiBodyLinkCollider>(mb.get(), body.bt_link[l]);
+      auto col = std::make_unique<btMultiBodyLinkCollider>(body.mb, body.bt_link[l]);
       col->setCollisionShape(compound);
       col->setFriction(btScalar(friction));
       col->setRestitution(btScalar(restitution));
       if (ls.friction_scale != Vec3::Ones()) col->setAnisotropicFriction(to_bt(ls.friction_scale));
       col->setUserIndex(encode(kRobot, static_cast<int>(l), r));
-      if (body.bt_link[l] < 0) {
-        mb->setBaseCollider(col.get());
-      } else {
-        mb->getLink(body.bt_link[l]).m_collider = col.get();
-      }
       body.colliders[l] = col.get();
       colliders.push_back(std::move(col));
     }
+    attach_colliders(body);
 
-    // actuators, per joint of the description: velocity motors (position loops run on top of
-    // them), Coulomb friction on passive joints (a motor holding zero speed with a bounded
-    // force, as pybullet does), and limits
     const RobotSpec& full = inst.spec;
     for (std::size_t l = 0; l < full.links.size(); ++l) {
       body.top.push_back(spec.links[static_cast<std::size_t>(body.lumped.body_of_link[l])].name == full.links[l].name);
     }
+    make_constraints(full, body);
+    robots.push_back(std::move(body));
+    sync_colliders(robots.back());
+  }
+
+  /// A multibody of the robot's Bullet links, each held joint (RobotBody::held) a fixed link at
+  /// its held position; at rest at the origin.
+  static std::unique_ptr<btMultiBody> make_multibody(const RobotBody& body) {
+    const LinkSpec& base = body.lumped.spec.links[0];
+    const int n_links = static_cast<int>(body.setup.size());
+    std::vector<int> held_at(body.setup.size(), -1);  // per Bullet link: the original joint it is held for
+    for (std::size_t j = 0; j < body.held.size(); ++j) {
+      if (body.held[j]) held_at[static_cast<std::size_t>(body.lumped.lumped_joint[j])] = static_cast<int>(j);
+    }
+    auto mb = std::make_unique<btMultiBody>(n_links, btScalar(base.mass), to_bt(base.inertia), false, false);
+    for (int j = 0; j < n_links; ++j) {
+      const RobotBody::LinkSetup& ls = body.setup[static_cast<std::size_t>(j)];
+      const int held = held_at[static_cast<std::size_t>(j)];
+      if (held >= 0) {
+        // the rotation a revolute joint at q has (btMultibodyLink::updateCacheMultiDof), or the
+        // offset a prismatic one has, made permanent
+        const btScalar q = btScalar(body.held_q[static_cast<std::size_t>(held)]);
+        const bool slides = ls.type == JointSpec::Type::prismatic;
+        const btQuaternion rot = slides ? ls.rot_parent_to_this : btQuaternion(ls.axis, -q) * ls.rot_parent_to_this;
+        const btVector3 to_com = slides ? ls.pivot_to_com + q * ls.axis : ls.pivot_to_com;
+        mb->setupFixed(j, ls.mass, ls.inertia, ls.parent, rot, ls.parent_com_to_pivot, to_com, true);
+        continue;
+      }
+      switch (ls.type) {
+        case JointSpec::Type::fixed:
+          mb->setupFixed(j, ls.mass, ls.inertia, ls.parent, ls.rot_parent_to_this, ls.parent_com_to_pivot, ls.pivot_to_com, true);
+          break;
+        case JointSpec::Type::prismatic:
+          mb->setupPrismatic(j, ls.mass, ls.inertia, ls.parent, ls.rot_parent_to_this, ls.axis, ls.parent_com_to_pivot, ls.pivot_to_com, true);
+          break;
+        case JointSpec::Type::revolute:
+        case JointSpec::Type::continuous:
+          mb->setupRevolute(j, ls.mass, ls.inertia, ls.parent, ls.rot_parent_to_this, ls.axis, ls.parent_com_to_pivot, ls.pivot_to_com, true);
+          break;
+      }
+    }
+    mb->finalizeMultiDof();
+    mb->setCanSleep(false);
+    mb->setHasSelfCollision(false);
+    mb->setLinearDamping(0.0f);
+    mb->setAngularDamping(0.0f);
+    mb->setUseGyroTerm(true);
+    return mb;
+  }
+
+  /// Points the robot's colliders at its (new) multibody.
+  static void attach_colliders(RobotBody& body) {
+    for (std::size_t l = 0; l < body.colliders.size(); ++l) {
+      btMultiBodyLinkCollider* col = body.colliders[l];
+      if (!col) continue;
+      col->m_multiBody = body.mb;
+      if (body.bt_link[l] < 0) {
+        body.mb->setBaseCollider(col);
+      } else {
+        body.mb->getLink(body.bt_link[l]).m_collider = col;
+      }
+    }
+  }
+
+  /// The robot's actuators, per joint of the description: velocity motors (position loops run on
+  /// top of them), Coulomb friction on passive joints (a motor holding zero speed with a bounded
+  /// force, as pybullet does), and limits; none for a held joint, whose gear holds it.
+  void make_constraints(const RobotSpec& full, RobotBody& body) const {
     body.motors.assign(full.joints.size(), nullptr);
+    body.constraints.clear();
+    body.owned_constraints.clear();
     for (std::size_t j = 0; j < full.joints.size(); ++j) {
       const JointSpec& js = full.joints[j];
       const int bt = body.lumped.lumped_joint[j];
-      if (bt < 0) continue;
+      if (bt < 0 || body.held[j]) continue;
       const bool passive = js.control == JointSpec::Control::none;
       if (!passive || js.friction > 0) {
         const double force = passive ? js.friction : js.max_effort;
-        auto motor = std::make_unique<btMultiBodyJointMotor>(mb.get(), bt, 0.0f, btScalar(force * options.dt));
+        auto motor = std::make_unique<btMultiBodyJointMotor>(body.mb, bt, 0.0f, btScalar(force * options.dt));
         if (!passive) body.motors[j] = motor.get();
         body.constraints.push_back(motor.get());
-        constraints.push_back(std::move(motor));
+        body.owned_constraints.push_back(std::move(motor));
       }
       if (js.type == JointSpec::Type::revolute || js.type == JointSpec::Type::prismatic) {
-        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(mb.get(), bt, btScalar(js.lower), btScalar(js.upper));
+        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(body.mb, bt, btScalar(js.lower), btScalar(js.upper));
         body.constraints.push_back(limit.get());
-        constraints.push_back(std::move(limit));
+        body.owned_constraints.push_back(std::move(limit));
       }
     }
-    body.mb = mb.get();
-    multibodies.push_back(std::move(mb));
-    robots.push_back(std::move(body));
-    sync_colliders(robots.back());
+  }
+
+  /// Which of a robot's joints its self-locking gears hold for the coming step, from the State
+  /// alone (so a restore holds the same ones): a self-locking position joint standing within
+  /// kSelfLockTolerance of its target and moving slower than kSelfLockSpeed. A held joint
+  /// reports zero speed, so it stays held until its target moves away.
+  static std::vector<char> joints_to_hold(const RobotSpec& spec, const RobotState& s) {
+    std::vector<char> hold(spec.joints.size(), 0);
+    for (std::size_t j = 0; j < spec.joints.size() && j < s.q.size() && j < s.qd.size(); ++j) {
+      const JointSpec& js = spec.joints[j];
+      if (!js.self_locking || js.control != JointSpec::Control::position || j >= s.joint_target.size()) continue;
+      hold[j] = std::abs(s.joint_target[j] - s.q[j]) <= kSelfLockTolerance && std::abs(s.qd[j]) <= kSelfLockSpeed;
+    }
+    return hold;
+  }
+
+  /// Holds and lets go of a robot's self-locking joints as `hold` says: a new multibody (Bullet
+  /// fixes the degrees of freedom of a multibody when it is made), with the old one's pose and
+  /// velocities, a joint taken hold of at rest where it stands and one let go at rest where it was
+  /// held; new motors and limits. The colliders stay in the world, and their contacts with them.
+  void set_held(std::size_t r, const RobotState& s, const std::vector<char>& hold) {
+    RobotBody& b = robots[r];
+    // a held joint is held where the State has it (read_robot reports its held position)
+    std::vector<double> held_q(hold.size(), 0.0);
+    for (std::size_t j = 0; j < hold.size(); ++j) held_q[j] = hold[j] ? s.q[j] : 0.0;
+    if (hold == b.held && held_q == b.held_q) return;
+    const RobotSpec& full = world.robots[r].spec;
+    btMultiBody* old = b.mb;
+    btMultiBodyDynamicsWorld* w = robot_group[r] >= 0 ? &groups[static_cast<std::size_t>(robot_group[r])]->dynamics : nullptr;
+    if (w) {
+      for (auto it = b.constraints.rbegin(); it != b.constraints.rend(); ++it) w->removeMultiBodyConstraint(*it);
+      w->removeMultiBody(old);
+    }
+    const std::vector<char> was = b.held;
+    const std::vector<double> was_q = b.held_q;
+    b.held = hold;
+    b.held_q = std::move(held_q);
+    std::unique_ptr<btMultiBody> mb = make_multibody(b);
+    mb->setBaseWorldTransform(old->getBaseWorldTransform());
+    mb->setBaseVel(old->getBaseVel());
+    mb->setBaseOmega(old->getBaseOmega());
+    for (std::size_t j = 0; j < full.joints.size(); ++j) {
+      const int bt = b.lumped.lumped_joint[j];
+      if (bt < 0 || hold[j]) continue;
+      mb->setJointPos(bt, was[j] ? btScalar(was_q[j]) : old->getJointPos(bt));
+      mb->setJointVel(bt, was[j] ? btScalar(0) : old->getJointVel(bt));
+    }
+    b.constraints.clear();
+    b.owned_constraints.clear();  // the old multibody's, before it goes
+    b.owned_mb = std::move(mb);
+    b.mb = b.owned_mb.get();
+    attach_colliders(b);
+    make_constraints(full, b);
+    if (w) {
+      w->addMultiBody(b.mb);
+      for (btMultiBodyConstraint* c : b.constraints) w->addMultiBodyConstraint(c);
+    }
+    sync_colliders(b);
   }
 
   /// Updates the link colliders' world transforms from the multibody's joint state.
@@ -366,7 +477,8 @@ struct Physics::Impl {
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       const JointSpec& js = spec.joints[j];
       const int bt = b.lumped.lumped_joint[j];
-      if (bt >= 0 && js.damping > 0) b.mb->addJointTorque(bt, btScalar(-js.damping * b.mb->getJointVel(bt)));
+      if (bt < 0 || b.held[j]) continue;
+      if (js.damping > 0) b.mb->addJointTorque(bt, btScalar(-js.damping * b.mb->getJointVel(bt)));
       btMultiBodyJointMotor* m = b.motors[j];
       if (!m) continue;
       const double target = j < s.joint_target.size() ? s.joint_target[j] : 0.0;
@@ -387,6 +499,12 @@ struct Physics::Impl {
     s.effort.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
       const int bt = b.lumped.lumped_joint[j];
+      if (b.held[j]) {  // its gear carries the load: the motor's is zero
+        s.q[j] = b.held_q[j];
+        s.qd[j] = 0.0;
+        s.effort[j] = 0.0;
+        continue;
+      }
       s.q[j] = bt >= 0 ? b.mb->getJointPos(bt) : 0.0;
       s.qd[j] = bt >= 0 ? b.mb->getJointVel(bt) : 0.0;
       // motors have no impulse to report before their first solve
@@ -656,6 +774,7 @@ void Physics::init_state(State& state) const {
 void Physics::step(State& state) {
   Impl& m = *impl_;
   if (m.groups.size() > 1) m.regroup();
+  for (std::size_t r = 0; r < m.robots.size(); ++r) m.set_held(r, state.robots[r], Impl::joints_to_hold(m.world.robots[r].spec, state.robots[r]));
   for (std::size_t r = 0; r < m.robots.size(); ++r) m.apply_targets(m.world.robots[r].spec, m.robots[r], state.robots[r]);
   // each group on a thread of its own: they share nothing Bullet writes to
   parallel_for(m.groups.size(), [&](std::size_t g) { m.groups[g]->dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt)); });
@@ -689,12 +808,13 @@ void Physics::restore(const State& state) {
     const RobotState& rs = state.robots[r];
     const RobotSpec& spec = m.world.robots[r].spec;
     const Vec3& com = rb.lumped.spec.links[0].com;
+    m.set_held(r, rs, Impl::joints_to_hold(spec, rs));
     rb.mb->setBaseWorldTransform(to_bt(rs.base.X_WB * rb.X_BF[0]));
     rb.mb->setBaseOmega(to_bt(rs.base.w_WB));
     rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * com)));
     for (std::size_t j = 0; j < spec.joints.size() && j < rs.q.size(); ++j) {
       const int bt = rb.lumped.lumped_joint[j];
-      if (bt < 0) continue;
+      if (bt < 0 || rb.held[j]) continue;
       rb.mb->setJointPos(bt, btScalar(rs.q[j]));
       rb.mb->setJointVel(bt, btScalar(rs.qd[j]));
     }
@@ -710,7 +830,10 @@ PhysicsStats Physics::stats() const {
   s.groups = static_cast<int>(impl_->groups.size());
   s.dynamic_bodies = static_cast<int>(impl_->rubble.size());
   s.multibodies = static_cast<int>(impl_->robots.size());
-  for (const auto& r : impl_->robots) s.multibody_links += r.mb->getNumLinks();
+  for (const auto& r : impl_->robots) {
+    s.multibody_links += r.mb->getNumLinks();
+    s.multibody_dofs += r.mb->getNumDofs();
+  }
   return s;
 }
 

@@ -39,6 +39,7 @@ struct PhysicsStats {
   int dynamic_bodies = 0;
   int multibodies = 0;
   int multibody_links = 0;
+  int multibody_dofs = 0;  ///< joint degrees of freedom now (a held self-locking joint has none)
   int groups = 0;  ///< independent Bullet worlds (PhysicsOptions::groups)
 };
 

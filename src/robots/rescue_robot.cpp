@@ -117,6 +117,7 @@ RobotSpec rescue_robot() {
     j.control = JointSpec::Control::position;
     j.kp = 8.0;
     j.initial = s.initial;
+    j.self_locking = true;  // worm-geared, like the pan-tilt units of real response robots
     r.joints.push_back(j);
     r.head_joints.push_back(s.joint);
     parent = s.link;

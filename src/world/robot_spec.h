@@ -58,7 +58,17 @@ struct JointSpec {
   Control control = Control::none;
   double kp = 8.0;            ///< position gain (1/s): joint speed = kp × position error, within max_velocity
   double initial = 0.0;       ///< starting position (rad)
+  /// A position joint behind a self-locking gear (a worm drive, as on most pan-tilt heads): once
+  /// it stands at its target (within kSelfLockTolerance, below kSelfLockSpeed) the gear holds it
+  /// rigid and its motor carries no load, until the target moves away. In the physics a held
+  /// joint is a fixed joint: no motor or limit rows, one degree of freedom fewer (docs/physics.md).
+  bool self_locking = false;
 };
+
+/// How close to its target (rad; prismatic: m) a self-locking joint must stand to be held.
+inline constexpr double kSelfLockTolerance = 0.01;
+/// How slowly (rad/s; prismatic: m/s) it must move to be held.
+inline constexpr double kSelfLockSpeed = 0.01;
 
 /// How cmd_vel becomes wheel velocities.
 struct DriveSpec {
