@@ -675,13 +675,15 @@ struct Physics::Impl {
     for (std::size_t r = 0; r < robots.size(); ++r) attach_robot(r, rg[r]);
   }
 
-  /// Names of what touches each robot, and whether a new collision began.
-  void read_contacts(State& state) {
+  /// Names of what touches each robot of group `g` (`members`), and whether a new collision
+  /// began. A group's contacts are between its own bodies, so groups can do this side by side.
+  void read_contacts(std::size_t g, const std::vector<std::size_t>& members, State& state) const {
+    if (members.empty()) return;
     std::vector<std::vector<int>> touching(robots.size());
-    for (const auto& g : groups) {
-    const int n = g->dispatcher.getNumManifolds();
+    const btCollisionDispatcher& dispatcher = groups[g]->dispatcher;
+    const int n = dispatcher.getNumManifolds();
     for (int i = 0; i < n; ++i) {
-      const btPersistentManifold* m = g->dispatcher.getManifoldByIndexInternal(i);
+      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
       bool contact = false;
       for (int k = 0; k < m->getNumContacts() && !contact; ++k) contact = m->getContactPoint(k).getDistance() < 0.002f;
       if (!contact) continue;
@@ -689,8 +691,7 @@ struct Physics::Impl {
       if (tag_of(a) == kRobot) touching[static_cast<std::size_t>(sub_of(a))].push_back(b);
       if (tag_of(b) == kRobot) touching[static_cast<std::size_t>(sub_of(b))].push_back(a);
     }
-    }
-    for (std::size_t r = 0; r < robots.size(); ++r) {
+    for (std::size_t r : members) {
       // the robot's own links touching each other are not contacts with the world
       std::vector<std::string> names;
       for (int code : touching[r]) {
@@ -775,17 +776,21 @@ void Physics::step(State& state) {
   Impl& m = *impl_;
   if (m.groups.size() > 1) m.regroup();
   for (std::size_t r = 0; r < m.robots.size(); ++r) m.set_held(r, state.robots[r], Impl::joints_to_hold(m.world.robots[r].spec, state.robots[r]));
-  for (std::size_t r = 0; r < m.robots.size(); ++r) m.apply_targets(m.world.robots[r].spec, m.robots[r], state.robots[r]);
-  // each group on a thread of its own: they share nothing Bullet writes to
-  parallel_for(m.groups.size(), [&](std::size_t g) { m.groups[g]->dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt)); });
-  // read back
+  std::vector<std::vector<std::size_t>> members(m.groups.size());
+  for (std::size_t r = 0; r < m.robots.size(); ++r) members[static_cast<std::size_t>(m.robot_group[r])].push_back(r);
+  // each group on a thread of its own: they share nothing Bullet writes to, and each robot's
+  // targets and read-back touch only its own multibody and its own RobotState
+  parallel_for(m.groups.size(), [&](std::size_t g) {
+    for (std::size_t r : members[g]) m.apply_targets(m.world.robots[r].spec, m.robots[r], state.robots[r]);
+    m.groups[g]->dynamics.stepSimulation(btScalar(options_.dt), 0, btScalar(options_.dt));
+    for (std::size_t r : members[g]) m.read_robot(m.world.robots[r].spec, m.robots[r], state.robots[r]);
+    m.read_contacts(g, members[g], state);
+  });
   for (std::size_t i = 0; i < m.rubble.size(); ++i) {
     const btRigidBody& b = *m.rubble[i];
     state.dynamics[i] = {from_bt(b.getWorldTransform()), from_bt(b.getLinearVelocity()), from_bt(b.getAngularVelocity()), sleep_of(b),
                          b.getDeactivationTime()};
   }
-  for (std::size_t r = 0; r < m.robots.size(); ++r) m.read_robot(m.world.robots[r].spec, m.robots[r], state.robots[r]);
-  m.read_contacts(state);
   m.check_trouble(state);
 }
 
