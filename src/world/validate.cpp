@@ -2,6 +2,7 @@
 #include <set>
 #include <string>
 
+#include "world/terrain.h"
 #include "world/world_spec.h"
 
 namespace rescuesim {
@@ -49,10 +50,11 @@ class Validator {
     for (std::size_t i = 0; i < w_.victims.size(); ++i) check_victim(w_.victims[i], i);
     for (std::size_t i = 0; i < w_.lights.size(); ++i) check_light(w_.lights[i], i);
     for (std::size_t i = 0; i < w_.solids.size(); ++i) check_solid(w_.solids[i], i);
+    for (std::size_t i = 0; i < w_.terrain.size(); ++i) check_terrain(i);
     for (std::size_t i = 0; i < w_.bodies.size(); ++i) check_body(w_.bodies[i], i);
     check_robots();
     if (w_.walls.empty() && w_.blocks.empty() && w_.raised_areas.empty() && w_.rubble.empty() && w_.victims.empty() &&
-        w_.solids.empty() && w_.bodies.empty()) {
+        w_.solids.empty() && w_.bodies.empty() && w_.terrain.empty()) {
       d_.error({w_.source_file, 0, ""},
                "the world is empty: no walls, obstacles, raised areas, rubble, victims or model geometry (expected at least one; "
                "in an SVG, walls are black, raised areas red, victims blue; in an SDF, a model with a <collision> other "
@@ -253,6 +255,32 @@ class Validator {
       bool found = false;
       for (const auto& v : w_.victims) found = found || v.name == so.victim;
       if (!found) d_.error(where, "names victim '" + so.victim + "', which the world does not have");
+    }
+  }
+
+  /// A terrain element must build (terrain_solids names what is wrong), use a known material and
+  /// stay clear of the other elements' footprints: overlapping elements would stack solids.
+  void check_terrain(std::size_t i) {
+    const TerrainSpec& t = w_.terrain[i];
+    const std::string what = std::string(TerrainSpec::kind_name(t.kind)) + " '" + t.name + "'";
+    const SourceRef where = ref(t.source, what);
+    if (!std::isfinite(t.pose.x) || !std::isfinite(t.pose.y) || !std::isfinite(t.pose.yaw)) d_.error(where, "pose is not a finite number");
+    try {
+      (void)terrain_solids(t);
+    } catch (const Error& e) {
+      d_.error(e.where(), e.message());
+      return;
+    }
+    check_material_ref(t.material, where);
+    // footprints 1 mm in from each edge: elements edge to edge, as an arena's lanes are, touch
+    const auto inset = [](const TerrainSpec& e) { return rectangle(e.pose, e.length - 0.002, e.width - 0.002); };
+    for (std::size_t k = 0; k < i; ++k) {
+      const TerrainSpec& o = w_.terrain[k];
+      if (polygons_overlap(inset(t), inset(o))) {
+        d_.error(where, "overlaps " + std::string(TerrainSpec::kind_name(o.kind)) + " '" + o.name + "'" +
+                            (o.source.line > 0 ? " (line " + std::to_string(o.source.line) + ")" : std::string()) +
+                            "; terrain elements must not overlap (expected footprints side by side)");
+      }
     }
   }
 

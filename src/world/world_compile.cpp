@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "world/world.h"
+#include "world/terrain.h"
 
 namespace rescuesim {
 
@@ -134,6 +135,13 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     for (int e : r.ramp_edges) {
       w.statics.push_back({"ramp_" + std::to_string(i) + "_" + std::to_string(e), ObjectKind::ramp,
                            ramp_wedge(WorldSpec::ramp_outline(r, e), r.height), Pose3{}, mat, -1, -1});
+    }
+  }
+  // test-method terrain: posts, steps and decks are platforms (ground to drive on), wedges ramps
+  for (const TerrainSpec& t : spec.terrain) {
+    const int mat = w.material_index(t.material);
+    for (TerrainSolid& so : terrain_solids(t)) {
+      w.statics.push_back({std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, -1});
     }
   }
   for (std::size_t i = 0; i < spec.rubble.size(); ++i) {

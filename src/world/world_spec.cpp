@@ -57,6 +57,7 @@ Box2 WorldSpec::content_bounds() const {
       if (e >= 0 && e < static_cast<int>(r.outline.size())) b.extend(bounds(ramp_outline(r, e)));
     }
   }
+  for (const auto& t : terrain) b.extend(bounds(t.outline()));
   for (const auto& r : rubble) b.extend(r.pose.position());
   for (const auto& v : victims) b.extend(bounds(victim_outline(v)));
   for (const auto& r : robots) b.extend(r.start.position());

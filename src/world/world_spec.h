@@ -69,6 +69,37 @@ struct RubbleSpec {
   SourceRef source;
 };
 
+/// A generated terrain element of the response-robot test methods (NIST/ASTM E54.08, as in the
+/// RoboCup Rescue lanes; docs/terrain.md), built as static solids over a rectangular footprint.
+/// In the element's frame x runs along the direction of travel, from -length/2 to +length/2.
+struct TerrainSpec {
+  enum class Kind { stepfield, stairs, crossing_ramps, curb, hurdle, gap };
+  Kind kind = Kind::stepfield;
+  std::string name;
+  Pose2 pose;                 ///< footprint centre; yaw = direction of travel
+  double length = 2.4;        ///< footprint along travel (m)
+  double width = 1.2;         ///< footprint across travel (m); a lane is 1.1-1.2 m
+  double height = 0.15;       ///< curb, hurdle: its height; gap: the decks'; stairs: the total rise (m)
+  double post = 0.1;          ///< stepfield: post size and pitch (m)
+  bool half_cubic = true;     ///< stepfield: heights of 1-4 half posts (else 1-4 whole posts)
+  double riser = 0.2;         ///< stairs: step height (m)
+  double angle = 40;          ///< stairs: slope; crossing ramps: each ramp's slope (degrees)
+  double gap = 0.3;           ///< gap: the opening between the decks (m)
+  double thickness = 0.1;     ///< hurdle: along travel (m)
+  std::uint64_t seed = 1;     ///< stepfield: the post heights
+  std::string material = "raised";
+  SourceRef source;
+
+  /// The defaults of a kind: stepfield 2.4 x 1.2 m, half-cubic 10 cm posts; stairs 40 deg,
+  /// 20 cm risers, 0.8 m rise; crossing ramps 15 deg; curb 15 cm; hurdle 20 cm; gap 30 cm
+  /// between 20 cm decks.
+  static TerrainSpec defaults(Kind kind);
+  /// The kind's name in files ("stepfield", "stairs", "crossing-ramps", "curb", "hurdle", "gap").
+  static const char* kind_name(Kind kind);
+  /// Footprint corners in the world, counter-clockwise.
+  Polygon2 outline() const;
+};
+
 /// A victim lying or sitting on the floor; the thermal camera sees skin warmer than clothes.
 struct VictimSpec {
   enum class Posture { lying, sitting };
@@ -151,6 +182,7 @@ struct WorldSpec {
   std::vector<WallSpec> walls;
   std::vector<BlockSpec> blocks;
   std::vector<RaisedAreaSpec> raised_areas;
+  std::vector<TerrainSpec> terrain;
   std::vector<RubbleSpec> rubble;
   std::vector<VictimSpec> victims;
   std::vector<LightSpec> lights;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "world/svg/svg_shapes.h"
@@ -60,7 +61,7 @@ Meaning meaning_of(const Shape& s) {
         return m;
       }
     }
-    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble or ignore");
+    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble, ignore, or terrain: stepfield, stairs, crossing-ramps, curb, hurdle or gap");
   }
   if (has_fill) {
     m.color = s.style.fill.rgb;
@@ -299,6 +300,55 @@ void add_rubble(const Shape& s, const SvgLoadOptions& o, WorldSpec& world) {
   world.rubble.push_back(std::move(r));
 }
 
+/// The terrain kind an element's data-kind names, if it names one.
+std::optional<TerrainSpec::Kind> terrain_kind(const Shape& s) {
+  const std::string* k = data(s, "kind");
+  if (!k) return std::nullopt;
+  using K = TerrainSpec::Kind;
+  for (K kind : {K::stepfield, K::stairs, K::crossing_ramps, K::curb, K::hurdle, K::gap}) {
+    if (*k == TerrainSpec::kind_name(kind)) return kind;
+  }
+  return std::nullopt;
+}
+
+/// A terrain element drawn as its footprint: the shape's extent along the direction of travel
+/// (data-yaw in degrees, else the footprint's long side) and across it; its parameters from
+/// data-* attributes, the kind's defaults otherwise (docs/terrain.md).
+void add_terrain(const Shape& s, TerrainSpec::Kind kind, WorldSpec& world) {
+  TerrainSpec t = TerrainSpec::defaults(kind);
+  t.source = s.source;
+  const auto pts = all_points(s);
+  const double yaw = data(s, "yaw") ? data_number(s, "yaw", 0) * M_PI / 180.0 : oriented_extent(pts).angle;
+  const AxisExtent e = extent_along(pts, yaw);
+  t.pose = {e.centre.x(), e.centre.y(), wrap_angle(yaw)};
+  t.length = e.along;
+  t.width = e.across;
+  t.height = data_metres(s, "height", t.height);
+  t.post = data_metres(s, "post", t.post);
+  t.riser = data_metres(s, "riser", t.riser);
+  t.gap = data_metres(s, "gap", t.gap);
+  t.thickness = data_metres(s, "thickness", t.thickness);
+  t.angle = data_number(s, "angle", t.angle);
+  if (const std::string* p = data(s, "pattern")) {
+    if (*p == "half-cubic") t.half_cubic = true;
+    else if (*p == "full-cubic") t.half_cubic = false;
+    else throw Error(attr_ref(s, "pattern"), "unknown pattern '" + *p + "'; expected half-cubic or full-cubic");
+  }
+  if (data(s, "seed")) {
+    const double seed = data_number(s, "seed", 1);
+    if (!(seed >= 0) || seed != std::floor(seed) || seed > 9.007199254740992e15) {
+      throw Error(attr_ref(s, "seed"), "seed " + num(seed) + " is not a whole number from 0 to 2^53");
+    }
+    t.seed = static_cast<std::uint64_t>(seed);
+  }
+  t.material = material_for(s, "raised", world);
+  if (const std::string* n = data(s, "name")) t.name = *n;
+  else if (!s.id.empty()) t.name = s.id;
+  else t.name = (kind == TerrainSpec::Kind::crossing_ramps ? std::string("crossing_ramps") : TerrainSpec::kind_name(kind)) + "_" +
+                std::to_string(world.terrain.size() + 1);
+  world.terrain.push_back(std::move(t));
+}
+
 struct Start {
   RobotPlacement placement;
   double radius = 0;
@@ -385,6 +435,10 @@ void build_world(const std::vector<Shape>& shapes, const SvgLoadOptions& o, Worl
   std::vector<Start> starts;
   std::vector<const Shape*> heading_lines;
   for (const Shape& s : shapes) {
+    if (const auto kind = terrain_kind(s)) {
+      add_terrain(s, *kind, world);
+      continue;
+    }
     const Meaning m = meaning_of(s);
     switch (m.kind) {
       case Semantic::wall:

@@ -99,6 +99,17 @@ std::string world_to_svg(const WorldSpec& w) {
   }
   o += "  </g>\n";
 
+  // terrain: the footprint, its kind and every parameter, so it reads back the same
+  o += "  <g id=\"terrain\" fill=\"#8c564b\" stroke=\"none\">\n";
+  for (const auto& t : w.terrain) {
+    o += "    <rect " + rotated_rect(map, t.pose, t.length, t.width) + " data-kind=\"" + TerrainSpec::kind_name(t.kind) + "\" data-name=\"" +
+         escape(t.name) + "\" data-yaw=\"" + num(t.pose.yaw * 180.0 / M_PI, 9) + "\" data-height=\"" + num(t.height, 9) + "\" data-post=\"" +
+         num(t.post, 9) + "\" data-pattern=\"" + (t.half_cubic ? "half-cubic" : "full-cubic") + "\" data-riser=\"" + num(t.riser, 9) +
+         "\" data-angle=\"" + num(t.angle, 9) + "\" data-gap=\"" + num(t.gap, 9) + "\" data-thickness=\"" + num(t.thickness, 9) +
+         "\" data-seed=\"" + std::to_string(t.seed) + "\"" + material_attr(t.material, "raised") + "/>\n";
+  }
+  o += "  </g>\n";
+
   o += "  <g id=\"walls\" stroke=\"#000000\" fill=\"none\">\n";
   for (const auto& wall : w.walls) {
     const Vec2 a = map(wall.a), b = map(wall.b);

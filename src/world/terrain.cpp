@@ -1,0 +1,187 @@
+#include "world/terrain.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rescuesim {
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+/// SplitMix64: a small generator with a fixed definition, so a seed gives the same stepfield on
+/// every platform and standard library (std::uniform_int_distribution is not specified bit for bit).
+std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+struct Builder {
+  explicit Builder(const TerrainSpec& spec) : t(spec), X_WT(Pose3::from_pose2(spec.pose)) {}
+  const TerrainSpec& t;
+  Pose3 X_WT;
+  std::vector<TerrainSolid> out;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    SourceRef where = t.source;
+    if (where.element.empty()) where.element = std::string(TerrainSpec::kind_name(t.kind)) + " '" + t.name + "'";
+    throw Error(where, what);
+  }
+
+  /// A box over [x0, x1] x [y0, y1] in the element's frame, from the floor to `top`.
+  void box(const std::string& part, double x0, double x1, double y0, double y1, double top) {
+    Pose3 X_TS;
+    X_TS.p = Vec3(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * top);
+    out.push_back({t.name + "_" + part, Geometry::box({x1 - x0, y1 - y0, top}), X_WT * X_TS, false});
+  }
+
+  /// A wedge over [x0, x1] x [y0, y1] (element frame), on the floor, rising to `rise` at the side
+  /// `high` points to: +x, -x, +y or -y (0, 1, 2, 3).
+  void wedge(const std::string& part, double x0, double x1, double y0, double y1, double rise, int high) {
+    TriangleMesh m;
+    const Vec3 c[4] = {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
+    for (const Vec3& p : c) m.vertices.push_back(X_WT * p);
+    // the two corners on the high side get a top vertex each
+    const int top[4][2] = {{1, 2}, {3, 0}, {2, 3}, {0, 1}};
+    for (int k : top[high]) m.vertices.push_back(X_WT * (c[k] + Vec3(0, 0, rise)));
+    const int a = top[high][0], b = top[high][1];
+    // bottom, the high face (a, b, b', a'), the slope from the low edge up to (a', b'), two sides
+    const int lo_a = (b + 1) % 4, lo_b = (a + 3) % 4;  // the low edge runs lo_a -> lo_b, opposite (a, b)
+    m.triangles = {{0, 1, 2}, {0, 2, 3}, {a, b, 5}, {a, 5, 4}, {lo_a, lo_b, 4}, {lo_a, 4, 5}, {lo_b, a, 4}, {b, lo_a, 5}};
+    orient_outward(m);
+    out.push_back({t.name + "_" + part, Geometry::convex(std::move(m)), Pose3{}, true});
+  }
+
+  void stepfield() {
+    const int nx = static_cast<int>(std::floor(t.length / t.post + 1e-9)), ny = static_cast<int>(std::floor(t.width / t.post + 1e-9));
+    if (nx < 1 || ny < 1) {
+      fail("a stepfield of " + num(t.length) + " x " + num(t.width) + " m holds no " + num(t.post) + " m post (expected a footprint of at least one post)");
+    }
+    const std::vector<double> h = stepfield_heights(t, nx, ny);
+    const double x0 = -0.5 * nx * t.post, y0 = -0.5 * ny * t.post;
+    for (int i = 0; i < nx; ++i) {
+      for (int j = 0; j < ny; ++j) {
+        const double x = x0 + i * t.post, y = y0 + j * t.post;
+        box("post_" + std::to_string(i * ny + j), x, x + t.post, y, y + t.post, h[static_cast<std::size_t>(i * ny + j)]);
+      }
+    }
+  }
+
+  void stairs() {
+    if (!(t.angle > 10 && t.angle <= 60)) {
+      fail("stairs at " + num(t.angle) + " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
+    }
+    if (!(t.riser > 0) || !(t.height >= t.riser)) fail("stairs rising " + num(t.height) + " m in " + num(t.riser) + " m risers have no step (expected a rise of at least one riser)");
+    const int n = static_cast<int>(std::lround(t.height / t.riser));
+    const double tread = t.riser / std::tan(t.angle * M_PI / 180);
+    const double landing = t.length - (n - 1) * tread;
+    if (landing < 0.3) {
+      fail(std::to_string(n) + " steps of " + num(tread) + " m need " + num((n - 1) * tread + 0.3) + " m with a 0.3 m landing; the footprint is " + num(t.length) +
+           " m long");
+    }
+    const double x0 = -0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
+    for (int k = 1; k < n; ++k) box("step_" + std::to_string(k), x0 + (k - 1) * tread, x0 + k * tread, y0, y1, k * t.riser);
+    box("landing", x0 + (n - 1) * tread, 0.5 * t.length, y0, y1, n * t.riser);
+  }
+
+  void crossing_ramps() {
+    if (!(t.angle > 0 && t.angle <= 45)) fail("crossing ramps at " + num(t.angle) + " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
+    const int n = static_cast<int>(std::floor(t.length / t.width + 1e-9));
+    if (n < 1) fail("crossing ramps need a footprint at least as long as it is wide (" + num(t.width) + " m); it is " + num(t.length) + " m");
+    const double rise = t.width * std::tan(t.angle * M_PI / 180);
+    const double x0 = -0.5 * n * t.width, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
+    // square cells in turn: pitch up, roll left, pitch down, roll right
+    const int high[4] = {0, 2, 1, 3};
+    for (int i = 0; i < n; ++i) wedge("ramp_" + std::to_string(i), x0 + i * t.width, x0 + (i + 1) * t.width, y0, y1, rise, high[i % 4]);
+  }
+
+  void curb() {
+    if (!(t.height > 0)) fail("curb height " + num(t.height) + " m is not positive");
+    box("curb", 0, 0.5 * t.length, -0.5 * t.width, 0.5 * t.width, t.height);
+  }
+
+  void hurdle() {
+    if (!(t.height > 0) || !(t.thickness > 0)) fail("hurdle of " + num(t.height) + " m height and " + num(t.thickness) + " m thickness (expected both positive)");
+    if (t.thickness > t.length) fail("hurdle " + num(t.thickness) + " m thick in a footprint " + num(t.length) + " m long");
+    box("hurdle", -0.5 * t.thickness, 0.5 * t.thickness, -0.5 * t.width, 0.5 * t.width, t.height);
+  }
+
+  void gap() {
+    if (!(t.height > 0) || !(t.gap > 0)) fail("gap of " + num(t.gap) + " m between decks " + num(t.height) + " m high (expected both positive)");
+    // 15 degree ramps up to decks of at least 0.3 m each side of the opening
+    const double ramp = t.height / std::tan(15 * M_PI / 180);
+    const double need = t.gap + 2 * ramp + 2 * 0.3;
+    if (t.length < need) fail("a " + num(t.gap) + " m gap between " + num(t.height) + " m decks needs " + num(need) + " m (15 deg ramps, 0.3 m decks); the footprint is " + num(t.length) + " m long");
+    const double L = 0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
+    wedge("ramp_in", -L, -L + ramp, y0, y1, t.height, 0);
+    box("deck_near", -L + ramp, -0.5 * t.gap, y0, y1, t.height);
+    box("deck_far", 0.5 * t.gap, L - ramp, y0, y1, t.height);
+    wedge("ramp_out", L - ramp, L, y0, y1, t.height, 1);
+  }
+};
+
+}  // namespace
+
+TerrainSpec TerrainSpec::defaults(Kind kind) {
+  TerrainSpec t;
+  t.kind = kind;
+  switch (kind) {
+    case Kind::stepfield: break;
+    case Kind::stairs: t.height = 0.8, t.angle = 40, t.riser = 0.2; break;
+    case Kind::crossing_ramps: t.length = 3.6, t.angle = 15; break;
+    case Kind::curb: t.length = 1.2, t.height = 0.15; break;
+    case Kind::hurdle: t.length = 1.2, t.height = 0.2; break;
+    case Kind::gap: t.length = 3.6, t.height = 0.2, t.gap = 0.3; break;
+  }
+  return t;
+}
+
+const char* TerrainSpec::kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::stepfield: return "stepfield";
+    case Kind::stairs: return "stairs";
+    case Kind::crossing_ramps: return "crossing-ramps";
+    case Kind::curb: return "curb";
+    case Kind::hurdle: return "hurdle";
+    case Kind::gap: return "gap";
+  }
+  return "?";
+}
+
+Polygon2 TerrainSpec::outline() const { return rectangle(pose, length, width); }
+
+std::vector<double> stepfield_heights(const TerrainSpec& t, int nx, int ny) {
+  std::uint64_t state = t.seed;
+  const double unit = t.half_cubic ? 0.5 * t.post : t.post;
+  std::vector<double> h(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (double& v : h) v = unit * static_cast<double>(1 + splitmix64(state) % 4);
+  return h;
+}
+
+std::vector<TerrainSolid> terrain_solids(const TerrainSpec& t) {
+  Builder b(t);
+  if (!(t.length > 0) || !(t.width > 0) || !std::isfinite(t.length) || !std::isfinite(t.width)) {
+    b.fail("footprint " + num(t.length) + " x " + num(t.width) + " m is not a positive size");
+  }
+  if (!std::isfinite(t.height) || t.height < 0) b.fail("height " + num(t.height) + " m is negative or not a number");
+  switch (t.kind) {
+    case TerrainSpec::Kind::stepfield:
+      if (!(t.post > 0) || !std::isfinite(t.post)) b.fail("post size " + num(t.post) + " m is not positive");
+      b.stepfield();
+      break;
+    case TerrainSpec::Kind::stairs: b.stairs(); break;
+    case TerrainSpec::Kind::crossing_ramps: b.crossing_ramps(); break;
+    case TerrainSpec::Kind::curb: b.curb(); break;
+    case TerrainSpec::Kind::hurdle: b.hurdle(); break;
+    case TerrainSpec::Kind::gap: b.gap(); break;
+  }
+  return std::move(b.out);
+}
+
+}  // namespace rescuesim
