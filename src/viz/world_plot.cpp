@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "viz/font.h"
+#include "world/terrain.h"
 
 namespace rescuesim {
 
@@ -232,6 +233,24 @@ void draw_map(Canvas& canvas, const PlotFrame& f, const WorldSpec& world, bool g
       if (e >= 0 && e < n && n >= 2) canvas.fill_polygon(to_px(f, WorldSpec::ramp_outline(r, e)), kRamp);
     }
     canvas.fill_polygon(to_px(f, r.outline), kRaised);
+  }
+
+  // test-method terrain: each post, step, deck and ramp, browner the higher its top (white at the
+  // floor, full brown from 0.5 m); a ramp in the colour of half its height
+  for (const auto& t : world.terrain) {
+    std::vector<TerrainSolid> solids;
+    try {
+      solids = terrain_solids(t);
+    } catch (const Error&) {
+      continue;  // validation reports it; the plot draws what can be built
+    }
+    for (const auto& so : solids) {
+      double top = 0;
+      for (const Vec3& v : mesh_of(so.geometry, 8).vertices) top = std::max(top, (so.X_WS * v).z());
+      const double k = std::clamp((so.ramp ? 0.5 : 1.0) * top / 0.5, 0.15, 1.0);
+      const auto mix = [k](int brown) { return static_cast<std::uint8_t>(std::lround(255 + k * (brown - 255))); };
+      canvas.fill_polygon(to_px(f, footprint(so.geometry, so.X_WS)), Rgb8{mix(140), mix(86), mix(75)});
+    }
   }
 
   // solid obstacles (drawn and from model files), then walls; walls thinner than a pixel still
