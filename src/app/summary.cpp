@@ -25,6 +25,11 @@ std::string world_summary(const WorldSpec& w) {
   s += buf;
   std::snprintf(buf, sizeof buf, "  raised areas  %zu (%d ramps)\n", w.raised_areas.size(), ramps);
   s += buf;
+  if (!w.terrain.empty()) {
+    s += "  terrain       " + std::to_string(w.terrain.size()) + ":";
+    for (const auto& t : w.terrain) s += std::string(" ") + TerrainSpec::kind_name(t.kind) + " '" + t.name + "'";
+    s += "\n";
+  }
   std::snprintf(buf, sizeof buf, "  victims       %zu (%d lying, %zu sitting)\n", w.victims.size(), lying, w.victims.size() - lying);
   s += buf;
   std::snprintf(buf, sizeof buf, "  rubble        %zu\n", w.rubble.size());
