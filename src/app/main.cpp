@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   app::Action action;
   app::add_run_command(app, action);
   app::add_maze_command(app, action);
+  app::add_arena_command(app, action);
   app::add_check_command(app, action);
   app::add_bench_command(app, action);
   app::add_snapshot_command(app, action);

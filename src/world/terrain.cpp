@@ -1,5 +1,6 @@
 #include "world/terrain.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -182,6 +183,60 @@ std::vector<TerrainSolid> terrain_solids(const TerrainSpec& t) {
     case TerrainSpec::Kind::gap: b.gap(); break;
   }
   return std::move(b.out);
+}
+
+TerrainSpec::Kind terrain_kind_from_name(const std::string& name) {
+  using K = TerrainSpec::Kind;
+  for (K kind : {K::stepfield, K::stairs, K::crossing_ramps, K::curb, K::hurdle, K::gap}) {
+    if (name == TerrainSpec::kind_name(kind)) return kind;
+  }
+  throw Error("unknown terrain '" + name + "'; expected stepfield, stairs, crossing-ramps, curb, hurdle or gap");
+}
+
+WorldSpec test_method_arena(const ArenaOptions& o) {
+  if (o.lanes.empty()) throw Error("an arena needs at least one lane (expected --lanes like stepfield,stairs)");
+  if (o.start_lane < 0 || o.start_lane >= static_cast<int>(o.lanes.size())) {
+    throw Error("start lane " + std::to_string(o.start_lane) + " does not exist; the arena has " + std::to_string(o.lanes.size()) + " lanes (0.." +
+                std::to_string(o.lanes.size() - 1) + ")");
+  }
+  if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width)) throw Error("lane width " + num(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
+  if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + num(o.approach) + " m is too short to start from (expected at least 1 m)");
+  WorldSpec w;
+  w.name = "arena";
+  w.seed = o.seed;
+  w.materials = default_materials();
+  double longest = 0;
+  for (TerrainSpec::Kind k : o.lanes) longest = std::max(longest, TerrainSpec::defaults(k).length);
+  const double length = longest + 2 * o.approach, width = o.lane_width * static_cast<double>(o.lanes.size());
+  w.floor_min = {0, 0};
+  w.floor_max = {width, length};
+  const double t = 0.05;
+  auto wall = [&](Vec2 a, Vec2 b) { w.walls.push_back({a, b, t, o.wall_height, "wall", {}}); };
+  wall({0, 0}, {width, 0});
+  wall({width, 0}, {width, length});
+  wall({width, length}, {0, length});
+  wall({0, length}, {0, 0});
+  // lane walls stop short of the south end, so a robot can be moved from lane to lane there
+  for (std::size_t i = 1; i < o.lanes.size(); ++i) wall({o.lane_width * static_cast<double>(i), length}, {o.lane_width * static_cast<double>(i), 0.6 * o.approach});
+  for (std::size_t i = 0; i < o.lanes.size(); ++i) {
+    TerrainSpec e = TerrainSpec::defaults(o.lanes[i]);
+    e.name = std::string(i < 10 ? "lane_0" : "lane_") + std::to_string(i) + "_" + TerrainSpec::kind_name(o.lanes[i]);
+    for (char& c : e.name) c = c == '-' ? '_' : c;
+    e.width = o.lane_width - 0.1;
+    e.seed = o.seed + i;
+    const double x = o.lane_width * (static_cast<double>(i) + 0.5);
+    e.pose = {x, 0.5 * length, M_PI / 2};
+    w.metadata["lane." + std::to_string(i)] = TerrainSpec::kind_name(o.lanes[i]);
+    w.metadata["lane." + std::to_string(i) + ".start_line_y"] = num(0.5 * length - 0.5 * e.length);
+    w.metadata["lane." + std::to_string(i) + ".end_line_y"] = num(0.5 * length + 0.5 * e.length);
+    w.terrain.push_back(std::move(e));
+  }
+  w.metadata["lane_width"] = num(o.lane_width);
+  RobotPlacement start;
+  start.name = "robot";
+  start.start = {o.lane_width * (o.start_lane + 0.5), 0.5 * o.approach, M_PI / 2};
+  w.robots.push_back(start);
+  return w;
 }
 
 }  // namespace rescuesim

@@ -27,4 +27,26 @@ std::vector<TerrainSolid> terrain_solids(const TerrainSpec& t);
 /// The generator is SplitMix64 on `seed`, the same on every platform.
 std::vector<double> stepfield_heights(const TerrainSpec& t, int nx, int ny);
 
+/// A test-method arena: lanes side by side, west to east, each with one element across its
+/// middle (the kind's defaults, `lane_width - 0.1` wide), walls between the lanes, an open
+/// approach of `approach` metres at each end, and the robot's start in `start_lane`'s south end,
+/// facing north. Every lane runs south to north.
+struct ArenaOptions {
+  std::vector<TerrainSpec::Kind> lanes;
+  double lane_width = 1.2;     ///< m; RoboCup's lanes are 1.1-1.2 m
+  double approach = 1.5;       ///< m of flat floor before and after each element
+  double wall_height = 1.0;    ///< m
+  int start_lane = 0;
+  std::uint64_t seed = 1;      ///< the stepfields' seeds are seed, seed + 1, ... in lane order
+};
+
+/// The arena as a WorldSpec (in the SVG convention, ready for world_to_svg). Its metadata records
+/// each lane's kind and its start and end lines (the element's near and far edges). Throws Error
+/// for no lanes, a start lane that does not exist, or a lane too narrow for its element.
+WorldSpec test_method_arena(const ArenaOptions& options);
+
+/// The terrain kind called `name` ("stepfield", "crossing-ramps", ...); throws Error naming the
+/// known kinds otherwise.
+TerrainSpec::Kind terrain_kind_from_name(const std::string& name);
+
 }  // namespace rescuesim
