@@ -1,6 +1,7 @@
 /// libFuzzer target for the SVG world loader: every input is a whole SVG document going
 /// through load_svg_world_from_string — tinyxml2, units and scale, styles, shapes, layers,
-/// victims, ramps, rubble — and, when it loads, back out through world_to_svg. rescuesim::Error
+/// victims, ramps, rubble, terrain — and, when it loads, through validate (which builds every
+/// terrain element's solids) and back out through world_to_svg. rescuesim::Error
 /// is the only failure the loader may report; any other exception, a crash or a sanitizer
 /// finding is a bug.
 
@@ -16,6 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     const SvgLoadResult r = load_svg_world_from_string(text, "fuzz.svg");
+    (void)validate(r.world);
     world_to_svg(r.world);
   } catch (const Error&) {
   }

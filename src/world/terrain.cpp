@@ -23,6 +23,9 @@ std::uint64_t splitmix64(std::uint64_t& state) {
   return z ^ (z >> 31);
 }
 
+/// The most solids one element may make: a bound on what a file can make us build.
+constexpr double kMaxSolids = 100000;
+
 struct Builder {
   explicit Builder(const TerrainSpec& spec) : t(spec), X_WT(Pose3::from_pose2(spec.pose)) {}
   const TerrainSpec& t;
@@ -60,7 +63,12 @@ struct Builder {
   }
 
   void stepfield() {
-    const int nx = static_cast<int>(std::floor(t.length / t.post + 1e-9)), ny = static_cast<int>(std::floor(t.width / t.post + 1e-9));
+    const double fx = std::floor(t.length / t.post + 1e-9), fy = std::floor(t.width / t.post + 1e-9);
+    if (fx * fy > kMaxSolids) {
+      fail("a stepfield of " + num(t.length) + " x " + num(t.width) + " m in " + num(t.post) + " m posts would have " + num(fx * fy) +
+           " posts (expected at most " + num(kMaxSolids) + ": larger posts or a smaller footprint)");
+    }
+    const int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
     if (nx < 1 || ny < 1) {
       fail("a stepfield of " + num(t.length) + " x " + num(t.width) + " m holds no " + num(t.post) + " m post (expected a footprint of at least one post)");
     }
@@ -79,6 +87,7 @@ struct Builder {
       fail("stairs at " + num(t.angle) + " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
     }
     if (!(t.riser > 0) || !(t.height >= t.riser)) fail("stairs rising " + num(t.height) + " m in " + num(t.riser) + " m risers have no step (expected a rise of at least one riser)");
+    if (t.height / t.riser > 1000) fail("stairs rising " + num(t.height) + " m in " + num(t.riser) + " m risers would have more than 1000 steps");
     const int n = static_cast<int>(std::lround(t.height / t.riser));
     const double tread = t.riser / std::tan(t.angle * M_PI / 180);
     const double landing = t.length - (n - 1) * tread;
@@ -93,6 +102,7 @@ struct Builder {
 
   void crossing_ramps() {
     if (!(t.angle > 0 && t.angle <= 45)) fail("crossing ramps at " + num(t.angle) + " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
+    if (t.length / t.width > kMaxSolids) fail("crossing ramps " + num(t.length) + " m long in " + num(t.width) + " m cells would be more than " + num(kMaxSolids) + " ramps");
     const int n = static_cast<int>(std::floor(t.length / t.width + 1e-9));
     if (n < 1) fail("crossing ramps need a footprint at least as long as it is wide (" + num(t.width) + " m); it is " + num(t.length) + " m");
     const double rise = t.width * std::tan(t.angle * M_PI / 180);

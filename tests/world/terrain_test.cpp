@@ -126,6 +126,12 @@ TEST(Terrain, ElementsThatCannotBeBuiltSayWhy) {
   EXPECT_NE(message(tall).find("15 steps of 0.238"), std::string::npos) << message(tall);
   EXPECT_NE(message(element(Kind::gap, 1.5, 1.2)).find("needs 2.39"), std::string::npos) << message(element(Kind::gap, 1.5, 1.2));
   EXPECT_NE(message(element(Kind::crossing_ramps, 1.0, 1.2)).find("at least as long as it is wide"), std::string::npos);
+  TerrainSpec fine = element(Kind::stepfield, 100, 100);
+  fine.post = 0.001;  // 10^10 posts: refused before anything is built
+  EXPECT_NE(message(fine).find("would have 1e+10 posts (expected at most 100000"), std::string::npos) << message(fine);
+  TerrainSpec tiny_risers = element(Kind::stairs, 2.4, 1.2);
+  tiny_risers.riser = 1e-9;
+  EXPECT_NE(message(tiny_risers).find("more than 1000 steps"), std::string::npos) << message(tiny_risers);
   TerrainSpec negative = element(Kind::curb, 1.2, 1.2);
   negative.height = -0.1;
   EXPECT_NE(message(negative).find("negative"), std::string::npos);
