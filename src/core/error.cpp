@@ -1,8 +1,15 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace rescuesim {
+
+std::string message_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
 
 std::string SourceRef::str() const {
   std::string s = file;

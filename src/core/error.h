@@ -22,6 +22,9 @@ struct SourceRef {
   std::string str() const;
 };
 
+/// A number as messages show it: printf's %g (6 significant digits, no trailing zeros).
+std::string message_number(double v);
+
 /// Bad input: thrown at file and API boundaries; `what()` reads "file:line: element: message".
 class Error : public std::runtime_error {
  public:

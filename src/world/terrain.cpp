@@ -8,12 +8,6 @@ namespace rescuesim {
 
 namespace {
 
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 /// SplitMix64: a small generator with a fixed definition, so a seed gives the same stepfield on
 /// every platform and standard library (std::uniform_int_distribution is not specified bit for bit).
 std::uint64_t splitmix64(std::uint64_t& state) {
@@ -65,12 +59,12 @@ struct Builder {
   void stepfield() {
     const double fx = std::floor(t.length / t.post + 1e-9), fy = std::floor(t.width / t.post + 1e-9);
     if (fx * fy > kMaxSolids) {
-      fail("a stepfield of " + num(t.length) + " x " + num(t.width) + " m in " + num(t.post) + " m posts would have " + num(fx * fy) +
-           " posts (expected at most " + num(kMaxSolids) + ": larger posts or a smaller footprint)");
+      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m in " + message_number(t.post) + " m posts would have " + message_number(fx * fy) +
+           " posts (expected at most " + message_number(kMaxSolids) + ": larger posts or a smaller footprint)");
     }
     const int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
     if (nx < 1 || ny < 1) {
-      fail("a stepfield of " + num(t.length) + " x " + num(t.width) + " m holds no " + num(t.post) + " m post (expected a footprint of at least one post)");
+      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m holds no " + message_number(t.post) + " m post (expected a footprint of at least one post)");
     }
     const std::vector<double> h = stepfield_heights(t, nx, ny);
     const double x0 = -0.5 * nx * t.post, y0 = -0.5 * ny * t.post;
@@ -84,15 +78,15 @@ struct Builder {
 
   void stairs() {
     if (!(t.angle > 10 && t.angle <= 60)) {
-      fail("stairs at " + num(t.angle) + " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
+      fail("stairs at " + message_number(t.angle) + " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
     }
-    if (!(t.riser > 0) || !(t.height >= t.riser)) fail("stairs rising " + num(t.height) + " m in " + num(t.riser) + " m risers have no step (expected a rise of at least one riser)");
-    if (t.height / t.riser > 1000) fail("stairs rising " + num(t.height) + " m in " + num(t.riser) + " m risers would have more than 1000 steps");
+    if (!(t.riser > 0) || !(t.height >= t.riser)) fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) + " m risers have no step (expected a rise of at least one riser)");
+    if (t.height / t.riser > 1000) fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) + " m risers would have more than 1000 steps");
     const int n = static_cast<int>(std::lround(t.height / t.riser));
     const double tread = t.riser / std::tan(t.angle * M_PI / 180);
     const double landing = t.length - (n - 1) * tread;
     if (landing < 0.3) {
-      fail(std::to_string(n) + " steps of " + num(tread) + " m need " + num((n - 1) * tread + 0.3) + " m with a 0.3 m landing; the footprint is " + num(t.length) +
+      fail(std::to_string(n) + " steps of " + message_number(tread) + " m need " + message_number((n - 1) * tread + 0.3) + " m with a 0.3 m landing; the footprint is " + message_number(t.length) +
            " m long");
     }
     const double x0 = -0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
@@ -101,10 +95,10 @@ struct Builder {
   }
 
   void crossing_ramps() {
-    if (!(t.angle > 0 && t.angle <= 45)) fail("crossing ramps at " + num(t.angle) + " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
-    if (t.length / t.width > kMaxSolids) fail("crossing ramps " + num(t.length) + " m long in " + num(t.width) + " m cells would be more than " + num(kMaxSolids) + " ramps");
+    if (!(t.angle > 0 && t.angle <= 45)) fail("crossing ramps at " + message_number(t.angle) + " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
+    if (t.length / t.width > kMaxSolids) fail("crossing ramps " + message_number(t.length) + " m long in " + message_number(t.width) + " m cells would be more than " + message_number(kMaxSolids) + " ramps");
     const int n = static_cast<int>(std::floor(t.length / t.width + 1e-9));
-    if (n < 1) fail("crossing ramps need a footprint at least as long as it is wide (" + num(t.width) + " m); it is " + num(t.length) + " m");
+    if (n < 1) fail("crossing ramps need a footprint at least as long as it is wide (" + message_number(t.width) + " m); it is " + message_number(t.length) + " m");
     const double rise = t.width * std::tan(t.angle * M_PI / 180);
     const double x0 = -0.5 * n * t.width, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
     // square cells in turn: pitch up, roll left, pitch down, roll right
@@ -113,22 +107,22 @@ struct Builder {
   }
 
   void curb() {
-    if (!(t.height > 0)) fail("curb height " + num(t.height) + " m is not positive");
+    if (!(t.height > 0)) fail("curb height " + message_number(t.height) + " m is not positive");
     box("curb", 0, 0.5 * t.length, -0.5 * t.width, 0.5 * t.width, t.height);
   }
 
   void hurdle() {
-    if (!(t.height > 0) || !(t.thickness > 0)) fail("hurdle of " + num(t.height) + " m height and " + num(t.thickness) + " m thickness (expected both positive)");
-    if (t.thickness > t.length) fail("hurdle " + num(t.thickness) + " m thick in a footprint " + num(t.length) + " m long");
+    if (!(t.height > 0) || !(t.thickness > 0)) fail("hurdle of " + message_number(t.height) + " m height and " + message_number(t.thickness) + " m thickness (expected both positive)");
+    if (t.thickness > t.length) fail("hurdle " + message_number(t.thickness) + " m thick in a footprint " + message_number(t.length) + " m long");
     box("hurdle", -0.5 * t.thickness, 0.5 * t.thickness, -0.5 * t.width, 0.5 * t.width, t.height);
   }
 
   void gap() {
-    if (!(t.height > 0) || !(t.gap > 0)) fail("gap of " + num(t.gap) + " m between decks " + num(t.height) + " m high (expected both positive)");
+    if (!(t.height > 0) || !(t.gap > 0)) fail("gap of " + message_number(t.gap) + " m between decks " + message_number(t.height) + " m high (expected both positive)");
     // 15 degree ramps up to decks of at least 0.3 m each side of the opening
     const double ramp = t.height / std::tan(15 * M_PI / 180);
     const double need = t.gap + 2 * ramp + 2 * 0.3;
-    if (t.length < need) fail("a " + num(t.gap) + " m gap between " + num(t.height) + " m decks needs " + num(need) + " m (15 deg ramps, 0.3 m decks); the footprint is " + num(t.length) + " m long");
+    if (t.length < need) fail("a " + message_number(t.gap) + " m gap between " + message_number(t.height) + " m decks needs " + message_number(need) + " m (15 deg ramps, 0.3 m decks); the footprint is " + message_number(t.length) + " m long");
     const double L = 0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
     wedge("ramp_in", -L, -L + ramp, y0, y1, t.height, 0);
     box("deck_near", -L + ramp, -0.5 * t.gap, y0, y1, t.height);
@@ -178,12 +172,12 @@ std::vector<double> stepfield_heights(const TerrainSpec& t, int nx, int ny) {
 std::vector<TerrainSolid> terrain_solids(const TerrainSpec& t) {
   Builder b(t);
   if (!(t.length > 0) || !(t.width > 0) || !std::isfinite(t.length) || !std::isfinite(t.width)) {
-    b.fail("footprint " + num(t.length) + " x " + num(t.width) + " m is not a positive size");
+    b.fail("footprint " + message_number(t.length) + " x " + message_number(t.width) + " m is not a positive size");
   }
-  if (!std::isfinite(t.height) || t.height < 0) b.fail("height " + num(t.height) + " m is negative or not a number");
+  if (!std::isfinite(t.height) || t.height < 0) b.fail("height " + message_number(t.height) + " m is negative or not a number");
   switch (t.kind) {
     case TerrainSpec::Kind::stepfield:
-      if (!(t.post > 0) || !std::isfinite(t.post)) b.fail("post size " + num(t.post) + " m is not positive");
+      if (!(t.post > 0) || !std::isfinite(t.post)) b.fail("post size " + message_number(t.post) + " m is not positive");
       b.stepfield();
       break;
     case TerrainSpec::Kind::stairs: b.stairs(); break;
@@ -209,8 +203,8 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
     throw Error("start lane " + std::to_string(o.start_lane) + " does not exist; the arena has " + std::to_string(o.lanes.size()) + " lanes (0.." +
                 std::to_string(o.lanes.size() - 1) + ")");
   }
-  if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width)) throw Error("lane width " + num(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
-  if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + num(o.approach) + " m is too short to start from (expected at least 1 m)");
+  if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width)) throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
+  if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + message_number(o.approach) + " m is too short to start from (expected at least 1 m)");
   WorldSpec w;
   w.name = "arena";
   w.seed = o.seed;
@@ -237,11 +231,11 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
     const double x = o.lane_width * (static_cast<double>(i) + 0.5);
     e.pose = {x, 0.5 * length, M_PI / 2};
     w.metadata["lane." + std::to_string(i)] = TerrainSpec::kind_name(o.lanes[i]);
-    w.metadata["lane." + std::to_string(i) + ".start_line_y"] = num(0.5 * length - 0.5 * e.length);
-    w.metadata["lane." + std::to_string(i) + ".end_line_y"] = num(0.5 * length + 0.5 * e.length);
+    w.metadata["lane." + std::to_string(i) + ".start_line_y"] = message_number(0.5 * length - 0.5 * e.length);
+    w.metadata["lane." + std::to_string(i) + ".end_line_y"] = message_number(0.5 * length + 0.5 * e.length);
     w.terrain.push_back(std::move(e));
   }
-  w.metadata["lane_width"] = num(o.lane_width);
+  w.metadata["lane_width"] = message_number(o.lane_width);
   RobotPlacement start;
   start.name = "robot";
   start.start = {o.lane_width * (o.start_lane + 0.5), 0.5 * o.approach, M_PI / 2};

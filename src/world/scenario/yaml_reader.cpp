@@ -5,14 +5,6 @@
 
 namespace rescuesim {
 
-namespace {
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-}  // namespace
-
 YamlNode::YamlNode(YAML::Node node, std::string path, std::shared_ptr<const std::string> file)
     : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)), read_(std::make_shared<std::set<std::string>>()) {}
 
@@ -104,9 +96,9 @@ double YamlNode::number(const std::string& key, double fallback, double lo, doub
   }
   if (!std::isfinite(v)) fail(key, "expected a finite number, got '" + n.Scalar() + "'");
   if (v < lo || v > hi) {
-    std::string range = lo > -1e300 && hi < 1e300 ? "in [" + num(lo) + ", " + num(hi) + "]"
-                        : lo > -1e300           ? ">= " + num(lo)
-                                                : "<= " + num(hi);
+    std::string range = lo > -1e300 && hi < 1e300 ? "in [" + message_number(lo) + ", " + message_number(hi) + "]"
+                        : lo > -1e300           ? ">= " + message_number(lo)
+                                                : "<= " + message_number(hi);
     fail(key, "value " + n.Scalar() + " is out of range; expected a number " + range);
   }
   return v;

@@ -10,12 +10,6 @@ namespace rescuesim::svg {
 
 namespace {
 
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 std::string hex(const Vec3& c) {
   char b[16];
   std::snprintf(b, sizeof b, "#%02x%02x%02x", static_cast<int>(std::lround(c.x() * 255)),
@@ -179,7 +173,7 @@ std::vector<int> ramp_edges(const Shape& s, const Polygon2& poly) {
       while (!at_end(*list, pos)) {
         const double e = read_number(*list, pos);
         if (e != std::floor(e) || e < 0 || e >= n) {
-          throw Error(attr_ref(s, "ramp-edges"), "edge " + num(e) + " does not exist; the outline has " + std::to_string(n) + " edges");
+          throw Error(attr_ref(s, "ramp-edges"), "edge " + message_number(e) + " does not exist; the outline has " + std::to_string(n) + " edges");
         }
         edges.push_back(static_cast<int>(e));
       }
@@ -295,7 +289,7 @@ void add_rubble(const Shape& s, const SvgLoadOptions& o, WorldSpec& world) {
   const double volume = r.shape == RubbleSpec::Shape::box ? r.size.x() * r.size.y() * r.size.z()
                                                           : M_PI * 0.25 * r.size.x() * r.size.x() * r.size.z();
   r.mass = data_number(s, "mass", volume * o.rubble_density);
-  if (!(r.mass > 0) || !std::isfinite(r.mass)) throw Error(attr_ref(s, "mass"), "mass " + num(r.mass) + " kg is not positive");
+  if (!(r.mass > 0) || !std::isfinite(r.mass)) throw Error(attr_ref(s, "mass"), "mass " + message_number(r.mass) + " kg is not positive");
   r.material = material_for(s, "rubble", world);
   world.rubble.push_back(std::move(r));
 }
@@ -337,7 +331,7 @@ void add_terrain(const Shape& s, TerrainSpec::Kind kind, WorldSpec& world) {
   if (data(s, "seed")) {
     const double seed = data_number(s, "seed", 1);
     if (!(seed >= 0) || seed != std::floor(seed) || seed > 9.007199254740992e15) {
-      throw Error(attr_ref(s, "seed"), "seed " + num(seed) + " is not a whole number from 0 to 2^53");
+      throw Error(attr_ref(s, "seed"), "seed " + message_number(seed) + " is not a whole number from 0 to 2^53");
     }
     t.seed = static_cast<std::uint64_t>(seed);
   }

@@ -97,7 +97,7 @@ class Walker {
         throw Error(with(where, "viewBox"), std::string(e.what()) + " (expected 'min-x min-y width height')");
       }
       if (!(vb[2] > 0) || !(vb[3] > 0)) {
-        throw Error(with(where, "viewBox"), "width and height must be positive, got " + num(vb[2]) + " x " + num(vb[3]));
+        throw Error(with(where, "viewBox"), "width and height must be positive, got " + message_number(vb[2]) + " x " + message_number(vb[3]));
       }
       has_vb = true;
     }
@@ -123,14 +123,14 @@ class Walker {
     // scale: physical units in width/height win, else the scenario setting
     const double default_mpu = 1.0 / options_.units_per_metre;
     metres_per_unit = default_mpu;
-    scale_source = "default " + num(options_.units_per_metre) + " units per metre";
+    scale_source = "default " + message_number(options_.units_per_metre) + " units per metre";
     if (has_vb && width && width->physical()) {
       metres_per_unit = width->metres() / vb[2];
-      scale_source = "width=\"" + std::string(root.Attribute("width")) + "\" over a viewBox " + num(vb[2]) + " wide";
+      scale_source = "width=\"" + std::string(root.Attribute("width")) + "\" over a viewBox " + message_number(vb[2]) + " wide";
       if (height && height->physical()) {
         const double mpu_y = height->metres() / vb[3];
         if (std::abs(mpu_y - metres_per_unit) > 0.01 * metres_per_unit) {
-          diag_.warn(where, "width and height give different scales (" + num(1 / metres_per_unit) + " and " + num(1 / mpu_y) +
+          diag_.warn(where, "width and height give different scales (" + message_number(1 / metres_per_unit) + " and " + message_number(1 / mpu_y) +
                                 " units per metre); using the width's");
         }
       }
@@ -186,12 +186,6 @@ class Walker {
     r.element += " attribute " + attribute;
     return r;
   }
-  static std::string num(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%g", v);
-    return b;
-  }
-
   void index_ids(const XMLElement* e) {
     // iterative, since documents may nest deeply
     std::vector<const XMLElement*> stack;
