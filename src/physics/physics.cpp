@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "core/parallel.h"
 #include "physics/bullet_convert.h"
@@ -394,46 +395,51 @@ struct Physics::Impl {
     }
   }
 
-  /// Which of a robot's joints its self-locking gears hold for the coming step, from the State
-  /// alone (so a restore holds the same ones): a self-locking position joint standing within
+  /// Whether joint `j`'s self-locking gear holds it for the coming step, from the State alone
+  /// (so a restore holds the same joints): a self-locking position joint standing within
   /// kSelfLockTolerance of its target and moving slower than kSelfLockSpeed. A held joint
   /// reports zero speed, so it stays held until its target moves away.
-  static std::vector<char> joints_to_hold(const RobotSpec& spec, const RobotState& s) {
-    std::vector<char> hold(spec.joints.size(), 0);
-    for (std::size_t j = 0; j < spec.joints.size() && j < s.q.size() && j < s.qd.size(); ++j) {
-      const JointSpec& js = spec.joints[j];
-      if (!js.self_locking || js.control != JointSpec::Control::position || j >= s.joint_target.size()) continue;
-      hold[j] = std::abs(s.joint_target[j] - s.q[j]) <= kSelfLockTolerance && std::abs(s.qd[j]) <= kSelfLockSpeed;
-    }
-    return hold;
+  static bool holds(const JointSpec& js, const RobotState& s, std::size_t j) {
+    if (!js.self_locking || js.control != JointSpec::Control::position) return false;
+    if (j >= s.q.size() || j >= s.qd.size() || j >= s.joint_target.size()) return false;
+    return std::abs(s.joint_target[j] - s.q[j]) <= kSelfLockTolerance && std::abs(s.qd[j]) <= kSelfLockSpeed;
   }
 
-  /// Holds and lets go of a robot's self-locking joints as `hold` says: a new multibody (Bullet
-  /// fixes the degrees of freedom of a multibody when it is made), with the old one's pose and
+  /// Holds and lets go of a robot's self-locking joints as `holds` says. Nothing is allocated
+  /// when nothing changes (every step, nearly always). On a change: a new multibody (Bullet fixes
+  /// the degrees of freedom of a multibody when it is made), with the old one's pose and
   /// velocities, a joint taken hold of at rest where it stands and one let go at rest where it was
   /// held; new motors and limits. The colliders stay in the world, and their contacts with them.
-  void set_held(std::size_t r, const RobotState& s, const std::vector<char>& hold) {
+  void update_held(std::size_t r, const RobotState& s) {
     RobotBody& b = robots[r];
-    // a held joint is held where the State has it (read_robot reports its held position)
-    std::vector<double> held_q(hold.size(), 0.0);
-    for (std::size_t j = 0; j < hold.size(); ++j) held_q[j] = hold[j] ? s.q[j] : 0.0;
-    if (hold == b.held && held_q == b.held_q) return;
     const RobotSpec& full = world.robots[r].spec;
+    const std::vector<JointSpec>& joints = full.joints;
+    // a held joint is held where the State has it (read_robot reports its held position)
+    bool same = true;
+    for (std::size_t j = 0; j < joints.size() && same; ++j) {
+      const bool h = holds(joints[j], s, j);
+      same = h == (b.held[j] != 0) && (!h || s.q[j] == b.held_q[j]);
+    }
+    if (same) return;
+    std::vector<char> hold(joints.size(), 0);
+    std::vector<double> held_q(joints.size(), 0.0);
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      hold[j] = holds(joints[j], s, j);
+      if (hold[j]) held_q[j] = s.q[j];
+    }
     btMultiBody* old = b.mb;
     btMultiBodyDynamicsWorld* w = robot_group[r] >= 0 ? &groups[static_cast<std::size_t>(robot_group[r])]->dynamics : nullptr;
     if (w) {
       for (auto it = b.constraints.rbegin(); it != b.constraints.rend(); ++it) w->removeMultiBodyConstraint(*it);
       w->removeMultiBody(old);
     }
-    const std::vector<char> was = b.held;
-    const std::vector<double> was_q = b.held_q;
-    b.held = hold;
-    b.held_q = std::move(held_q);
+    const std::vector<char> was = std::exchange(b.held, hold);
+    const std::vector<double> was_q = std::exchange(b.held_q, std::move(held_q));
     std::unique_ptr<btMultiBody> mb = make_multibody(b);
     mb->setBaseWorldTransform(old->getBaseWorldTransform());
     mb->setBaseVel(old->getBaseVel());
     mb->setBaseOmega(old->getBaseOmega());
-    for (std::size_t j = 0; j < full.joints.size(); ++j) {
+    for (std::size_t j = 0; j < joints.size(); ++j) {
       const int bt = b.lumped.lumped_joint[j];
       if (bt < 0 || hold[j]) continue;
       mb->setJointPos(bt, was[j] ? btScalar(was_q[j]) : old->getJointPos(bt));
@@ -775,7 +781,7 @@ void Physics::init_state(State& state) const {
 void Physics::step(State& state) {
   Impl& m = *impl_;
   if (m.groups.size() > 1) m.regroup();
-  for (std::size_t r = 0; r < m.robots.size(); ++r) m.set_held(r, state.robots[r], Impl::joints_to_hold(m.world.robots[r].spec, state.robots[r]));
+  for (std::size_t r = 0; r < m.robots.size(); ++r) m.update_held(r, state.robots[r]);
   std::vector<std::vector<std::size_t>> members(m.groups.size());
   for (std::size_t r = 0; r < m.robots.size(); ++r) members[static_cast<std::size_t>(m.robot_group[r])].push_back(r);
   // each group on a thread of its own: they share nothing Bullet writes to, and each robot's
@@ -813,7 +819,7 @@ void Physics::restore(const State& state) {
     const RobotState& rs = state.robots[r];
     const RobotSpec& spec = m.world.robots[r].spec;
     const Vec3& com = rb.lumped.spec.links[0].com;
-    m.set_held(r, rs, Impl::joints_to_hold(spec, rs));
+    m.update_held(r, rs);
     rb.mb->setBaseWorldTransform(to_bt(rs.base.X_WB * rb.X_BF[0]));
     rb.mb->setBaseOmega(to_bt(rs.base.w_WB));
     rb.mb->setBaseVel(to_bt(rs.base.v_WB + rs.base.w_WB.cross(rs.base.X_WB.q * com)));
