@@ -60,6 +60,59 @@ bool finite(const Pose3& X) {
          std::isfinite(X.q.x()) && std::isfinite(X.q.y()) && std::isfinite(X.q.z());
 }
 
+/// A track belt over one collision shape of a robot body (LinkShape::belt_joint).
+struct Belt {
+  int child;         // the shape's index in its body's compound
+  btVector3 axis;    // the belt's axis (the shape's z axis) in the collider's frame
+  int sprocket;      // the Bullet link whose joint velocity drives it
+  btScalar radius;   // m
+};
+
+/// The surface velocity of a belt at a contact, world frame: the belt turns around its axis at
+/// radius × sprocket speed, so where its outward normal is n it moves along axis × n (a belt
+/// driving forward runs backward underneath). Zero when the shape carries no belt.
+btVector3 belt_velocity(const btMultiBody* mb, int link, int child, const btVector3& n_out) {
+  if (!mb) return btVector3(0, 0, 0);
+  const btMultiBodyLinkCollider* col = link < 0 ? mb->getBaseCollider() : mb->getLink(link).m_collider;
+  const auto* belts = col ? static_cast<const std::vector<Belt>*>(col->getUserPointer()) : nullptr;
+  if (!belts) return btVector3(0, 0, 0);
+  for (const Belt& b : *belts) {
+    if (b.child != child) continue;
+    const btVector3 axis = col->getWorldTransform().getBasis() * b.axis;
+    return (b.radius * mb->getJointVel(b.sprocket)) * axis.cross(n_out);
+  }
+  return btVector3(0, 0, 0);
+}
+
+/// Bullet's multibody solver, with moving contact surfaces: tracks. Bullet's rigid-body solver
+/// takes a target sliding velocity per contact (btManifoldPoint::m_contactMotion1, the
+/// conveyor-belt hook that Gazebo's tracked vehicles use through ODE's surface motion), but
+/// its multibody solver (3.24 and upstream) ignores it and overwrites the friction
+/// directions. So after Bullet has made its friction rows, each row at a contact with a belt
+/// gets the belt's velocity as its target: the row's right-hand side is (target − relative
+/// velocity) × its effective mass, and the target makes the two surfaces grip where the belt's
+/// material and the ground move alike (v_A + u_A = v_B + u_B). The friction limit (μ × the
+/// normal impulse) is untouched, so a belt slips where a real one would.
+class BeltSolver final : public btMultiBodyConstraintSolver {
+ public:
+  bool belts = false;  ///< some collider carries a belt (else nothing is done per row)
+
+  void convertContacts(btPersistentManifold** manifolds, int n, const btContactSolverInfo& info) override {
+    btMultiBodyConstraintSolver::convertContacts(manifolds, n, info);
+    if (!belts) return;
+    for (int i = 0; i < m_multiBodyFrictionContactConstraints.size(); ++i) {
+      btMultiBodySolverConstraint& c = m_multiBodyFrictionContactConstraints[i];
+      const auto* cp = static_cast<const btManifoldPoint*>(c.m_originalContactPoint);
+      // the normal points from B to A: A's surface faces −n, B's faces +n
+      const btVector3 u = belt_velocity(c.m_multiBodyA, c.m_linkA, cp->m_index0, -cp->m_normalWorldOnB) -
+                          belt_velocity(c.m_multiBodyB, c.m_linkB, cp->m_index1, cp->m_normalWorldOnB);
+      if (u.fuzzyZero()) continue;
+      // the row drives (v_A − v_B) · its direction to its target, here −(u_A − u_B)
+      c.m_rhs -= u.dot(c.m_contactNormal1) * c.m_jacDiagABInv;
+    }
+  }
+};
+
 }  // namespace
 
 /// One robot as a Featherstone multibody: one Bullet link per rigid body of the robot (links
@@ -89,6 +142,7 @@ struct RobotBody {
   std::vector<Pose3> X_BF;                  // per body: Bullet's frame (centre of mass, principal axes) in the body frame
   std::vector<char> top;                    // per original link: it is its body's own frame
   std::vector<btMultiBodyConstraint*> constraints;  // motors and limits, in build order
+  std::vector<std::unique_ptr<std::vector<Belt>>> belts;  // per body with belts: its colliders' user pointer
 };
 
 /// One Bullet world of its own: a share of the robots and rubble, and its own static body for
@@ -102,7 +156,7 @@ struct PhysicsGroup {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
-  btMultiBodyConstraintSolver solver;
+  BeltSolver solver;
   btMultiBodyDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &config};
   std::vector<std::unique_ptr<btRigidBody>> statics;  // one per static object (or one compound), build order
 
@@ -290,6 +344,11 @@ struct Physics::Impl {
       }
       if (compound->getNumChildShapes() == 0) continue;
       auto col = std::make_unique<btMultiBodyLinkCollider>(body.mb, body.bt_link[l]);
+      if (auto belts = belts_of(ls, body); !belts->empty()) {
+        col->setUserPointer(belts.get());
+        body.belts.push_back(std::move(belts));
+        for (auto& g : groups) g->solver.belts = true;
+      }
       col->setCollisionShape(compound);
       col->setFriction(btScalar(friction));
       col->setRestitution(btScalar(restitution));
@@ -307,6 +366,23 @@ struct Physics::Impl {
     make_constraints(full, body);
     robots.push_back(std::move(body));
     sync_colliders(robots.back());
+  }
+
+  /// The belts over a body's colliding shapes, numbered as its compound's children.
+  static std::unique_ptr<std::vector<Belt>> belts_of(const LinkSpec& ls, const RobotBody& body) {
+    auto belts = std::make_unique<std::vector<Belt>>();
+    int child = 0;
+    const Pose3 X_FB = body.X_BF[static_cast<std::size_t>(&ls - body.lumped.spec.links.data())].inverse();
+    for (const auto& sh : ls.shapes) {
+      if (!sh.collides) continue;
+      if (!sh.belt_joint.empty()) {
+        const int j = body.lumped.spec.joint_index(sh.belt_joint);
+        const Vec3 axis = (X_FB * sh.X_LG).q * Vec3::UnitZ();
+        if (j >= 0) belts->push_back({child, to_bt(axis), j, btScalar(sh.belt_radius)});
+      }
+      ++child;
+    }
+    return belts;
   }
 
   /// A multibody of the robot's Bullet links, each held joint (RobotBody::held) a fixed link at

@@ -14,7 +14,7 @@ namespace rescuesim {
 /// corners, an IMU, wheel odometry, and the head's cameras.
 RobotSpec rescue_robot();
 
-/// Every built-in model by name ("rescue_robot").
+/// Every built-in model by name ("rescue_robot", "tracked_robot").
 std::map<std::string, RobotSpec> builtin_models();
 
 }  // namespace rescuesim

@@ -21,6 +21,12 @@ struct LinkShape {
   std::string material;       ///< a world material name, or one of the robot's own
   bool collides = true;
   bool visible = true;        ///< drawn by the renderer (a URDF's collision shapes are not)
+  /// A track's belt runs over this shape: its surface moves around the shape's z axis (a
+  /// cylinder's axis, an extrusion's direction) at belt_radius × the velocity of the joint
+  /// `belt_joint` (the drive sprocket), so what it touches is pushed as by a conveyor (see
+  /// docs/terrain.md, "The tracked robot"). Empty: a plain surface.
+  std::string belt_joint{};
+  double belt_radius = 0.0;   ///< m: the sprocket's pitch radius
 };
 
 /// A rigid link.
@@ -104,6 +110,9 @@ struct RobotSpec {
   std::vector<JointSpec> joints;     ///< in tree order: a joint's parent appears before its child
   DriveSpec drive;
   std::vector<std::string> head_joints;  ///< joints driven by /head/command, in message order
+  /// Position joints driven by /flippers/command (std_msgs/Float64MultiArray, rad), in message
+  /// order: a tracked robot's flippers. They are also joint_command joints.
+  std::vector<std::string> flipper_joints;
   std::vector<SensorSpec> sensors;
   /// The robot's own materials (a URDF's <material>s and mesh colours), added to the world's
   /// when it is compiled; names are prefixed with the model name to keep them apart.

@@ -102,6 +102,19 @@ CommandOutcome CommandGate::head(int robot, const std::string& topic, const std:
   return CommandOutcome::ok();
 }
 
+CommandOutcome CommandGate::flippers(int robot, const std::string& topic, const std::vector<double>& positions) {
+  const RobotSpec& spec = host_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+  if (positions.size() != spec.flipper_joints.size()) {
+    return reject(topic, "size",
+                  fmt::format("{} positions, expected {} (rad, in the order {})", positions.size(), spec.flipper_joints.size(),
+                              joined(spec.flipper_joints)));
+  }
+  msg::JointState command;
+  command.name = spec.flipper_joints;
+  command.position = positions;
+  return joints(robot, topic, command);
+}
+
 CommandOutcome CommandGate::input(std::size_t index, const std::string& topic, const msg::Message& message) {
   if (const CommandOutcome r = host_.submit_input(index, message); !r) return reject(topic, "refused", "refused by the host: " + r.reason);
   ++received_;

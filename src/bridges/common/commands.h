@@ -47,6 +47,10 @@ class CommandGate {
   /// arrays of the wrong length); position targets beyond a joint's limits are clamped, with a
   /// warning.
   CommandOutcome joints(int robot, const std::string& topic, const msg::JointState& command);
+  /// Flipper targets (rad), one per RobotSpec::flipper_joints entry, in that order
+  /// (std_msgs/Float64MultiArray on flippers/command): a joint command for those joints, so
+  /// refused for a wrong count or a non-finite value and clamped to the limits with a warning.
+  CommandOutcome flippers(int robot, const std::string& topic, const std::vector<double>& positions);
   /// A message for the host's inputs()[index] (a mission's report, datagram or relay drop),
   /// received on `topic`; the host checks its content when it hands it over.
   CommandOutcome input(std::size_t index, const std::string& topic, const msg::Message& message);

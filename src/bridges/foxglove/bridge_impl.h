@@ -69,7 +69,7 @@ struct ChannelState {
 
 /// What a client channel publishes to.
 struct CommandTarget {
-  enum class Kind { twist, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
+  enum class Kind { twist, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
   Kind kind = Kind::twist;
   int robot = 0;                            ///< -1: none (no target, or a host input of no robot)
   std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
@@ -166,7 +166,8 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::map<std::uint32_t, ChannelState> channels_;
   std::map<ClientId, ClientState> clients_;
 
-  std::vector<std::string> twist_topics_, head_topics_, joint_topics_;  ///< per robot
+  std::vector<std::string> twist_topics_, head_topics_, joint_topics_, flipper_topics_;  ///< per robot
+  std::vector<std::size_t> flipper_sizes_;
   std::vector<std::size_t> head_sizes_;
   std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
   std::vector<HostInput> host_inputs_;    ///< what the host takes beyond commands (a mission's reports, datagrams, maps)

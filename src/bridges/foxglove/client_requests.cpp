@@ -21,7 +21,8 @@ namespace {
 std::pair<std::string, std::string> schema_names(const CommandTarget& target) {
   switch (target.kind) {
     case CommandTarget::Kind::twist: return {"geometry_msgs/msg/Twist", "geometry_msgs/Twist"};
-    case CommandTarget::Kind::head: return {"std_msgs/msg/Float64MultiArray", "std_msgs/Float64MultiArray"};
+    case CommandTarget::Kind::head:
+    case CommandTarget::Kind::flippers: return {"std_msgs/msg/Float64MultiArray", "std_msgs/Float64MultiArray"};
     case CommandTarget::Kind::joints: return {"sensor_msgs/msg/JointState", "sensor_msgs/JointState"};
     case CommandTarget::Kind::host: return {target.type->ros2_name, target.type->ros1_name};
   }
@@ -34,6 +35,7 @@ std::string FoxgloveBridge::accepted_topics(std::size_t robot) const {
   std::string t = twist_topics_[robot] + " (geometry_msgs/msg/Twist)";
   if (head_sizes_[robot] > 0) t += ", " + head_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
   if (joints_commandable_[robot]) t += ", " + joint_topics_[robot] + " (sensor_msgs/msg/JointState)";
+  if (flipper_sizes_[robot] > 0) t += ", " + flipper_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
   for (const HostInput& in : host_inputs_) {
     if (in.robot != static_cast<int>(robot)) continue;
     const msg::TypeSupport* type = msg::find_type(in.type);
@@ -192,8 +194,12 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
         const bool twist = ch.topic == twist_topics_[r];
         const bool head = ch.topic == head_topics_[r] && head_sizes_[r] > 0;
         const bool joints = ch.topic == joint_topics_[r];
-        if (!twist && !head && !joints) continue;
-        target.kind = twist ? CommandTarget::Kind::twist : head ? CommandTarget::Kind::head : CommandTarget::Kind::joints;
+        const bool flippers = ch.topic == flipper_topics_[r] && flipper_sizes_[r] > 0;
+        if (!twist && !head && !joints && !flippers) continue;
+        target.kind = twist      ? CommandTarget::Kind::twist
+                      : head     ? CommandTarget::Kind::head
+                      : flippers ? CommandTarget::Kind::flippers
+                                 : CommandTarget::Kind::joints;
         target.robot = static_cast<int>(r);
         found = true;
       }
@@ -274,6 +280,8 @@ void FoxgloveBridge::apply(ClientId client, const CommandTarget& target, std::sp
       r = gate_->velocity(target.robot, topic, decode_twist(target.channel.encoding, payload));
     } else if (target.kind == CommandTarget::Kind::head) {
       r = gate_->head(target.robot, topic, decode_multi_array(target.channel.encoding, payload).data);
+    } else if (target.kind == CommandTarget::Kind::flippers) {
+      r = gate_->flippers(target.robot, topic, decode_multi_array(target.channel.encoding, payload).data);
     } else if (target.kind == CommandTarget::Kind::host) {
       r = gate_->input(target.host_input, topic, decode_message(target.channel.encoding, *target.type, payload));
     } else {

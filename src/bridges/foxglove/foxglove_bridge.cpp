@@ -76,6 +76,8 @@ void FoxgloveBridge::start(BridgeHost& host) {
     head_topics_.push_back(host.topic_name(static_cast<int>(r), "head/command"));
     head_sizes_.push_back(world.robots[r].spec.head_joints.size());
     joint_topics_.push_back(host.topic_name(static_cast<int>(r), "joint_command"));
+    flipper_topics_.push_back(host.topic_name(static_cast<int>(r), "flippers/command"));
+    flipper_sizes_.push_back(world.robots[r].spec.flipper_joints.size());
     joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
   }
   // and what the host takes beyond them (a mission's reports, datagrams, relay drops, map)

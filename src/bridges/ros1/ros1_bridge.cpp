@@ -90,7 +90,7 @@ class Ros1Bridge final : public Bridge {
   };
   /// A command topic of a robot.
   struct Input {
-    enum class Kind { velocity, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
+    enum class Kind { velocity, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
     std::string topic;
     int robot = 0;
     Kind kind = Kind::velocity;
@@ -187,6 +187,9 @@ void Ros1Bridge::start(BridgeHost& host) {
         Input j{host.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
         RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
         inputs_.push_back(std::move(j));
+      }
+      if (!host.world().robots[static_cast<std::size_t>(r)].spec.flipper_joints.empty()) {
+        inputs_.push_back(Input{host.topic_name(r, "flippers/command"), r, Input::Kind::flippers, msg::find_type("std_msgs/Float64MultiArray"), {}});
       }
     }
     // the host's own inputs (a mission's reports, datagrams, relay drops)
@@ -447,6 +450,7 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
       case Input::Kind::velocity: gate_->velocity(in.robot, in.topic, std::get<msg::Twist>(m)); break;
       case Input::Kind::head: gate_->head(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data); break;
       case Input::Kind::joints: gate_->joints(in.robot, in.topic, std::get<msg::JointState>(m)); break;
+      case Input::Kind::flippers: gate_->flippers(in.robot, in.topic, std::get<msg::Float64MultiArray>(m).data); break;
       case Input::Kind::host: gate_->input(in.host_input, in.topic, m); break;
     }
   } catch (const std::exception& e) {

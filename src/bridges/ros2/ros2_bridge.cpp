@@ -56,7 +56,7 @@ class Ros2Bridge final : public Bridge {
  private:
   /// A command reader: whose commands, of which kind.
   struct Input {
-    enum class Kind { velocity, head, joints, host };  ///< cmd_vel, head/command, joint_command, BridgeHost::inputs()
+    enum class Kind { velocity, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
     int reader;
     int robot;
     Kind kind;
@@ -134,6 +134,13 @@ void Ros2Bridge::start(BridgeHost& host) {
       const int rj = dds_->create_reader(ros2::dds_topic_name(joints), "sensor_msgs::msg::dds_::JointState_", ros2::command_reader_qos());
       inputs_.push_back({rj, robot, Input::Kind::joints, joints});
       node.readers.push_back(dds_->reader_guid(rj));
+    }
+    if (!host.world().robots[r].spec.flipper_joints.empty()) {
+      const std::string flippers = host.topic_name(robot, "flippers/command");
+      const int rf = dds_->create_reader(ros2::dds_topic_name(flippers), "std_msgs::msg::dds_::Float64MultiArray_",
+                                         ros2::command_reader_qos());
+      inputs_.push_back({rf, robot, Input::Kind::flippers, flippers});
+      node.readers.push_back(dds_->reader_guid(rf));
     }
   }
 
@@ -274,6 +281,9 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
       break;
     case Input::Kind::joints:
       take(ros2::decode_joint_command(bytes), [&](const msg::JointState& j) { gate_->joints(in.robot, in.topic, j); });
+      break;
+    case Input::Kind::flippers:
+      take(ros2::decode_head_command(bytes), [&](const std::vector<double>& p) { gate_->flippers(in.robot, in.topic, p); });
       break;
     case Input::Kind::host:
       try {

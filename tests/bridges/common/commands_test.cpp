@@ -140,5 +140,27 @@ TEST(CommandGateJoints, RefusalsSayWhichJointAndWhyAndClampsAreReported) {
   EXPECT_EQ(sim.state().robots[0].joint_target[0], 0.2);
 }
 
+TEST(CommandGateFlippers, FlipperPositionsBecomeJointTargetsAndAWrongCountIsRefused) {
+  WorldSpec spec = testing::room_spec();
+  spec.robots[0].model = "tracked_robot";
+  Simulation sim(compile_world(spec, builtin_models()));
+  CommandGate gate(sim, "ROS 2");
+  LogCapture log;
+  EXPECT_FALSE(gate.flippers(0, "/flippers/command", {0.3}));
+  EXPECT_NE(log.text().find("/flippers/command: 1 positions, expected 2 (rad, in the order left_flipper_joint, right_flipper_joint)"),
+            std::string::npos)
+      << log.text();
+  EXPECT_FALSE(gate.flippers(0, "/flippers/command", {0.3, std::nan("")}));
+  EXPECT_TRUE(gate.flippers(0, "/flippers/command", {0.3, 4.0}));  // 4 rad is clamped to 170 degrees
+  EXPECT_NE(log.text().find("clamped to 2.96706"), std::string::npos) << log.text();
+  EXPECT_EQ(gate.received(), 1u);
+  EXPECT_EQ(gate.rejected(), 2u);
+  sim.step();
+  const RobotSpec& r = sim.world().robots[0].spec;
+  const auto& target = sim.state().robots[0].joint_target;
+  EXPECT_EQ(target[static_cast<std::size_t>(r.joint_index("left_flipper_joint"))], 0.3);
+  EXPECT_NEAR(target[static_cast<std::size_t>(r.joint_index("right_flipper_joint"))], 170 * M_PI / 180, 1e-12);
+}
+
 }  // namespace
 }  // namespace rescuesim
