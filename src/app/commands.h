@@ -22,6 +22,7 @@ using Action = std::function<int()>;
 void add_check_command(CLI::App& app, Action& action);
 void add_maze_command(CLI::App& app, Action& action);
 void add_arena_command(CLI::App& app, Action& action);
+void add_trial_terrain_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_snapshot_command(CLI::App& app, Action& action);

@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
       "  rescuesim run                      the default rescue scenario, outputs in runs/default/\n"
       "  rescuesim maze --seed 3 --count 5  five random mazes as SVG + PNG in mazes/\n"
       "  rescuesim check worlds/arena.svg   what a drawing contains, or what is wrong with it\n"
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane stairs --laps 5\n"
+      "                                     the tracked robot on the 40 degree stairs, counted\n"
       "  rescuesim run --record run.mcap    also record every topic (open it in Foxglove)\n"
       "  rescuesim replay run.mcap --ros2   publish a recording again (docs/recording.md)\n"
       "  rescuesim recover run.mcap.part    save what a killed recording holds\n\n"
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
   app::add_run_command(app, action);
   app::add_maze_command(app, action);
   app::add_arena_command(app, action);
+  app::add_trial_terrain_command(app, action);
   app::add_check_command(app, action);
   app::add_bench_command(app, action);
   app::add_snapshot_command(app, action);

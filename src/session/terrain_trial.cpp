@@ -1,0 +1,262 @@
+#include "session/terrain_trial.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "sim/simulation.h"
+#include "viz/world_plot.h"
+#include "world/world.h"
+
+namespace rescuesim {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+/// The lane's element: by name, else the first of a kind by that name.
+const TerrainSpec& find_lane(const WorldSpec& world, const std::string& lane) {
+  for (const auto& t : world.terrain) {
+    if (t.name == lane) return t;
+  }
+  for (const auto& t : world.terrain) {
+    if (lane == TerrainSpec::kind_name(t.kind)) return t;
+  }
+  std::string known;
+  for (const auto& t : world.terrain) known += (known.empty() ? "" : ", ") + t.name + " (" + TerrainSpec::kind_name(t.kind) + ")";
+  throw Error("no lane '" + lane + "' in world '" + world.name + "'; it has " + (known.empty() ? std::string("no terrain elements") : known));
+}
+
+/// Where a lap ends, in metres along the lane from its start line: the end line, `approach`
+/// beyond the element, or, for stairs, which end in a landing with a drop beyond it, on the
+/// landing 0.5 m short of its far edge.
+double lane_goal(const TerrainSpec& lane, const TerrainTrialOptions& o) {
+  if (lane.kind == TerrainSpec::Kind::stairs) return o.approach + lane.length - 0.5;
+  return 2 * o.approach + lane.length;
+}
+
+/// Roll and pitch (rad) of a body frame: pitch nose up positive.
+void roll_pitch(const Quat& q, double& roll, double& pitch) {
+  const Vec3 x = q * Vec3::UnitX(), y = q * Vec3::UnitY();
+  pitch = std::asin(std::clamp(x.z(), -1.0, 1.0));
+  roll = std::asin(std::clamp(y.z(), -1.0, 1.0));
+  if ((q * Vec3::UnitZ()).z() < 0) {  // upside down: past 90 degrees
+    pitch = std::copysign(M_PI - std::abs(pitch), pitch == 0 ? 1.0 : pitch);
+    roll = std::copysign(M_PI - std::abs(roll), roll == 0 ? 1.0 : roll);
+  }
+}
+
+/// The scripted driver: along the lane's centre line at the trial's speed, heading and offset
+/// corrected; flippers (when the robot has them) raised to meet an obstacle, lowered onto it once
+/// the nose is up (the way the tests climb stairs), lowered ahead of the robot when it tips nose
+/// down, so it comes down on them.
+class LaneDriver {
+ public:
+  LaneDriver(const TerrainSpec& lane, const RobotSpec& robot, const TerrainTrialOptions& o) : lane_(lane), robot_(robot), o_(o) {}
+
+  msg::Twist twist(const Pose3& X) const {
+    const Vec2 d = X.p.head<2>() - Vec2(lane_.pose.x, lane_.pose.y);
+    const double c = std::cos(lane_.pose.yaw), s = std::sin(lane_.pose.yaw);
+    const double across = -s * d.x() + c * d.y();
+    const double heading = std::remainder(X.yaw() - lane_.pose.yaw, 2 * M_PI);
+    msg::Twist t;
+    t.linear.x() = o_.speed;
+    t.angular.z() = std::clamp(-2.0 * heading - 2.5 * across, -0.8, 0.8);
+    return t;
+  }
+
+  /// Flipper targets for the pitch now (rad, nose up positive), or empty when they stay.
+  std::vector<double> flippers(double pitch) {
+    if (robot_.flipper_joints.empty()) return {};
+    double want = mode_;
+    if (pitch > 0.3) want = 0.2;         // nose up: lay them on what it climbs
+    else if (pitch < -0.3) want = 0.5;   // nose down: reach for the ground ahead
+    else if (std::abs(pitch) < 0.1) want = -0.6;  // level: raised, ready for the next obstacle
+    if (want == mode_ && started_) return {};
+    mode_ = want;
+    started_ = true;
+    return std::vector<double>(robot_.flipper_joints.size(), want);
+  }
+
+  /// Metres along the lane from its start line.
+  double along(const Pose3& X) const {
+    const Vec2 d = X.p.head<2>() - Vec2(lane_.pose.x, lane_.pose.y);
+    return std::cos(lane_.pose.yaw) * d.x() + std::sin(lane_.pose.yaw) * d.y() + 0.5 * lane_.length + o_.approach;
+  }
+
+ private:
+  const TerrainSpec& lane_;
+  const RobotSpec& robot_;
+  const TerrainTrialOptions& o_;
+  double mode_ = -0.6;
+  bool started_ = false;
+};
+
+TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>& models, const TerrainSpec& lane,
+                   const TerrainTrialOptions& o, int lap, Rng& rng) {
+  WorldSpec spec = base;
+  const double offset = rng.uniform(-o.start_offset, o.start_offset);
+  const double yaw = rng.uniform(-o.start_yaw, o.start_yaw) * kDeg;
+  const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
+  const double back = 0.5 * lane.length + o.approach;  // the start line, behind the element's centre
+  RobotPlacement r;
+  r.name = "robot";
+  r.model = o.robot;
+  r.start = {lane.pose.x - c * back - s * offset, lane.pose.y - s * back + c * offset, lane.pose.yaw + yaw};
+  spec.robots = {r};
+  spec.victims.clear();
+  SimOptions so;
+  so.seed = o.seed + static_cast<std::uint64_t>(lap);
+  Simulation sim(compile_world(spec, models), so);
+  const RobotSpec& robot = sim.world().robots[0].spec;
+  LaneDriver driver(lane, robot, o);
+  const double goal = lane_goal(lane, o);
+  TerrainLap out;
+  out.lap = lap;
+  double best = 0, best_at = 0;
+  const double floor_z = sim.state().robots[0].base.X_WB.p.z();
+  const long steps = std::lround(o.time_limit / sim.dt());
+  for (long i = 0;; ++i) {
+    const Pose3& X = sim.state().robots[0].base.X_WB;
+    const double t = sim.time().seconds();
+    double roll = 0, pitch = 0;
+    roll_pitch(X.q, roll, pitch);
+    out.max_pitch = std::max(out.max_pitch, std::abs(pitch) / kDeg);
+    out.max_roll = std::max(out.max_roll, std::abs(roll) / kDeg);
+    out.max_height = std::max(out.max_height, X.p.z() - floor_z);
+    if (i % std::max<long>(1, std::lround(0.1 / sim.dt())) == 0) out.path.push_back(X.p.head<2>());
+    const double along = driver.along(X);
+    if (along > best + 0.05) best = along, best_at = t;
+    out.progress = std::max(out.progress, along);
+    out.time = t;
+    if (along >= goal) {
+      out.outcome = "completed";
+      break;
+    }
+    if (std::abs(pitch) > o.fall_pitch * kDeg || std::abs(roll) > o.fall_roll * kDeg) {
+      out.outcome = "fell";
+      break;
+    }
+    if (t - best_at > o.stuck_time) {
+      out.outcome = "stuck";
+      break;
+    }
+    if (i >= steps || sim.in_trouble()) {
+      out.outcome = "timeout";
+      break;
+    }
+    sim.command_velocity(0, driver.twist(X));
+    if (const std::vector<double> f = driver.flippers(pitch); !f.empty()) {
+      msg::JointState js;
+      js.name = robot.flipper_joints;
+      js.position = f;
+      sim.command_joints(0, js);
+    }
+    sim.step();
+  }
+  out.path.push_back(sim.state().robots[0].base.X_WB.p.head<2>());
+  return out;
+}
+
+}  // namespace
+
+TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std::string, RobotSpec>& models,
+                                     const TerrainTrialOptions& options, const std::function<void(const TerrainLap&)>& progress) {
+  if (!models.count(options.robot)) {
+    std::string known;
+    for (const auto& [name, m] : models) known += (known.empty() ? "" : ", ") + name;
+    throw Error("unknown robot '" + options.robot + "' (known: " + known + ")");
+  }
+  if (options.laps < 1) throw Error("laps " + std::to_string(options.laps) + " is not positive");
+  if (!(options.speed > 0) || !(options.time_limit > 0) || !(options.stuck_time > 0)) {
+    throw Error("speed, time limit and stuck time must be positive");
+  }
+  TerrainTrialResult result;
+  result.element = find_lane(world, options.lane);
+  result.robot = options.robot;
+  result.options = options;
+  Rng rng(options.seed, "terrain_trial");
+  double total = 0;
+  for (int lap = 1; lap <= options.laps; ++lap) {
+    TerrainLap l = run_lap(world, models, result.element, options, lap, rng);
+    if (l.outcome == "completed") ++result.repetitions, total += l.time;
+    if (l.outcome == "fell") ++result.falls;
+    if (l.outcome == "stuck") ++result.stuck;
+    if (l.outcome == "timeout") ++result.timeouts;
+    if (progress) progress(l);
+    result.laps.push_back(std::move(l));
+  }
+  result.mean_time = result.repetitions > 0 ? total / result.repetitions : 0.0;
+  return result;
+}
+
+std::string terrain_trial_json(const TerrainTrialResult& r) {
+  nlohmann::ordered_json j;
+  j["lane"] = r.element.name;
+  j["kind"] = TerrainSpec::kind_name(r.element.kind);
+  j["robot"] = r.robot;
+  j["seed"] = r.options.seed;
+  j["laps"] = r.laps.size();
+  j["repetitions"] = r.repetitions;
+  j["falls"] = r.falls;
+  j["stuck"] = r.stuck;
+  j["timeouts"] = r.timeouts;
+  j["mean_time_s"] = r.mean_time;
+  j["lane_length_m"] = lane_goal(r.element, r.options);
+  j["speed_m_s"] = r.options.speed;
+  nlohmann::ordered_json laps = nlohmann::ordered_json::array();
+  for (const auto& l : r.laps) {
+    laps.push_back({{"lap", l.lap},
+                    {"outcome", l.outcome},
+                    {"time_s", l.time},
+                    {"progress_m", l.progress},
+                    {"max_pitch_deg", l.max_pitch},
+                    {"max_roll_deg", l.max_roll},
+                    {"max_height_m", l.max_height}});
+  }
+  j["laps_detail"] = laps;
+  return j.dump(2) + "\n";
+}
+
+Canvas terrain_trial_figure(const WorldSpec& world, const TerrainTrialResult& r) {
+  WorldPlotOptions po;
+  po.px_per_m = 100;
+  po.title = r.robot + " on " + TerrainSpec::kind_name(r.element.kind) + ": " + std::to_string(r.repetitions) + "/" +
+             std::to_string(r.laps.size()) + " reps, " + std::to_string(r.falls) + " falls, " + std::to_string(r.stuck) + " stuck";
+  // the lane and its start and end lines only
+  WorldSpec shown = world;
+  const double c = std::cos(r.element.pose.yaw), s = std::sin(r.element.pose.yaw);
+  const double half = 0.5 * r.element.length + r.options.approach + 0.6, across = 0.5 * r.element.width + 1.6;  // wide enough for the title
+  Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (double u : {-half, half}) {
+    for (double v : {-across, across}) {
+      const Vec2 p(r.element.pose.x + c * u - s * v, r.element.pose.y + s * u + c * v);
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+  }
+  shown.floor_min = lo.cwiseMax(world.floor_min);
+  shown.floor_max = hi.cwiseMin(world.floor_max);
+  shown.robots.clear();
+  const PlotFrame frame = plot_frame_for(shown, po);
+  Canvas canvas = plot_world(shown, po);
+  const double start_u = -(0.5 * r.element.length + r.options.approach);
+  const double line = 0.5 * r.element.width;
+  for (double u : {start_u, start_u + lane_goal(r.element, r.options)}) {
+    const Vec2 a(r.element.pose.x + c * u - s * line, r.element.pose.y + s * u + c * line);
+    const Vec2 b(r.element.pose.x + c * u + s * line, r.element.pose.y + s * u - c * line);
+    canvas.line(frame.to_px(a), frame.to_px(b), {40, 40, 200}, 2.0);
+  }
+  for (const auto& l : r.laps) {
+    const Rgb8 colour = l.outcome == "completed" ? Rgb8{30, 160, 60} : l.outcome == "fell" ? Rgb8{210, 40, 40} : Rgb8{235, 140, 20};
+    std::vector<Vec2> px;
+    for (const auto& p : l.path) px.push_back(frame.to_px(p));
+    canvas.polyline(px, colour, 2.0, false, 0.8);
+    if (!px.empty() && l.outcome != "completed") canvas.fill_circle(px.back(), 5, colour);
+  }
+  return canvas;
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,68 @@
+#pragma once
+/// A test-method trial (docs/terrain.md, "Trials"): a robot driven across one lane of a
+/// test-method arena by a simple scripted driver, lap after lap, each lap from the lane's start
+/// line with a small seeded offset, and what happened counted as the standards count it:
+/// repetitions completed, time per repetition, falls (rollovers) and stuck events. Runs
+/// `rescuesim trial-terrain` and the batch's terrain trials.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "viz/canvas.h"
+#include "world/robot_spec.h"
+#include "world/world_spec.h"
+
+namespace rescuesim {
+
+struct TerrainTrialOptions {
+  std::string lane;               ///< a terrain element's name, or a kind ("stairs": the first of that kind)
+  std::string robot = "tracked_robot";  ///< a built-in model
+  int laps = 10;                  ///< attempts, each from the start line
+  std::uint64_t seed = 1;         ///< the laps' start offsets
+  double speed = 0.3;             ///< m/s along the lane
+  double approach = 0.8;          ///< m of floor between the element and the start and end lines
+  double time_limit = 60;         ///< s a lap may take
+  double stuck_time = 10;         ///< s without 5 cm of progress: stuck
+  double fall_pitch = 75;         ///< degrees of pitch beyond which the robot has fallen over
+  double fall_roll = 60;          ///< degrees of roll, likewise
+  double start_offset = 0.05;     ///< m: laps start up to this far off the lane's centre line
+  double start_yaw = 3;           ///< degrees: and turned up to this much
+};
+
+/// One lap.
+struct TerrainLap {
+  int lap = 0;
+  std::string outcome;            ///< "completed", "fell", "stuck" or "timeout"
+  double time = 0;                ///< s from the start to the end line (or to the event)
+  double progress = 0;            ///< m along the lane beyond the start line, at most
+  double max_pitch = 0, max_roll = 0;  ///< degrees, largest magnitudes
+  double max_height = 0;          ///< m, highest base above the floor
+  std::vector<Vec2> path;         ///< the base's track in the world, every 0.1 s
+};
+
+struct TerrainTrialResult {
+  TerrainSpec element;            ///< the lane's element
+  std::string robot;
+  TerrainTrialOptions options;
+  std::vector<TerrainLap> laps;
+  int repetitions = 0, falls = 0, stuck = 0, timeouts = 0;
+  double mean_time = 0;           ///< s per completed repetition (0: none)
+};
+
+/// Runs the trial on `world` (its robots are replaced by the trial's). Throws Error (exit 2) for
+/// an unknown lane or robot. `progress` hears each lap as it ends.
+TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std::string, RobotSpec>& models,
+                                     const TerrainTrialOptions& options,
+                                     const std::function<void(const TerrainLap&)>& progress = nullptr);
+
+/// The result as JSON (summary and every lap, paths left out).
+std::string terrain_trial_json(const TerrainTrialResult& result);
+
+/// The lane from above with each lap's path, green completed, red fell, orange stuck or out of
+/// time, and the counts in the title.
+Canvas terrain_trial_figure(const WorldSpec& world, const TerrainTrialResult& result);
+
+}  // namespace rescuesim

@@ -1,0 +1,94 @@
+// rescuesim trial-terrain's trials: laps across a lane counted as the test methods count them,
+// each outcome checked against what the robots are known to do there (tests/robots).
+
+#include "session/terrain_trial.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "robots/rescue_robot.h"
+#include "world/terrain.h"
+
+namespace rescuesim {
+namespace {
+
+WorldSpec arena(std::vector<TerrainSpec::Kind> lanes) {
+  ArenaOptions o;
+  o.lanes = std::move(lanes);
+  return test_method_arena(o);
+}
+
+TEST(TerrainTrial, TheTrackedRobotClimbsTheCurbLaneAndTheWheeledRobotIsStuckAtIt) {
+  const WorldSpec world = arena({TerrainSpec::Kind::curb});
+  TerrainTrialOptions o;
+  o.lane = "curb";
+  o.laps = 2;
+  o.stuck_time = 5;
+  const TerrainTrialResult tracked = run_terrain_trial(world, builtin_models(), o);
+  ASSERT_EQ(tracked.laps.size(), 2u);
+  EXPECT_EQ(tracked.repetitions, 2);
+  EXPECT_EQ(tracked.falls + tracked.stuck + tracked.timeouts, 0);
+  for (const auto& l : tracked.laps) {
+    EXPECT_EQ(l.outcome, "completed");
+    // the lane from start line to end line at 0.3 m/s, and a little for the climb
+    const double lane = tracked.element.length + 2 * o.approach;
+    EXPECT_GT(l.time, lane / o.speed);
+    EXPECT_LT(l.time, 2 * lane / o.speed);
+    EXPECT_NEAR(l.max_height, 0.15, 0.05);  // up onto the 15 cm curb
+  }
+  EXPECT_NE(tracked.laps[0].time, tracked.laps[1].time);  // each lap starts a little differently
+
+  o.robot = "rescue_robot";
+  o.laps = 1;
+  const TerrainTrialResult wheeled = run_terrain_trial(world, builtin_models(), o);
+  EXPECT_EQ(wheeled.repetitions, 0);
+  EXPECT_EQ(wheeled.stuck, 1);
+  // stopped at the face, which is `approach` + half the element past the start line
+  EXPECT_LT(wheeled.laps[0].progress, o.approach + 0.5 * wheeled.element.length);
+
+  const nlohmann::json j = nlohmann::json::parse(terrain_trial_json(tracked));
+  EXPECT_EQ(j["kind"], "curb");
+  EXPECT_EQ(j["robot"], "tracked_robot");
+  EXPECT_EQ(j["repetitions"], 2);
+  EXPECT_EQ(j["laps_detail"].size(), 2u);
+  EXPECT_EQ(j["laps_detail"][0]["outcome"], "completed");
+  const Canvas figure = terrain_trial_figure(world, tracked);
+  EXPECT_GT(figure.width(), 200);
+}
+
+TEST(TerrainTrial, TheSameSeedRunsTheSameLaps) {
+  const WorldSpec world = arena({TerrainSpec::Kind::curb});
+  TerrainTrialOptions o;
+  o.lane = "curb";
+  o.laps = 1;
+  const TerrainTrialResult a = run_terrain_trial(world, builtin_models(), o);
+  const TerrainTrialResult b = run_terrain_trial(world, builtin_models(), o);
+  EXPECT_EQ(a.laps[0].time, b.laps[0].time);
+  EXPECT_EQ(a.laps[0].path, b.laps[0].path);
+}
+
+TEST(TerrainTrial, AnUnknownLaneOrRobotIsAnErrorThatSaysWhatThereIs) {
+  const WorldSpec world = arena({TerrainSpec::Kind::curb, TerrainSpec::Kind::hurdle});
+  TerrainTrialOptions o;
+  o.lane = "stairs";
+  try {
+    run_terrain_trial(world, builtin_models(), o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("no lane 'stairs'"), std::string::npos) << e.message();
+    EXPECT_NE(e.message().find("lane_00_curb (curb), lane_01_hurdle (hurdle)"), std::string::npos) << e.message();
+  }
+  o.lane = "curb";
+  o.robot = "tank";
+  try {
+    run_terrain_trial(world, builtin_models(), o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("unknown robot 'tank' (known: rescue_robot, tracked_robot)"), std::string::npos) << e.message();
+  }
+}
+
+}  // namespace
+}  // namespace rescuesim
