@@ -213,6 +213,41 @@ TEST_F(Ros1Run, EverySensorTopicCarriesWhatTheScenarioConfigures) {
   EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
 }
 
+TEST_F(Ros1Run, FlipperCommandsFromRostopicMoveTheTrackedRobotsFlippers) {
+  SKIP_WITHOUT_ROS1();
+  dir_ = temp_dir("ros1-flippers");
+  master_ = std::make_unique<RosMaster>(dir_);
+  ASSERT_TRUE(master_->start()) << "roscore did not come up on port " << master_->port();
+  write_room(dir_);
+  std::string yaml = kRoomYaml;
+  yaml.replace(yaml.find("    controller: none"), 0, "    model: tracked_robot\n");
+  write_text(dir_ / "tracked.yaml", yaml);
+  ASSERT_TRUE(sim_.start(*master_, dir_, dir_ / "tracked.yaml", {"--duration", "120", "--no-cameras"})) << sim_.output();
+  const auto flipper = [&](const char* joint) {
+    const std::string js = echo("/joint_states");
+    // names are listed one per line ("- left_flipper_joint"), positions in one array, in the same order
+    const std::vector<double> q = numbers(js, "position");
+    int index = 0;
+    for (std::size_t at = js.find("name:"); (at = js.find("\n  - ", at)) != std::string::npos && at < js.find("position:"); ++index) {
+      at += 5;
+      if (js.compare(at, std::string(joint).size(), joint) == 0 && static_cast<std::size_t>(index) < q.size()) return q[static_cast<std::size_t>(index)];
+    }
+    return std::nan("");
+  };
+  // a command of the wrong length is refused; two positions move the two flippers
+  auto short_cmd = master_->spawn({"rostopic", "pub", "-r", "10", "/flippers/command", "std_msgs/Float64MultiArray", "{data: [0.5]}"});
+  EXPECT_TRUE(sim_.says("rejected a command on /flippers/command: 1 positions, expected 2", kPatience)) << sim_.output();
+  short_cmd->interrupt();
+  EXPECT_NEAR(flipper("left_flipper_joint"), 0.0, 0.02);
+  auto cmd = master_->spawn({"rostopic", "pub", "-r", "10", "/flippers/command", "std_msgs/Float64MultiArray", "{data: [-0.5, -0.3]}"});
+  // both tips up, in the air: each flipper stands at its own target
+  EXPECT_TRUE(wait_until([&] { return std::abs(flipper("left_flipper_joint") + 0.5) < 0.02 && std::abs(flipper("right_flipper_joint") + 0.3) < 0.02; },
+                         kPatience))
+      << echo("/joint_states");
+  cmd->interrupt();
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+}
+
 TEST_F(Ros1Run, CmdVelDrivesTheRobotAndBadCommandsAreRefused) {
   SKIP_WITHOUT_ROS1();
   start("drive", {"--duration", "120", "--no-cameras"});
