@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "viz/world_plot.h"
+#include "world/terrain.h"
 #include "world/maze/maze.h"
 #include "world/svg/svg_world.h"
 
@@ -20,6 +22,7 @@ struct MazeCommand {
   int count = 1;
   std::string out = "mazes";
   std::vector<int> start_cell{0, 0};
+  std::string terrain_kinds = "stepfield";
   bool png = true;
   double png_resolution = 40;
 };
@@ -31,6 +34,11 @@ int run_maze(const MazeCommand& c) {
     MazeOptions o = c.maze;
     o.seed = c.maze.seed + static_cast<std::uint64_t>(k);
     o.start_cell = {c.start_cell[0], c.start_cell[1]};
+    o.terrain.clear();
+    std::stringstream kinds(c.terrain_kinds);
+    for (std::string name; std::getline(kinds, name, ',');) {
+      if (!name.empty()) o.terrain.push_back(terrain_kind_from_name(name));  // Error: exit 2, naming the kinds
+    }
     const Maze maze = generate_maze(o);
     const WorldSpec world = maze_to_world(maze);
     const std::string stem = "maze-" + std::to_string(o.seed);
@@ -42,9 +50,9 @@ int run_maze(const MazeCommand& c) {
       po.title = stem + "  " + std::to_string(o.cols) + "x" + std::to_string(o.rows) + " cells, seed " + std::to_string(o.seed);
       plot_world(world, po).write_png(fs::path(c.out) / (stem + ".png"));
     }
-    std::printf("[%d/%d] %s: %dx%d cells, %d openings, %zu walls, %zu victims, %zu raised areas, %zu rubble\n", k + 1, c.count,
+    std::printf("[%d/%d] %s: %dx%d cells, %d openings, %zu walls, %zu victims, %zu raised areas, %zu terrain cells, %zu rubble\n", k + 1, c.count,
                 svg.string().c_str(), o.cols, o.rows, maze.opening_count(), world.walls.size(), world.victims.size(),
-                world.raised_areas.size(), world.rubble.size());
+                world.raised_areas.size(), world.terrain.size(), world.rubble.size());
     std::fflush(stdout);
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -79,6 +87,11 @@ void add_maze_command(CLI::App& app, Action& action) {
   cmd->add_option("--raised", c->maze.raised_fraction, "fraction of cells with a raised platform and ramps")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--terrain", c->maze.terrain_fraction, "fraction of cells with a test-method terrain element (docs/terrain.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--terrain-kinds", c->terrain_kinds, "the elements, taken in turn: stepfield, curb, hurdle (comma-separated)")
+      ->capture_default_str();
   cmd->add_option("--victims", c->maze.victims, "victims, placed in dead ends first")->capture_default_str()->check(CLI::Range(0, 10000));
   cmd->add_option("--start-cell", c->start_cell, "robot start cell: COL ROW")->expected(2)->capture_default_str();
   cmd->add_flag("!--no-png", c->png, "skip the PNG previews");

@@ -26,6 +26,11 @@ struct MazeOptions {
   double raised_height = 0.10;       ///< m
   double ramp_length = 0.40;         ///< m
   int victims = 0;                   ///< victims to place, dead ends first
+  /// Fraction of cells that get a test-method terrain element across their interior (never a
+  /// start, raised or victim cell), of the kinds in `terrain` taken in turn: a half-cubic
+  /// stepfield, a curb or a hurdle (docs/terrain.md). Rubble keeps out of them.
+  double terrain_fraction = 0.0;
+  std::vector<TerrainSpec::Kind> terrain{TerrainSpec::Kind::stepfield};
   std::array<int, 2> start_cell{0, 0};  ///< (col, row) where the robot starts
   /// Cells where further robots start ("robot2", "robot3", ... in this order), each kept free
   /// of platforms, victims and rubble like start_cell; distinct from it and each other.
@@ -45,6 +50,7 @@ struct Maze {
   std::vector<std::array<int, 2>> victim_cells;  ///< cell of each victim
   std::vector<Side> victim_sides;                ///< closed side each victim lies against
   std::vector<std::array<int, 2>> raised_cells;  ///< cells with a raised platform
+  std::vector<std::array<int, 2>> terrain_cells; ///< cells with a terrain element (MazeOptions::terrain_fraction), in cell order
 
   int cell_count() const { return options.cols * options.rows; }
   int index(int col, int row) const { return row * options.cols + col; }

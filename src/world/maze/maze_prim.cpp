@@ -19,6 +19,7 @@ namespace {
 
 using maze_limits::kMinPlatform;
 using maze_limits::kMinVictimInterior;
+using maze_limits::kMinTerrainInterior;
 
 /// Largest grid side and rubble count accepted.
 constexpr int kMaxCells = 500;
@@ -74,6 +75,22 @@ void check_options(const MazeOptions& o) {
   check_positive("ramp_length", o.ramp_length);
   check_fraction("loop_fraction", o.loop_fraction);
   check_fraction("raised_fraction", o.raised_fraction);
+  check_fraction("terrain_fraction", o.terrain_fraction);
+  if (o.terrain_fraction > 0) {
+    if (o.terrain.empty()) bad_option("terrain", "terrain_fraction = " + num(o.terrain_fraction) + " needs at least one terrain kind");
+    for (TerrainSpec::Kind k : o.terrain) {
+      if (k != TerrainSpec::Kind::stepfield && k != TerrainSpec::Kind::curb && k != TerrainSpec::Kind::hurdle) {
+        bad_option("terrain", std::string(TerrainSpec::kind_name(k)) +
+                                  " does not fit in a maze cell; cells take stepfield, curb or hurdle (stairs, gaps and crossing "
+                                  "ramps need a lane: rescuesim arena)");
+      }
+    }
+    if (o.cell_size - o.wall_thickness < kMinTerrainInterior) {
+      bad_option("terrain_fraction", "terrain_fraction = " + num(o.terrain_fraction) + " needs a cell interior of at least " +
+                                         num(kMinTerrainInterior) + " m, but cell_size " + num(o.cell_size) + " m gives " +
+                                         num(o.cell_size - o.wall_thickness) + " m");
+    }
+  }
   check_int_range("rubble", o.rubble, 0, kMaxRubble);
   // too many victims for the grid is reported once the free cells are known
   check_int_range("victims", o.victims, 0, std::numeric_limits<int>::max());
@@ -211,6 +228,29 @@ std::vector<std::uint8_t> start_cells(const Maze& m) {
   return starts;
 }
 
+/// Picks the terrain cells at random among the cells that are no start, raised or victim cell;
+/// listed in cell order. Throws when there are too few.
+void choose_terrain(Maze& m) {
+  const long want = std::lround(m.options.terrain_fraction * m.cell_count());
+  if (want <= 0) return;
+  std::vector<std::uint8_t> taken = start_cells(m);
+  for (const auto& c : m.raised_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
+  for (const auto& c : m.victim_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
+  std::vector<int> cells;
+  for (int i = 0; i < m.cell_count(); ++i) {
+    if (!taken[static_cast<std::size_t>(i)]) cells.push_back(i);
+  }
+  if (want > std::ssize(cells)) {
+    bad_option("terrain_fraction", "terrain_fraction = " + num(m.options.terrain_fraction) + " asks for " + std::to_string(want) +
+                                       " cells, but only " + std::to_string(cells.size()) + " are free (not a start, raised or victim cell)");
+  }
+  Rng rng(m.options.seed, "maze/terrain");
+  choose_front(cells, static_cast<std::size_t>(want), rng);
+  cells.resize(static_cast<std::size_t>(want));
+  std::sort(cells.begin(), cells.end());
+  for (int i : cells) m.terrain_cells.push_back({i % m.options.cols, i / m.options.cols});
+}
+
 /// Picks the raised cells at random among all but the start cells; listed in cell order.
 void choose_raised(Maze& m) {
   const int want = raised_target(m.options);
@@ -337,6 +377,7 @@ Maze generate_maze(const MazeOptions& options) {
   add_loops(m);
   choose_raised(m);
   choose_victims(m);
+  choose_terrain(m);
   return m;
 }
 

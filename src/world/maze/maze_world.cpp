@@ -18,6 +18,8 @@ namespace rescuesim {
 
 namespace {
 
+using maze_limits::kTerrainClearance;
+
 using maze_limits::kMinPlatform;
 
 /// Gap between a platform and a closed wall face (m).
@@ -89,6 +91,8 @@ void check_maze(const Maze& m) {
   for (const auto& c : o.more_start_cells) check_cell(c, "start cell");
   for (const auto& c : m.victim_cells) check_cell(c, "victim cell");
   for (const auto& c : m.raised_cells) check_cell(c, "raised cell");
+  for (const auto& c : m.terrain_cells) check_cell(c, "terrain cell");
+  if (!m.terrain_cells.empty() && o.terrain.empty()) bad("maze", "terrain cells without terrain kinds");
 }
 
 /// Walls: the closed cell sides along each grid line, merged into runs; each run reaches
@@ -131,6 +135,28 @@ void add_walls(WorldSpec& w, const Maze& m) {
       while (r < o.rows && closed(r)) ++r;
       add({c * s, first * s - h}, {c * s, r * s + h});
     }
+  }
+}
+
+/// Terrain cells: an element of the kinds in MazeOptions::terrain, taken in turn, across the
+/// cell's interior less a clearance from the walls, its direction of travel along a passage of
+/// the cell (east-west when it opens that way, else north-south); a stepfield's seed follows
+/// the maze's and the cell's.
+void add_terrain(WorldSpec& w, const Maze& m) {
+  const MazeOptions& o = m.options;
+  for (std::size_t k = 0; k < m.terrain_cells.size(); ++k) {
+    const int c = m.terrain_cells[k][0], r = m.terrain_cells[k][1];
+    const Interior in = interior(o, c, r);
+    const TerrainSpec::Kind kind = o.terrain[k % o.terrain.size()];
+    TerrainSpec t = TerrainSpec::defaults(kind);
+    t.name = "terrain_" + std::to_string(c) + "_" + std::to_string(r);
+    const bool east_west = m.is_open(c, r, Side::east) || m.is_open(c, r, Side::west);
+    t.pose = {0.5 * (in.x0 + in.x1), 0.5 * (in.y0 + in.y1), east_west ? 0.0 : M_PI / 2};
+    t.length = std::min(in.x1 - in.x0, in.y1 - in.y0) - 2 * kTerrainClearance;
+    t.width = t.length;
+    t.seed = o.seed * 1000003ULL + static_cast<std::uint64_t>(m.index(c, r));
+    t.source = SourceRef{"", 0, "maze terrain " + std::to_string(k)};
+    w.terrain.push_back(t);
   }
 }
 
@@ -218,6 +244,7 @@ int add_rubble(WorldSpec& w, const Maze& m) {
   for (const auto& c : o.more_start_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   for (const auto& c : m.victim_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   for (const auto& c : m.raised_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
+  for (const auto& c : m.terrain_cells) taken[static_cast<std::size_t>(m.index(c[0], c[1]))] = 1;
   std::vector<int> free_cells;
   for (int i = 0; i < m.cell_count(); ++i) {
     if (!taken[static_cast<std::size_t>(i)]) free_cells.push_back(i);
@@ -342,6 +369,7 @@ WorldSpec maze_to_world(const Maze& maze) {
   w.materials = default_materials();
   add_walls(w, maze);
   add_raised(w, maze);
+  add_terrain(w, maze);
   add_victims(w, maze);
   const int rubble_placed = add_rubble(w, maze);
   add_robots(w, maze);
@@ -362,6 +390,12 @@ WorldSpec maze_to_world(const Maze& maze) {
   md["raised_height"] = text(o.raised_height);
   md["ramp_length"] = text(o.ramp_length);
   md["victims"] = std::to_string(o.victims);
+  if (o.terrain_fraction > 0) {
+    md["terrain_fraction"] = text(o.terrain_fraction);
+    std::string kinds;
+    for (TerrainSpec::Kind kind : o.terrain) kinds += (kinds.empty() ? "" : ",") + std::string(TerrainSpec::kind_name(kind));
+    md["terrain"] = kinds;
+  }
   md["start_cell"] = std::to_string(o.start_cell[0]) + "," + std::to_string(o.start_cell[1]);
   if (!o.more_start_cells.empty()) {
     std::string more;

@@ -1,4 +1,5 @@
 #include "world/scenario/scenario.h"
+#include "world/terrain.h"
 
 #include <array>
 #include <cmath>
@@ -30,6 +31,17 @@ MazeOptions read_maze(const YamlNode& m, std::uint64_t run_seed) {
   o.raised_height = m.number("raised_height", o.raised_height, 0.001, 10);
   o.ramp_length = m.number("ramp_length", o.ramp_length, 0.01, 100);
   o.victims = static_cast<int>(m.integer("victims", o.victims, 0, 10000));
+  o.terrain_fraction = m.number("terrain_fraction", o.terrain_fraction, 0, 1);
+  if (m.has("terrain")) {
+    o.terrain.clear();
+    for (const auto& k : m.sequence("terrain")) {
+      try {
+        o.terrain.push_back(terrain_kind_from_name(k.scalar()));
+      } catch (const Error& e) {
+        throw Error(m.where("terrain"), e.message());
+      }
+    }
+  }
   const auto start = m.numbers("start_cell", {0, 0}, 2);
   if (start[0] != std::floor(start[0]) || start[1] != std::floor(start[1]) || start[0] < 0 || start[1] < 0 ||
       start[0] >= o.cols || start[1] >= o.rows) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "core/error.h"
 #include "core/polygon.h"
 #include "world/world_spec.h"
 
@@ -659,6 +660,67 @@ TEST(MazeOptionsCheck, BadOptionsNameTheOption) {
       EXPECT_NE(what.find(std::string("maze option ") + k.option), std::string::npos) << what;
       EXPECT_EQ(e.where().element, std::string("maze option ") + k.option);
     }
+  }
+}
+
+TEST(MazeTerrain, AFractionOfTheFreeCellsGetTerrainAndRubbleKeepsOutOfThem) {
+  MazeOptions o;
+  o.cols = 6;
+  o.rows = 5;
+  o.seed = 11;
+  o.victims = 3;
+  o.raised_fraction = 0.1;  // 3 cells
+  o.rubble = 30;
+  o.terrain_fraction = 0.2;  // round(0.2 x 30) = 6 cells
+  o.terrain = {TerrainSpec::Kind::stepfield, TerrainSpec::Kind::curb, TerrainSpec::Kind::hurdle};
+  const Maze m = generate_maze(o);
+  ASSERT_EQ(m.terrain_cells.size(), 6u);
+  for (const auto& c : m.terrain_cells) {
+    EXPECT_NE(c, o.start_cell);
+    for (const auto& v : m.victim_cells) EXPECT_NE(c, v);
+    for (const auto& r : m.raised_cells) EXPECT_NE(c, r);
+  }
+  const WorldSpec w = maze_to_world(m);
+  ASSERT_EQ(w.terrain.size(), 6u);
+  // the kinds in turn, each across its cell's interior less 5 cm from each wall: 1.5 - 0.05 - 0.1
+  for (std::size_t k = 0; k < w.terrain.size(); ++k) {
+    const TerrainSpec& t = w.terrain[k];
+    EXPECT_EQ(t.kind, o.terrain[k % 3]);
+    EXPECT_NEAR(t.length, 1.35, 1e-12);
+    const auto& c = m.terrain_cells[k];
+    EXPECT_NEAR(t.pose.x, (c[0] + 0.5) * o.cell_size, 1e-9);
+    EXPECT_NEAR(t.pose.y, (c[1] + 0.5) * o.cell_size, 1e-9);
+  }
+  // no rubble piece in a terrain cell, and the world is valid (no overlaps)
+  for (const auto& r : w.rubble) {
+    const int col = static_cast<int>(std::floor(r.pose.x / o.cell_size)), row = static_cast<int>(std::floor(r.pose.y / o.cell_size));
+    for (const auto& c : m.terrain_cells) EXPECT_FALSE(c[0] == col && c[1] == row) << "rubble in terrain cell " << col << "," << row;
+  }
+  const Diagnostics problems = validate(w);
+  for (const auto& d : problems.items()) ADD_FAILURE() << d.str();
+  EXPECT_EQ(w.metadata.at("terrain"), "stepfield,curb,hurdle");
+  // the same seed, the same cells
+  EXPECT_EQ(generate_maze(o).terrain_cells, m.terrain_cells);
+}
+
+TEST(MazeTerrain, KindsThatDoNotFitACellAndTooFewFreeCellsAreErrors) {
+  MazeOptions o;
+  o.terrain_fraction = 0.1;
+  o.terrain = {TerrainSpec::Kind::stairs};
+  try {
+    generate_maze(o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("stairs does not fit in a maze cell; cells take stepfield, curb or hurdle"), std::string::npos) << e.message();
+  }
+  o.terrain = {TerrainSpec::Kind::curb};
+  o.cols = o.rows = 2;
+  o.terrain_fraction = 1.0;  // 4 cells asked, the start cell is never one
+  try {
+    generate_maze(o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("asks for 4 cells, but only 3 are free"), std::string::npos) << e.message();
   }
 }
 
