@@ -21,13 +21,18 @@ float echo_through_media(float distance, const Ray& ray, std::span<const MediumV
   const double tau = optical_depth(media, ray.origin, ray.direction, length, scratch);
   if (!(tau > 0)) return distance;
 
-  // the target's echo, out and back through tau each way
-  if (rng.uniform() < std::exp(-2.0 * tau)) return distance;
-
-  // lost: the medium may answer from where the pulse was first scattered
-  if (echo_probability > 0 && rng.uniform() < echo_probability) {
-    const double v = rng.uniform();
-    const double depth = std::min(-std::log1p(v * std::expm1(-tau)), tau * (1 - 1e-12));
+  // one uniform draw decides it all: below exp(-2 tau) the target's echo survives, out and back;
+  // above, its excess over that, rescaled to [0, 1), decides below echo_probability that the
+  // medium answers, and its excess over that, rescaled again, places the answer
+  const double u = rng.uniform();
+  const double survive = std::exp(-2.0 * tau);
+  if (u < survive) return distance;
+  const double answer = echo_probability * (1.0 - survive);
+  if (u - survive < answer) {
+    // the first scattering's optical depth, Exp(1) conditioned below tau (inverse transform):
+    // -ln(1 - v (1 - exp(-tau))), exp(-tau) being the square root of exp(-2 tau)
+    const double v = (u - survive) / answer;
+    const double depth = std::min(-std::log1p(v * (std::sqrt(survive) - 1.0)), tau * (1 - 1e-12));
     const double at = distance_at_depth(scratch, depth);
     if (std::isfinite(at)) return static_cast<float>(at);
   }

@@ -20,13 +20,14 @@ void sensor_media(const World& world, SimTime stamp, SensingBand band, std::vect
 /// What one ray's echo becomes through the media. The ray's segment runs from its origin to the
 /// surface it hit at `distance`, or to max_distance when it hit nothing (`distance` +inf); its
 /// one-way optical depth tau is exact (world/media.h). With tau = 0 (the segment misses every
-/// medium) nothing is drawn and `distance` comes back as it was; so it does for NaN. Otherwise:
-///  - the target's echo survives both ways with probability exp(-2 tau): `distance`;
-///  - else, with probability `echo_probability`, the medium returns an early echo from where the
-///    pulse was first scattered: optical depth Exp(1) conditioned to fall inside the segment
-///    (inverse transform: -ln(1 - v (1 - exp(-tau)))), mapped to a distance along the ray;
+/// medium) nothing is drawn and `distance` comes back as it was; so it does for NaN. Otherwise
+/// one uniform number u is drawn:
+///  - u < exp(-2 tau): the target's echo survives both ways: `distance`;
+///  - else, with probability `echo_probability` (the excess of u, rescaled), the medium returns an
+///    early echo from where the pulse was first scattered: optical depth Exp(1) conditioned to
+///    fall inside the segment (inverse transform: -ln(1 - v (1 - exp(-tau))), v the rest of u
+///    rescaled), mapped to a distance along the ray;
 ///  - else no return: +inf.
-/// Draws one uniform number, and two more for a lost echo when echo_probability > 0.
 float echo_through_media(float distance, const Ray& ray, std::span<const MediumVolume> media, double echo_probability, Rng& rng,
                          std::vector<MediumSegment>& scratch);
 

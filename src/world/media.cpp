@@ -94,67 +94,106 @@ void media_at(std::span<const MediumSpec> media, double t, SensingBand band, std
 
 namespace {
 
-/// The parameter range [lo, hi] of the segment [0, length] inside the slab a <= origin + s d <= b
-/// along one axis; false when it misses.
-bool clip_slab(double o, double d, double a, double b, double& lo, double& hi) {
+/// Narrows [lo, hi] to the ray parameters inside the slab a <= origin + s d <= b along one axis,
+/// with inv = 1 / d; false when it misses.
+bool clip_slab(double o, double d, double inv, double a, double b, double& lo, double& hi) {
   if (std::abs(d) < 1e-15) return o >= a && o <= b;
-  double s0 = (a - o) / d, s1 = (b - o) / d;
+  double s0 = (a - o) * inv, s1 = (b - o) * inv;
   if (s0 > s1) std::swap(s0, s1);
   lo = std::max(lo, s0);
   hi = std::min(hi, s1);
   return lo <= hi;
 }
 
-}  // namespace
-
-bool segment_meets_box(const MediumVolume& v, const Vec3& origin, const Vec3& direction, double length) {
-  double lo = 0, hi = length;
+/// Narrows [lo, hi] (from 0 and the segment's length) to the volume's bounding box.
+bool clip_box(const MediumVolume& v, const Vec3& origin, const Vec3& direction, const Vec3& inv, double& lo, double& hi) {
   for (int k = 0; k < 3; ++k) {
-    if (!clip_slab(origin[k], direction[k], v.box_min[k], v.box_max[k], lo, hi)) return false;
+    if (!clip_slab(origin[k], direction[k], inv[k], v.box_min[k], v.box_max[k], lo, hi)) return false;
   }
-  return true;
+  return lo < hi;
 }
 
-void ray_in_volume(const MediumVolume& v, const Vec3& origin, const Vec3& direction, double length,
-                   std::vector<MediumSegment>& out) {
-  // between the bottom and top planes
-  double lo = 0, hi = length;
-  if (!clip_slab(origin.z(), direction.z(), v.bottom, v.top, lo, hi) || !(lo < hi)) return;
+/// Crossings of footprints with more than 32 of them, per thread.
+std::vector<double>& overflow_crossings() {
+  thread_local std::vector<double> v;
+  return v;
+}
 
-  // a vertical ray is inside the footprint everywhere or nowhere
-  const Vec2 o(origin.x(), origin.y()), d(direction.x(), direction.y());
-  const double dd = d.squaredNorm();
-  if (dd < 1e-24) {
-    if (contains(v.outline, o, 0.0)) out.push_back({lo, hi, v.sigma});
+/// The stretches of [lo, hi] (already inside the volume's box, so between its bottom and top)
+/// where the ray is over the footprint, appended to `out`.
+void footprint_spans(const MediumVolume& v, const Vec3& origin, const Vec3& direction, double lo, double hi,
+                     std::vector<MediumSegment>& out) {
+  // a vertical ray is over the footprint everywhere or nowhere
+  const double ox = origin.x(), oy = origin.y(), dx = direction.x(), dy = direction.y();
+  if (dx * dx + dy * dy < 1e-24) {
+    if (contains(v.outline, Vec2(ox, oy), 0.0)) out.push_back({lo, hi, v.sigma});
     return;
   }
 
   // where the ray's line crosses the footprint's edges, an edge counting when its ends lie on
   // opposite sides of the line (one end on the line counts as the positive side, so a line through
   // a vertex crosses once and the crossings pair up); between the 1st and 2nd, 3rd and 4th, ... the
-  // line is inside
-  thread_local std::vector<double> cross;
-  cross.clear();
+  // line is inside. The crossing of edge a->b is at s = ((a - o) x e) / (d x e), e = b - a. Up to
+  // 32 crossings stay on the stack (a convex footprint has 2), sorted by insertion.
+  constexpr std::size_t kInline = 32;
+  double inline_cross[kInline];
+  std::vector<double>* many = nullptr;
+  double* cross = inline_cross;
+  std::size_t count = 0;
   const std::size_t n = v.outline.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 a = v.outline[i] - o, b = v.outline[(i + 1) % n] - o;
-    const double ya = d.x() * a.y() - d.y() * a.x(), yb = d.x() * b.y() - d.y() * b.x();
+    const Vec2& pa = v.outline[i];
+    const Vec2& pb = v.outline[i + 1 == n ? 0 : i + 1];
+    const double ax = pa.x() - ox, ay = pa.y() - oy, bx = pb.x() - ox, by = pb.y() - oy;
+    const double ya = dx * ay - dy * ax, yb = dx * by - dy * bx;
     if ((ya > 0) == (yb > 0)) continue;
-    const Vec2 p = a + (b - a) * (ya / (ya - yb));
-    cross.push_back(d.dot(p) / dd);
+    const double ex = bx - ax, ey = by - ay;
+    const double s = (ax * ey - ay * ex) / (dx * ey - dy * ex);
+    if (count == kInline && !many) {
+      many = &overflow_crossings();
+      many->assign(inline_cross, inline_cross + kInline);
+    }
+    if (!many) {
+      std::size_t j = count;
+      for (; j > 0 && cross[j - 1] > s; --j) cross[j] = cross[j - 1];
+      cross[j] = s;
+    } else {
+      many->push_back(s);
+    }
+    ++count;
   }
-  std::sort(cross.begin(), cross.end());
-  for (std::size_t k = 0; k + 1 < cross.size(); k += 2) {
+  if (many) {
+    std::sort(many->begin(), many->end());
+    cross = many->data();
+  }
+  for (std::size_t k = 0; k + 1 < count; k += 2) {
     const double enter = std::max(lo, cross[k]), leave = std::min(hi, cross[k + 1]);
     if (enter < leave) out.push_back({enter, leave, v.sigma});
   }
 }
 
+Vec3 inverse(const Vec3& d) { return {1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z()}; }
+
+}  // namespace
+
+bool segment_meets_box(const MediumVolume& v, const Vec3& origin, const Vec3& direction, double length) {
+  double lo = 0, hi = length;
+  return clip_box(v, origin, direction, inverse(direction), lo, hi);
+}
+
+void ray_in_volume(const MediumVolume& v, const Vec3& origin, const Vec3& direction, double length,
+                   std::vector<MediumSegment>& out) {
+  double lo = 0, hi = length;
+  if (clip_box(v, origin, direction, inverse(direction), lo, hi)) footprint_spans(v, origin, direction, lo, hi, out);
+}
+
 double optical_depth(std::span<const MediumVolume> volumes, const Vec3& origin, const Vec3& direction, double length,
                      std::vector<MediumSegment>& segments) {
   segments.clear();
+  const Vec3 inv = inverse(direction);
   for (const MediumVolume& v : volumes) {
-    if (segment_meets_box(v, origin, direction, length)) ray_in_volume(v, origin, direction, length, segments);
+    double lo = 0, hi = length;
+    if (clip_box(v, origin, direction, inv, lo, hi)) footprint_spans(v, origin, direction, lo, hi, segments);
   }
   double tau = 0;
   for (const MediumSegment& s : segments) tau += s.sigma * (s.leave - s.enter);
