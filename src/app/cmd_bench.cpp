@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "app/bench_batch.h"
 #include "app/bench_child.h"
+#include "app/bench_figures.h"
 #include "app/bench_reset.h"
 #include "app/bench_ros.h"
 #include "app/bench_soak.h"
@@ -62,6 +64,7 @@ struct BenchOptions {
   std::string mission_scenario = "worlds/team.yaml";  ///< the mission figures' scenario
   bool mission_only = false;    ///< only the mission figures
   bool reset_only = false;      ///< only the reset figure (bench_reset.h)
+  bool lidar_only = false;      ///< only the lidar figures (rays, the laser sampler, the laser in smoke)
   BenchRosOptions ros_options;
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
   double soak_hours = 10;       ///< sim hours of the soak run
@@ -137,6 +140,43 @@ json bench_rays(const World& world, double seconds) {
   j["laser_scans_per_s"] = rate;
   j["laser_beams"] = laser.lidar.samples;
   j["laser_rays_per_s_end_to_end"] = rate * laser.lidar.samples;
+
+  // the same laser in smoke (docs/environment.md), two ways: a slab of 0.8 /m smoke 1.5 m thick
+  // across the laser's view 2 m ahead (as in worlds/smoke_corridor), the beams that miss it paying
+  // one box test; and the worst case, every beam starting inside 0.5 /m smoke 8 x 8 m around the
+  // robot, each paying its optical depth, a draw and, when lost, its early echo
+  const Vec2 c = origin.head<2>();
+  const Vec2 ahead = world.robots[0].X_W_start.q.toRotationMatrix().col(0).head<2>().normalized();
+  const Vec2 side(-ahead.y(), ahead.x());
+  const auto laser_in = [&](const Polygon2& outline, double density) {
+    World smoky = world;
+    MediumSpec smoke;
+    smoke.name = "bench_smoke";
+    smoke.outline = outline;
+    if (signed_area(smoke.outline) < 0) std::reverse(smoke.outline.begin(), smoke.outline.end());
+    smoke.density = density;
+    smoke.height = 2.0;
+    smoky.media.push_back(smoke);
+    RayScene smoky_scene(smoky);
+    smoky_scene.update(s);
+    int smoky_scans = 0;
+    const auto t1 = Clock::now();
+    while (since(t1) < seconds) {
+      for (int k = 0; k < 50; ++k) sample_lidar(smoky, s, smoky_scene, 0, laser, SimTime{}, rng);
+      smoky_scans += 50;
+    }
+    return smoky_scans / since(t1) * laser.lidar.samples;
+  };
+  const Polygon2 slab = {c + 2.0 * ahead - 2.0 * side, c + 3.5 * ahead - 2.0 * side, c + 3.5 * ahead + 2.0 * side,
+                         c + 2.0 * ahead + 2.0 * side};
+  const Polygon2 around = {c + Vec2(-4, -4), c + Vec2(4, -4), c + Vec2(4, 4), c + Vec2(-4, 4)};
+  const double clear = rate * laser.lidar.samples;
+  j["laser_in_smoke"] = figure(laser_in(slab, 0.8), "rays/s", clear,
+                               "the same laser sampler without smoke (laser_rays_per_s_end_to_end); smoke: a 1.5 x 4 m slab of 0.8 /m, 2 m ahead",
+                               0.8);
+  j["laser_all_in_smoke"] = ratio_figure(laser_in(around, 0.5), "rays/s", clear,
+                                         "the same laser sampler without smoke; smoke: 0.5 /m, 8 x 8 m around the robot, every beam inside "
+                                         "(the worst case)");
   return j;
 }
 
@@ -321,6 +361,10 @@ int run_bench(const BenchOptions& given) {
     report["reset"] = bench_reset(def, models);
     return print_report(report);
   }
+  if (o.lidar_only) {
+    report["lidar"] = bench_rays(world, o.seconds);
+    return print_report(report);
+  }
   if (o.urdf_only) {
     report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
                                 [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
@@ -403,7 +447,8 @@ void add_bench_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("bench", "Measure speed and memory, each figure beside a raw baseline from the same run");
   cmd->footer(
       "Prints a JSON report: physics steps/s beside a bare Bullet loop of the same world; lidar\n"
-      "rays/s beside bare Embree rtcIntersect16 on the same triangles; the default scenario's\n"
+      "rays/s beside bare Embree rtcIntersect16 on the same triangles, and the laser in smoke\n"
+      "(lidar.laser_in_smoke) beside the same laser in clear air (target >= 0.8x); the default scenario's\n"
       "real-time factor and peak memory (run in a child process); and a 300-rubble maze.\n"
       "Targets (2-core machine): physics >= 0.8x bare, lidar >= 0.7x bare, default >= 30x real\n"
       "time, 300 rubble >= 10x real time. MCAP recording (mcap_recording): the default run's real-time\n"
@@ -447,6 +492,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--sdf-resource-path", o->sdf_resource_paths, "where the SDF world's model:// URIs are looked for first")
       ->capture_default_str();
   cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
+  cmd->add_flag("--lidar-only", o->lidar_only, "measure only the lidar figures (rays beside bare Embree, the laser sampler, the laser in smoke)");
   cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
       ->capture_default_str();
   cmd->add_option("--ros-latency-time", o->ros_options.latency_seconds, "wall seconds of each realtime ROS latency run")

@@ -30,6 +30,15 @@ std::string world_summary(const WorldSpec& w) {
     for (const auto& t : w.terrain) s += std::string(" ") + TerrainSpec::kind_name(t.kind) + " '" + t.name + "'";
     s += "\n";
   }
+  if (!w.media.empty()) {
+    s += "  smoke, dust   " + std::to_string(w.media.size()) + "\n";
+    for (const auto& m : w.media) {
+      std::snprintf(buf, sizeof buf, "    %s '%s': %.3g /m (visibility %.3g m), %.3g-%.3g m up%s\n", MediumSpec::kind_name(m.kind),
+                    m.name.c_str(), m.density, m.density > 0 ? 3.0 / m.density : INFINITY, m.bottom, m.bottom + m.height,
+                    m.growth != 0 || m.drift != Vec2::Zero() ? ", growing or drifting" : "");
+      s += buf;
+    }
+  }
   std::snprintf(buf, sizeof buf, "  victims       %zu (%d lying, %zu sitting)\n", w.victims.size(), lying, w.victims.size() - lying);
   s += buf;
   std::snprintf(buf, sizeof buf, "  rubble        %zu\n", w.rubble.size());

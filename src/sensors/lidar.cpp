@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "sensors/media_echo.h"
 #include "sensors/noise.h"
 
 namespace rescuesim {
@@ -21,6 +22,8 @@ static_assert(std::endian::native == std::endian::little, "PointCloud2 data is w
 struct Buffers {
   std::vector<Ray> rays;
   std::vector<RayHit> hits;
+  std::vector<MediumVolume> media;
+  std::vector<MediumSegment> segments;
   void resize(std::size_t n) {
     rays.resize(n);
     hits.resize(n);
@@ -84,6 +87,16 @@ std::vector<double> layer_elevations(const LidarSpec& l) {
   return e;
 }
 
+/// Smoke and dust on the first n rays (media_echo.h), in ray order from the lidar's stream; no
+/// work at all in a world without media.
+void lidar_through_media(const World& world, SimTime stamp, Buffers& b, std::size_t n, Rng& rng) {
+  if (world.media.empty()) return;
+  sensor_media(world, stamp, SensingBand::near_infrared, b.media);
+  if (b.media.empty()) return;
+  const double echo = medium_echo_probability(SensingBand::near_infrared);
+  for (std::size_t i = 0; i < n; ++i) b.hits[i].distance = echo_through_media(b.hits[i].distance, b.rays[i], b.media, echo, rng, b.segments);
+}
+
 void check_robot(const World& world, const State& state, int robot, const char* who) {
   RS_DEMAND(robot >= 0 && static_cast<std::size_t>(robot) < world.robots.size() && static_cast<std::size_t>(robot) < state.robots.size(),
             who);
@@ -123,6 +136,7 @@ msg::LaserScan sample_lidar(const World& world, const State& state, const RaySce
   static constexpr double kPlane[1] = {0.0};
   lidar_rays(X_WS, l, kPlane, b.rays);
   scene.cast(std::span<const Ray>(b.rays.data(), n), std::span<RayHit>(b.hits.data(), n), robot);
+  lidar_through_media(world, stamp, b, n, rng);
 
   msg::LaserScan scan;
   scan.header.stamp = stamp;
@@ -154,6 +168,7 @@ msg::PointCloud2 sample_lidar_cloud(const World& world, const State& state, cons
   b.resize(n);
   lidar_rays(X_WS, l, elevations, b.rays);
   scene.cast(std::span<const Ray>(b.rays.data(), n), std::span<RayHit>(b.hits.data(), n), robot);
+  lidar_through_media(world, stamp, b, n, rng);
 
   msg::PointCloud2 cloud;
   cloud.header.stamp = stamp;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sensors/lidar.h"
+#include "sensors/media_echo.h"
 
 namespace rescuesim {
 
@@ -44,6 +45,23 @@ msg::Range sample_sonar(const World& world, const State& state, const RayScene& 
   for (std::size_t i = 0; i < directions.size(); ++i) rays[i] = Ray{X_WS.p, R_WS * directions[i], static_cast<float>(s.max_range)};
   scene.cast(rays, hits, robot);
 
+  // smoke and dust, ray by ray from the sonar's stream (none in a world without media): a ray
+  // whose echo the medium absorbs hears nothing; an echo from the medium itself comes head-on
+  thread_local std::vector<MediumVolume> media;
+  thread_local std::vector<MediumSegment> segments;
+  sensor_media(world, stamp, SensingBand::ultrasound, media);
+  float medium_echo = INFINITY;
+  if (!media.empty()) {
+    const double p_echo = medium_echo_probability(SensingBand::ultrasound);
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      const float d = echo_through_media(hits[i].distance, rays[i], media, p_echo, rng, segments);
+      if (d == hits[i].distance || std::isnan(d)) continue;
+      hits[i].source = RayHit::Source::none;
+      hits[i].distance = INFINITY;
+      medium_echo = std::min(medium_echo, d);
+    }
+  }
+
   // nearest echo among the returns met steeply enough (specular loss at grazing incidence)
   float nearest = INFINITY;
   for (std::size_t i = 0; i < hits.size(); ++i) {
@@ -56,6 +74,7 @@ msg::Range sample_sonar(const World& world, const State& state, const RayScene& 
     const double incidence = std::acos(std::clamp(-h.normal.dot(rays[i].direction), -1.0, 1.0));
     if (incidence <= s.max_incidence) nearest = std::min(nearest, h.distance);
   }
+  if (!std::isnan(nearest)) nearest = std::min(nearest, medium_echo);
 
   msg::Range range;
   range.header.stamp = stamp;

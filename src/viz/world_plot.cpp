@@ -35,6 +35,7 @@ constexpr Rgb8 kRamp{235, 147, 147};
 constexpr Rgb8 kRubble{255, 127, 14};
 constexpr Rgb8 kVictim{31, 119, 180};
 constexpr Rgb8 kStart{44, 160, 44};
+constexpr Rgb8 kMedium{110, 110, 110};
 constexpr Rgb8 kText{0, 0, 0};
 constexpr Rgb8 kLegendText{51, 51, 51};
 
@@ -287,6 +288,15 @@ void draw_map(Canvas& canvas, const PlotFrame& f, const WorldSpec& world, bool g
     const double head_r = std::min(0.1, 0.25 * v.width);
     const Vec2 head = v.pose.transform({0.5 * along - 1.2 * head_r, 0});
     canvas.fill_circle(f.to_px(head), std::max(head_r * ppm, 1.0), kPage);
+  }
+
+  // smoke and dust: their footprint at the start, a translucent grey over what lies beneath
+  // (denser media darker, up to 60 % cover from 1/m), with a grey edge
+  for (const auto& m : world.media) {
+    if (m.outline.size() < 3) continue;
+    const auto px = to_px(f, m.outline);
+    canvas.fill_polygon(px, kMedium, std::clamp(0.2 + 0.4 * m.density, 0.2, 0.6));
+    canvas.polyline(px, kMedium, 1.0, true, 0.8);
   }
 
   // robot starts: a green disc (at least 3 px, so small plots still show it) with a white

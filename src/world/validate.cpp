@@ -52,6 +52,7 @@ class Validator {
     for (std::size_t i = 0; i < w_.solids.size(); ++i) check_solid(w_.solids[i], i);
     for (std::size_t i = 0; i < w_.terrain.size(); ++i) check_terrain(i);
     for (std::size_t i = 0; i < w_.bodies.size(); ++i) check_body(w_.bodies[i], i);
+    for (std::size_t i = 0; i < w_.media.size(); ++i) check_medium(w_.media[i], i);
     check_robots();
     if (w_.walls.empty() && w_.blocks.empty() && w_.raised_areas.empty() && w_.rubble.empty() && w_.victims.empty() &&
         w_.solids.empty() && w_.bodies.empty() && w_.terrain.empty()) {
@@ -282,6 +283,27 @@ class Validator {
                             "; terrain elements must not overlap (expected footprints side by side)");
       }
     }
+  }
+
+  /// A smoke or dust volume: a footprint with area, a density (visible extinction) that is a
+  /// number 0 or more, a positive height, a growth 0 or more, finite drift.
+  void check_medium(const MediumSpec& m, std::size_t i) {
+    const std::string what = std::string(MediumSpec::kind_name(m.kind)) + " '" + m.name + "' (" + std::to_string(i) + ")";
+    const SourceRef where = ref(m.source, what);
+    if (m.outline.size() < 3) {
+      d_.error(where, "footprint has " + std::to_string(m.outline.size()) + " points; expected a polygon of at least 3");
+    } else if (!finite(m.outline)) {
+      d_.error(where, "footprint has a point that is not a finite number");
+    } else if (!(std::abs(signed_area(m.outline)) > 1e-12)) {
+      d_.error(where, "footprint has no area; expected a polygon of at least 3 points not on one line");
+    }
+    if (!std::isfinite(m.density) || m.density < 0) {
+      d_.error(where, "density " + num(m.density) + " is not an extinction coefficient: expected a finite number of 1/m, 0 or more");
+    }
+    if (!std::isfinite(m.bottom) || m.bottom < 0) d_.error(where, "bottom " + num(m.bottom) + " m is not a height of 0 or more");
+    if (!std::isfinite(m.height) || !(m.height > 0)) d_.error(where, "height " + num(m.height) + " m is not positive");
+    if (!std::isfinite(m.growth) || m.growth < 0) d_.error(where, "growth " + num(m.growth) + " m/s is not 0 or more (a footprint only grows)");
+    if (!finite(m.drift)) d_.error(where, "drift is not a finite velocity");
   }
 
   void check_body(const BodySpec& b, std::size_t i) {

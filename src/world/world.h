@@ -67,6 +67,7 @@ struct World {
   std::vector<Victim> victims;
   std::vector<RobotInstance> robots;
   std::vector<LightSpec> lights;
+  std::vector<MediumSpec> media;       ///< smoke and dust (world/media.h); empty: clear air, and no sensor pays for media
   std::uint64_t world_seed = 0;        ///< of a generated world
 
   /// Index of a material by name; throws Error when it is missing.

@@ -100,6 +100,29 @@ struct TerrainSpec {
   Polygon2 outline() const;
 };
 
+/// A volume of smoke or dust (docs/environment.md): a footprint polygon extruded from `bottom`
+/// to `bottom + height`, filled with particles that scatter and absorb. `density` is the
+/// extinction coefficient for visible light (1/m): light crossing L metres of it keeps
+/// exp(-density * L) of its power, and the eye sees about 3 / density metres (Koschmieder's
+/// visibility). The other sensing bands' coefficients follow from it (world/media.h). The
+/// footprint may grow outward and drift with sim time t: at t its edges have moved out by
+/// growth * t and the whole has moved by drift * t (a pure function of t).
+struct MediumSpec {
+  enum class Kind { smoke, dust };
+  Kind kind = Kind::smoke;
+  std::string name;
+  Polygon2 outline;             ///< footprint at t = 0, counter-clockwise, m
+  double density = 0.5;         ///< visible-light extinction coefficient (1/m)
+  double bottom = 0;            ///< m above the floor
+  double height = 2.0;          ///< m, from bottom up
+  double growth = 0;            ///< m/s each edge moves outward
+  Vec2 drift = Vec2::Zero();    ///< m/s the footprint moves
+  SourceRef source;
+
+  /// The kind's name in files ("smoke", "dust").
+  static const char* kind_name(Kind kind);
+};
+
 /// A victim lying or sitting on the floor; the thermal camera sees skin warmer than clothes.
 struct VictimSpec {
   enum class Posture { lying, sitting };
@@ -189,6 +212,7 @@ struct WorldSpec {
   std::vector<RobotPlacement> robots;
   std::vector<SolidSpec> solids;    ///< fixed 3-D solids (from SDF)
   std::vector<BodySpec> bodies;     ///< loose rigid bodies (from SDF)
+  std::vector<MediumSpec> media;    ///< smoke and dust volumes (no solids; only what sensors see through)
   std::map<std::string, std::string> metadata;  ///< generator parameters and the like
 
   /// The material with this name, or nullptr.

@@ -74,6 +74,28 @@ TEST(WorldPlot, ObjectsHaveTheirColours) {
   EXPECT_EQ(at_world(c, f, {3.5, 2.5}), kFloor);
 }
 
+TEST(WorldPlot, SmokeIsATranslucentGreyOverWhatLiesBeneath) {
+  // smoke of 1 /m covers 60 % in grey (110, 110, 110): over the floor (250) that is
+  // 250 + 0.6 * (110 - 250) = 166; over the victim the blue still shows through
+  WorldSpec w = small_world();
+  MediumSpec m;
+  m.name = "smoke";
+  m.density = 1.0;
+  m.outline = {{1.5, 1.5}, {3.5, 1.5}, {3.5, 3.5}, {1.5, 3.5}};
+  w.media.push_back(m);
+  WorldPlotOptions o;
+  const PlotFrame f = plot_frame_for(w, o);
+  const Canvas c = plot_world(w, o);
+  const Rgb8 grey = at_world(c, f, {3.2, 2.2});
+  EXPECT_EQ(grey.r, grey.g);
+  EXPECT_EQ(grey.g, grey.b);
+  EXPECT_NEAR(grey.r, 166, 2);
+  const Rgb8 victim = at_world(c, f, {2, 3});
+  EXPECT_NE(victim, kBlue);
+  EXPECT_GT(victim.b, victim.r + 20);
+  EXPECT_EQ(at_world(c, f, {0.5, 4.5}), kFloor);  // outside it, the floor as before
+}
+
 TEST(WorldPlot, VictimHeadDotIsAtTheHeadEnd) {
   WorldSpec w = small_world();
   w.victims[0].pose.yaw = M_PI / 2;  // head to the north

@@ -1,6 +1,7 @@
 #include "world/scenario/scenario.h"
 #include "world/terrain.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -127,6 +128,51 @@ std::vector<SdfInclude> read_includes(const YamlNode& w, const std::string& file
   return out;
 }
 
+/// world.media: smoke and dust volumes, each {kind: smoke|dust, name, outline: [[x, y], ...] (m),
+/// density (visible extinction, 1/m), bottom, height (m), growth (m/s), drift: [vx, vy] (m/s)}.
+std::vector<MediumSpec> read_media(const YamlNode& w, const std::string& file) {
+  std::vector<MediumSpec> out;
+  if (!w.has("media")) return out;
+  if (!w.has_sequence("media")) throw Error(w.where("media"), "expected a list of {kind, outline, density, ...} maps (docs/environment.md)");
+  const auto items = w.sequence("media");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const YamlNode& n = items[i];
+    if (!n.is_map()) throw Error(n.where(), "expected a map {kind, outline, density, ...} (docs/environment.md)");
+    MediumSpec m;
+    m.source = n.where();
+    if (m.source.file.empty()) m.source.file = file;
+    m.kind = n.choice("kind", "smoke", {"smoke", "dust"}) == "dust" ? MediumSpec::Kind::dust : MediumSpec::Kind::smoke;
+    m.name = n.string("name", std::string(MediumSpec::kind_name(m.kind)) + "_" + std::to_string(i + 1));
+    m.density = n.required_number("density", 0, 1e6);
+    m.bottom = n.number("bottom", 0, 0, 1e4);
+    m.height = n.number("height", m.height, 1e-6, 1e4);
+    m.growth = n.number("growth", 0, 0, 1e3);
+    const std::vector<double> drift = n.numbers("drift", {0, 0}, 2);
+    m.drift = {drift[0], drift[1]};
+    if (!n.has_sequence("outline")) throw Error(n.where("outline"), "expected the footprint as a list of at least 3 [x, y] points (m)");
+    for (const YamlNode& p : n.sequence("outline")) {
+      const std::vector<YamlNode> xy = p.is_sequence() ? p.items() : std::vector<YamlNode>{};
+      double v[2] = {0, 0};
+      bool ok = xy.size() == 2;
+      for (std::size_t k = 0; ok && k < 2; ++k) {
+        const std::string text = xy[k].is_sequence() || xy[k].is_map() ? std::string() : xy[k].scalar();
+        char* end = nullptr;
+        v[k] = std::strtod(text.c_str(), &end);
+        ok = !text.empty() && end && *end == 0 && std::isfinite(v[k]);
+      }
+      if (!ok) throw Error(p.where(), "expected a point [x, y] of two finite numbers (m)");
+      m.outline.push_back({v[0], v[1]});
+    }
+    if (m.outline.size() < 3) {
+      throw Error(n.where("outline"), "the footprint has " + std::to_string(m.outline.size()) + " points; expected at least 3 [x, y] points (m)");
+    }
+    if (signed_area(m.outline) < 0) std::reverse(m.outline.begin(), m.outline.end());
+    n.finish();
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 /// Adds what a scenario's SDF models bring (solids, bodies, their victims and robot starts,
 /// materials) to a drawn or generated world, and grows the floor to cover them.
 void add_models(WorldSpec& w, const WorldSpec& models) {
@@ -191,6 +237,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   }
   for (const auto& p : root.strings("resource_paths", {})) s.resource_paths.push_back(beside_scenario(p));
   s.includes = read_includes(w, on_disk ? file : "");
+  s.media = read_media(w, on_disk ? file : "");
   w.finish();
   s.physics_dt_given = dt_given;
   // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
@@ -250,6 +297,7 @@ WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
     }
   }
   w.ambient_temperature = scenario.svg_options.ambient_temperature;
+  w.media.insert(w.media.end(), scenario.media.begin(), scenario.media.end());
   // the scenario's robots take the world's starts in order, unless they bring their own
   if (!scenario.robots.empty()) {
     std::vector<RobotPlacement> placed;

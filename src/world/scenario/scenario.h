@@ -58,6 +58,8 @@ struct Scenario {
   /// scenario is parsed (so that `check` reports their errors), added to the world by build_world.
   std::vector<SdfInclude> includes;
   std::shared_ptr<const SdfWorld> models;    ///< null when the scenario has neither sdf nor include
+  /// Smoke and dust added to the world (world.media; docs/environment.md), whatever its source.
+  std::vector<MediumSpec> media;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
 
   /// Folders where package:// URIs are looked for first (relative entries are taken from the

@@ -55,7 +55,7 @@ Meaning meaning_of(const Shape& s) {
         return m;
       }
     }
-    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble, ignore, or terrain: stepfield, stairs, crossing-ramps, curb, hurdle or gap");
+    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble, ignore, terrain: stepfield, stairs, crossing-ramps, curb, hurdle or gap, or a medium: smoke or dust");
   }
   if (has_fill) {
     m.color = s.style.fill.rgb;
@@ -343,6 +343,64 @@ void add_terrain(const Shape& s, TerrainSpec::Kind kind, WorldSpec& world) {
   world.terrain.push_back(std::move(t));
 }
 
+/// The medium kind an element's data-kind names, if it names one.
+std::optional<MediumSpec::Kind> medium_kind(const Shape& s) {
+  const std::string* k = data(s, "kind");
+  if (!k) return std::nullopt;
+  for (MediumSpec::Kind kind : {MediumSpec::Kind::smoke, MediumSpec::Kind::dust}) {
+    if (*k == MediumSpec::kind_name(kind)) return kind;
+  }
+  return std::nullopt;
+}
+
+/// A finite number from a data-* attribute that must not be negative.
+double data_not_negative(const Shape& s, const std::string& key, double fallback, const char* expected) {
+  const double x = data_number(s, key, fallback);
+  if (!std::isfinite(x) || x < 0) {
+    throw Error(attr_ref(s, key), "'" + *data(s, key) + "' is not " + expected);
+  }
+  return x;
+}
+
+/// A smoke or dust volume drawn as its footprint (docs/environment.md): one medium per closed
+/// outline, with data-density (visible extinction, 1/m), data-bottom and data-height (m),
+/// data-growth (m/s outward) and data-drift-x, data-drift-y (m/s).
+void add_medium(const Shape& s, MediumSpec::Kind kind, const SvgLoadOptions& o, WorldSpec& world, Diagnostics& diag) {
+  const char* what = MediumSpec::kind_name(kind);
+  MediumSpec m;
+  m.kind = kind;
+  m.source = s.source;
+  if (!data(s, "density")) {
+    throw Error(s.source, std::string("a ") + what + " volume needs data-density: its extinction coefficient for visible light in 1/m (about 3 / the visibility in m)");
+  }
+  m.density = data_not_negative(s, "density", 0, "an extinction coefficient: a finite number of 1/m, 0 or more (about 3 / the visibility in m)");
+  m.bottom = data_metres(s, "bottom", 0.0, true);
+  m.height = data_metres(s, "height", o.wall_height);
+  m.growth = data_not_negative(s, "growth", 0, "a growth rate: a finite number of m/s, 0 or more");
+  m.drift = {data_number(s, "drift-x", 0), data_number(s, "drift-y", 0)};
+  for (const char* key : {"drift-x", "drift-y"}) {
+    if (!std::isfinite(data_number(s, key, 0))) throw Error(attr_ref(s, key), "'" + *data(s, key) + "' is not a finite speed in m/s");
+  }
+  std::size_t points = 0;
+  for (const auto& sp : s.subpaths) points = std::max(points, sp.points.size());
+  std::vector<Polygon2> polys;
+  if (points >= 3) polys = outlines(s, diag);
+  if (polys.empty()) {
+    throw Error(s.source, std::string("a ") + what + " footprint needs an area: a rect, or a polygon or closed path of at least 3 points not on one line (it has " +
+                              std::to_string(points) + (points == 1 ? " point)" : " points)"));
+  }
+  std::string base;
+  if (const std::string* n = data(s, "name")) base = *n;
+  else if (!s.id.empty()) base = s.id;
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    MediumSpec piece = m;
+    piece.outline = std::move(polys[i]);
+    piece.name = base.empty() ? std::string(what) + "_" + std::to_string(world.media.size() + 1)
+                              : (polys.size() > 1 ? base + "_" + std::to_string(i + 1) : base);
+    world.media.push_back(std::move(piece));
+  }
+}
+
 struct Start {
   RobotPlacement placement;
   double radius = 0;
@@ -431,6 +489,10 @@ void build_world(const std::vector<Shape>& shapes, const SvgLoadOptions& o, Worl
   for (const Shape& s : shapes) {
     if (const auto kind = terrain_kind(s)) {
       add_terrain(s, *kind, world);
+      continue;
+    }
+    if (const auto kind = medium_kind(s)) {
+      add_medium(s, *kind, o, world, diag);
       continue;
     }
     const Meaning m = meaning_of(s);

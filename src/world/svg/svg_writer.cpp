@@ -73,7 +73,7 @@ std::string world_to_svg(const WorldSpec& w) {
   std::string o;
   o += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   o += "<!-- rescuesim world: black = walls/obstacles, red = raised areas, blue = victims, green = robot starts,\n"
-       "     orange = rubble; 1 user unit = 1 cm. See docs/worlds.md. -->\n";
+       "     orange = rubble, grey = smoke and dust (data-kind); 1 user unit = 1 cm. See docs/worlds.md. -->\n";
   o += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + Map::len(size.x()) + "cm\" height=\"" + Map::len(size.y()) +
        "cm\" viewBox=\"0 0 " + Map::len(size.x()) + " " + Map::len(size.y()) + "\"";
   if (w.floor_min != Vec2::Zero()) o += " data-origin=\"" + num(w.floor_min.x(), 6) + " " + num(w.floor_min.y(), 6) + "\"";
@@ -107,6 +107,18 @@ std::string world_to_svg(const WorldSpec& w) {
          num(t.post, 9) + "\" data-pattern=\"" + (t.half_cubic ? "half-cubic" : "full-cubic") + "\" data-riser=\"" + num(t.riser, 9) +
          "\" data-angle=\"" + num(t.angle, 9) + "\" data-gap=\"" + num(t.gap, 9) + "\" data-thickness=\"" + num(t.thickness, 9) +
          "\" data-seed=\"" + std::to_string(t.seed) + "\"" + material_attr(t.material, "raised") + "/>\n";
+  }
+  o += "  </g>\n";
+
+  // smoke and dust: the footprint at t = 0 and every parameter, translucent grey
+  o += "  <g id=\"media\" fill=\"#808080\" fill-opacity=\"0.35\" stroke=\"none\">\n";
+  for (const auto& m : w.media) {
+    o += "    <polygon points=\"" + points(map, m.outline) + "\" data-kind=\"" + MediumSpec::kind_name(m.kind) + "\" data-name=\"" +
+         escape(m.name) + "\" data-density=\"" + num(m.density, 9) + "\" data-bottom=\"" + num(m.bottom, 9) + "\" data-height=\"" +
+         num(m.height, 9) + "\"";
+    if (m.growth != 0) o += " data-growth=\"" + num(m.growth, 9) + "\"";
+    if (m.drift != Vec2::Zero()) o += " data-drift-x=\"" + num(m.drift.x(), 9) + "\" data-drift-y=\"" + num(m.drift.y(), 9) + "\"";
+    o += "/>\n";
   }
   o += "  </g>\n";
 
