@@ -108,6 +108,7 @@ RobotSpec tracked_robot() {
     fj.max_velocity = 1.5;
     fj.control = JointSpec::Control::position;
     fj.kp = 8.0;
+    fj.initial = -170 * deg;  // stowed: folded back over the track, tips up, within its length
     r.joints.push_back(fj);
     r.flipper_joints.push_back(fj.name);
   }
