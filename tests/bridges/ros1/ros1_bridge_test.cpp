@@ -238,7 +238,7 @@ TEST_F(Ros1Run, FlipperCommandsFromRostopicMoveTheTrackedRobotsFlippers) {
   auto short_cmd = master_->spawn({"rostopic", "pub", "-r", "10", "/flippers/command", "std_msgs/Float64MultiArray", "{data: [0.5]}"});
   EXPECT_TRUE(sim_.says("rejected a command on /flippers/command: 1 positions, expected 2", kPatience)) << sim_.output();
   short_cmd->interrupt();
-  EXPECT_NEAR(flipper("left_flipper_joint"), 0.0, 0.02);
+  EXPECT_NEAR(flipper("left_flipper_joint"), -170 * M_PI / 180, 0.02);  // stowed
   auto cmd = master_->spawn({"rostopic", "pub", "-r", "10", "/flippers/command", "std_msgs/Float64MultiArray", "{data: [-0.5, -0.3]}"});
   // both tips up, in the air: each flipper stands at its own target
   EXPECT_TRUE(wait_until([&] { return std::abs(flipper("left_flipper_joint") + 0.5) < 0.02 && std::abs(flipper("right_flipper_joint") + 0.3) < 0.02; },
