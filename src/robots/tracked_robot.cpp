@@ -13,8 +13,8 @@ using namespace robot_parts;
 constexpr double deg = kDeg;
 
 /// Lateral friction of a track relative to its longitudinal friction: a track's grousers bite
-/// along its length, and it slides sideways more easily, which lets it turn in place (field
-/// measurements of tracked vehicles give about 0.5–0.9 of the longitudinal coefficient).
+/// along its length and it slides sideways more easily, which lets it turn in place. A stated
+/// choice, not a measurement: with 1.0 it still turns, but only with the yaw-rate loop's help.
 constexpr double kTrackSideFriction = 0.5;
 
 /// A belt's outline in the x-z plane: the convex hull of a circle of radius r0 at the origin and
