@@ -138,6 +138,33 @@ TEST(Simulation, OdometryMatchesGroundTruthOnFlatFloor) {
   EXPECT_NEAR(wrap_angle(truth.yaw - odom.yaw), 0.0, 0.03);
 }
 
+TEST(Simulation, TrackOdometrySlipsInTurnsMoreThanWheelOdometry) {
+  // the same drive as above for both robots: odometry from the sprockets' speeds counts what
+  // the belts move, and a skid-steered track slides sideways along its whole length in a turn
+  double error[2] = {0, 0};
+  int k = 0;
+  for (const char* model : {"rescue_robot", "tracked_robot"}) {
+    WorldSpec w = room_spec(30.0);
+    w.robots[0].model = model;
+    Simulation sim = make_sim(w);
+    drive(sim, 0.5, 0.0, 6.0);
+    drive(sim, 0.4, 0.3, 6.0);
+    drive(sim, 0.0, -0.6, 3.0);
+    drive(sim, 0.5, 0.0, 4.0);
+    const Pose2 truth = truth_from_start(sim), odom = sim.state().robots[0].odom;
+    const double travelled = sim.state().robots[0].distance;
+    error[k] = (truth.position() - odom.position()).norm() / travelled;
+    std::printf("%s: odometry off by %.3f m over %.2f m (%.1f %%), heading off by %.3f rad\n", model,
+                (truth.position() - odom.position()).norm(), travelled, 100 * error[k], wrap_angle(truth.yaw - odom.yaw));
+    EXPECT_GT(travelled, 6.0);
+    EXPECT_NEAR(wrap_angle(truth.yaw - odom.yaw), 0.0, 0.05);  // the heading comes from the gyro
+    ++k;
+  }
+  EXPECT_LT(error[0], 0.02);
+  EXPECT_GT(error[1], error[0]);
+  EXPECT_LT(error[1], 0.10);
+}
+
 TEST(Simulation, OdometryOverestimatesWhenWheelsSlipOnASteepSlope) {
   // a 21 degree ramp (0.3 m over 0.8 m) of a slippery material: tan 21 = 0.38 is more than the
   // 0.3 x 1.0 friction of wheel on ramp, so the wheels spin and the robot hardly climbs
