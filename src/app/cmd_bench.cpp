@@ -397,6 +397,19 @@ int run_bench(const BenchOptions& given) {
   d["target_real_time_factor"] = 30;
   d["meets_target"] = d.value("real_time_factor", 0.0) >= 30;
   report["default_scenario"] = d;
+  std::fprintf(stderr, "bench: default scenario with the tracked robot, no cameras ...\n");
+  Scenario tracked = def;
+  for (auto& rc : tracked.robots) {
+    rc.model = "tracked_robot";
+    rc.spec = models.at("tracked_robot");
+  }
+  json t = run_child(tracked, models, false);
+  const double wheeled_rtf = d.value("real_time_factor", 0.0);
+  t["baseline"] = "the default scenario with the wheeled rescue robot, this run (default_scenario)";
+  t["ratio_to_wheeled"] = wheeled_rtf > 0 ? t.value("real_time_factor", 0.0) / wheeled_rtf : 0.0;
+  t["target_ratio"] = 0.5;  // within 2x of the wheeled robot (issue 18)
+  t["meets_target"] = t.value("ratio_to_wheeled", 0.0) >= 0.5;
+  report["default_scenario_tracked"] = t;
   std::fprintf(stderr, "bench: 300 rubble bodies ...\n");
   Scenario heavy = def;
   heavy.maze->rubble = 300;
