@@ -344,7 +344,7 @@ struct Physics::Impl {
       }
       if (compound->getNumChildShapes() == 0) continue;
       auto col = std::make_unique<btMultiBodyLinkCollider>(body.mb, body.bt_link[l]);
-      if (auto belts = belts_of(ls, body); !belts->empty()) {
+      if (auto belts = belts_of(body, l); !belts->empty()) {
         col->setUserPointer(belts.get());
         body.belts.push_back(std::move(belts));
         for (auto& g : groups) g->solver.belts = true;
@@ -368,12 +368,12 @@ struct Physics::Impl {
     sync_colliders(robots.back());
   }
 
-  /// The belts over a body's colliding shapes, numbered as its compound's children.
-  static std::unique_ptr<std::vector<Belt>> belts_of(const LinkSpec& ls, const RobotBody& body) {
+  /// The belts over body `l`'s colliding shapes, numbered as its compound's children.
+  static std::unique_ptr<std::vector<Belt>> belts_of(const RobotBody& body, std::size_t l) {
     auto belts = std::make_unique<std::vector<Belt>>();
     int child = 0;
-    const Pose3 X_FB = body.X_BF[static_cast<std::size_t>(&ls - body.lumped.spec.links.data())].inverse();
-    for (const auto& sh : ls.shapes) {
+    const Pose3 X_FB = body.X_BF[l].inverse();
+    for (const auto& sh : body.lumped.spec.links[l].shapes) {
       if (!sh.collides) continue;
       if (!sh.belt_joint.empty()) {
         const int j = body.lumped.spec.joint_index(sh.belt_joint);

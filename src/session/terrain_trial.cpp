@@ -58,9 +58,7 @@ class LaneDriver {
   LaneDriver(const TerrainSpec& lane, const RobotSpec& robot, const TerrainTrialOptions& o) : lane_(lane), robot_(robot), o_(o) {}
 
   msg::Twist twist(const Pose3& X) const {
-    const Vec2 d = X.p.head<2>() - Vec2(lane_.pose.x, lane_.pose.y);
-    const double c = std::cos(lane_.pose.yaw), s = std::sin(lane_.pose.yaw);
-    const double across = -s * d.x() + c * d.y();
+    const double across = in_lane(X).y();
     const double heading = std::remainder(X.yaw() - lane_.pose.yaw, 2 * M_PI);
     msg::Twist t;
     t.linear.x() = o_.speed;
@@ -82,12 +80,17 @@ class LaneDriver {
   }
 
   /// Metres along the lane from its start line.
-  double along(const Pose3& X) const {
-    const Vec2 d = X.p.head<2>() - Vec2(lane_.pose.x, lane_.pose.y);
-    return std::cos(lane_.pose.yaw) * d.x() + std::sin(lane_.pose.yaw) * d.y() + 0.5 * lane_.length + o_.approach;
-  }
+  double along(const Pose3& X) const { return in_lane(X).x() + 0.5 * lane_.length + o_.approach; }
 
  private:
+  /// The base's position in the lane's frame: x along the direction of travel from the
+  /// element's centre, y across it.
+  Vec2 in_lane(const Pose3& X) const {
+    const Vec2 d = X.p.head<2>() - Vec2(lane_.pose.x, lane_.pose.y);
+    const double c = std::cos(lane_.pose.yaw), s = std::sin(lane_.pose.yaw);
+    return {c * d.x() + s * d.y(), -s * d.x() + c * d.y()};
+  }
+
   const TerrainSpec& lane_;
   const RobotSpec& robot_;
   const TerrainTrialOptions& o_;
