@@ -65,6 +65,7 @@ struct BenchOptions {
   bool mission_only = false;    ///< only the mission figures
   bool reset_only = false;      ///< only the reset figure (bench_reset.h)
   bool lidar_only = false;      ///< only the lidar figures (rays, the laser sampler, the laser in smoke)
+  bool cameras_only = false;    ///< only the camera figures (frames/s beside bare GL, and in smoke)
   BenchRosOptions ros_options;
   bool soak = false;            ///< only the soak run (bench_soak.h); --out is then its folder
   double soak_hours = 10;       ///< sim hours of the soak run
@@ -117,6 +118,25 @@ json bench_physics(const World& world, int steps) {
   return j;
 }
 
+/// The world with a slab of smoke 1.5 m thick and 4 m wide, 2 m ahead of the first robot (as in
+/// worlds/smoke_corridor), or all around it (8 x 8 m), 2 m high, of `density` (1/m).
+World with_smoke(const World& world, bool around, double density) {
+  const Vec2 c = world.robots[0].X_W_start.p.head<2>() + Vec2(0.26, 0);  // where bench_rays' laser stands
+  const Vec2 ahead = world.robots[0].X_W_start.q.toRotationMatrix().col(0).head<2>().normalized();
+  const Vec2 side(-ahead.y(), ahead.x());
+  World smoky = world;
+  MediumSpec smoke;
+  smoke.name = "bench_smoke";
+  smoke.outline = around ? Polygon2{c + Vec2(-4, -4), c + Vec2(4, -4), c + Vec2(4, 4), c + Vec2(-4, 4)}
+                         : Polygon2{c + 2.0 * ahead - 2.0 * side, c + 3.5 * ahead - 2.0 * side, c + 3.5 * ahead + 2.0 * side,
+                                    c + 2.0 * ahead + 2.0 * side};
+  if (signed_area(smoke.outline) < 0) std::reverse(smoke.outline.begin(), smoke.outline.end());
+  smoke.density = density;
+  smoke.height = 2.0;
+  smoky.media.push_back(smoke);
+  return smoky;
+}
+
 /// Lidar rays: RayScene beside bare rtcIntersect16, and a whole laser scan (noise, REP-117) per second.
 json bench_rays(const World& world, double seconds) {
   const Vec3 origin = world.robots[0].X_W_start.p + Vec3(0.26, 0, 0.16);
@@ -145,18 +165,8 @@ json bench_rays(const World& world, double seconds) {
   // across the laser's view 2 m ahead (as in worlds/smoke_corridor), the beams that miss it paying
   // one box test; and the worst case, every beam starting inside 0.5 /m smoke 8 x 8 m around the
   // robot, each paying its optical depth, a draw and, when lost, its early echo
-  const Vec2 c = origin.head<2>();
-  const Vec2 ahead = world.robots[0].X_W_start.q.toRotationMatrix().col(0).head<2>().normalized();
-  const Vec2 side(-ahead.y(), ahead.x());
-  const auto laser_in = [&](const Polygon2& outline, double density) {
-    World smoky = world;
-    MediumSpec smoke;
-    smoke.name = "bench_smoke";
-    smoke.outline = outline;
-    if (signed_area(smoke.outline) < 0) std::reverse(smoke.outline.begin(), smoke.outline.end());
-    smoke.density = density;
-    smoke.height = 2.0;
-    smoky.media.push_back(smoke);
+  const auto laser_in = [&](bool around, double density) {
+    const World smoky = with_smoke(world, around, density);
     RayScene smoky_scene(smoky);
     smoky_scene.update(s);
     int smoky_scans = 0;
@@ -167,21 +177,19 @@ json bench_rays(const World& world, double seconds) {
     }
     return smoky_scans / since(t1) * laser.lidar.samples;
   };
-  const Polygon2 slab = {c + 2.0 * ahead - 2.0 * side, c + 3.5 * ahead - 2.0 * side, c + 3.5 * ahead + 2.0 * side,
-                         c + 2.0 * ahead + 2.0 * side};
-  const Polygon2 around = {c + Vec2(-4, -4), c + Vec2(4, -4), c + Vec2(4, 4), c + Vec2(-4, 4)};
   const double clear = rate * laser.lidar.samples;
-  j["laser_in_smoke"] = figure(laser_in(slab, 0.8), "rays/s", clear,
+  j["laser_in_smoke"] = figure(laser_in(false, 0.8), "rays/s", clear,
                                "the same laser sampler without smoke (laser_rays_per_s_end_to_end); smoke: a 1.5 x 4 m slab of 0.8 /m, 2 m ahead",
                                0.8);
-  j["laser_all_in_smoke"] = ratio_figure(laser_in(around, 0.5), "rays/s", clear,
+  j["laser_all_in_smoke"] = ratio_figure(laser_in(true, 0.5), "rays/s", clear,
                                          "the same laser sampler without smoke; smoke: 0.5 /m, 8 x 8 m around the robot, every beam inside "
                                          "(the worst case)");
   return j;
 }
 
 /// Camera frames per second (low quality) beside a bare GL loop drawing the same number of
-/// triangles with readback, for colour, depth and thermal at two sizes.
+/// triangles with readback, for colour, depth and thermal at two sizes; then at 320 x 240
+/// through a slab of smoke beside the same camera without it.
 json bench_cameras(const World& world, double seconds) {
   json j;
   std::unique_ptr<Renderer> renderer;
@@ -201,15 +209,27 @@ json bench_cameras(const World& world, double seconds) {
   j["triangles"] = scene.triangle_count();
   const SensorSpec* head = world.robots[0].spec.find_sensor("color_camera");
   const std::pair<BenchImage, const char*> kinds[3] = {{BenchImage::color, "color"}, {BenchImage::depth, "depth"}, {BenchImage::thermal, "thermal"}};
+  std::map<std::string, double> clear_320;
+  CameraView view = camera_view(world, s, 0, *head);
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{640, 480}, {320, 240}}) {
     const double bare = bare_gl_frames_per_second(w, h, static_cast<int>(scene.triangle_count()), seconds);
-    CameraView view = camera_view(world, s, 0, *head);
     view.k = Intrinsics::from_hfov(w, h, 70 * M_PI / 180);
     for (const auto& [image, name] : kinds) {
       const double fps = renderer_frames_per_second(*renderer, view, image, seconds);
+      clear_320[name] = fps;
       j[std::string(name) + "_" + std::to_string(w) + "x" + std::to_string(h)] =
           figure(fps, "frames/s", bare, "bare GL loop, same triangles, RGB8 readback", 0.8);
     }
+  }
+  // through smoke (docs/environment.md): every pixel pays its optical depth through the slab's prism
+  RenderScene smoky = build_render_scene(with_smoke(world, false, 0.8));
+  update_render_scene(smoky, s);
+  renderer->load(smoky);
+  renderer->update(smoky);
+  for (const auto& [image, name] : kinds) {
+    j[std::string(name) + "_320x240_in_smoke"] =
+        figure(renderer_frames_per_second(*renderer, view, image, seconds), "frames/s", clear_320[name],
+               "the same camera without smoke; smoke: a 1.5 x 4 m slab of 0.8 /m, 2 m ahead", 0.8);
   }
   return j;
 }
@@ -365,6 +385,10 @@ int run_bench(const BenchOptions& given) {
     report["lidar"] = bench_rays(world, o.seconds);
     return print_report(report);
   }
+  if (o.cameras_only) {
+    report["cameras"] = bench_cameras(world, o.seconds);
+    return print_report(report);
+  }
   if (o.urdf_only) {
     report["urdf"] = bench_urdf(o.urdf_scenario, std::min(o.scenario_time, 60.0),
                                 [](const Scenario& s, const ModelMap& m) { return run_child(s, m, false); });
@@ -506,6 +530,7 @@ void add_bench_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
   cmd->add_flag("--lidar-only", o->lidar_only, "measure only the lidar figures (rays beside bare Embree, the laser sampler, the laser in smoke)");
+  cmd->add_flag("--cameras-only", o->cameras_only, "measure only the camera figures (frames/s beside a bare GL loop, and through smoke)");
   cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
       ->capture_default_str();
   cmd->add_option("--ros-latency-time", o->ros_options.latency_seconds, "wall seconds of each realtime ROS latency run")

@@ -88,6 +88,7 @@ std::size_t RenderScene::triangle_count() const {
 RenderScene build_render_scene(const World& world) {
   RenderScene s;
   s.ambient_temperature = world.ambient_temperature;
+  s.media = world.media;
   for (const auto& m : world.materials) s.materials.push_back(render_material(m, world.ambient_temperature));
   const auto material_temperature = [&](int m) { return s.materials[static_cast<std::size_t>(m)].temperature; };
 
@@ -156,6 +157,7 @@ RenderScene build_render_scene(const World& world) {
 }
 
 void update_render_scene(RenderScene& scene, const State& state) {
+  scene.time = state.time.seconds();
   for (RenderItem& item : scene.items) {
     if (item.source == RenderItem::Source::dynamic_object) {
       const auto i = static_cast<std::size_t>(item.index);

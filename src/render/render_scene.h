@@ -74,6 +74,8 @@ struct RenderScene {
   std::vector<RenderLight> lights;           ///< World::lights, or one default sun when it has none (renderers use the first 4)
   double ambient_temperature = 293.15;       ///< K, also what a thermal camera sees where nothing is
   Vec3 sky_color{0.62, 0.70, 0.80};          ///< background, sRGB in [0, 1]
+  std::vector<MediumSpec> media;             ///< World::media: smoke and dust the cameras look through
+  double time = 0;                           ///< s, sim time of the poses (media grow and drift with it)
 
   /// Triangles of every item (each mesh counted once per item that draws it).
   std::size_t triangle_count() const;
@@ -85,7 +87,7 @@ struct RenderScene {
 RenderScene build_render_scene(const World& world);
 
 /// Moves rubble to State::dynamics[i].X_WB and robot link shapes to
-/// State::robots[r].X_WL[l] * X_LG. Throws Error when the State does not match the scene's World
+/// State::robots[r].X_WL[l] * X_LG, and sets the scene's time to the State's. Throws Error when the State does not match the scene's World
 /// (counts of rubble, robots or links differ).
 void update_render_scene(RenderScene& scene, const State& state);
 

@@ -32,7 +32,8 @@ struct ColorImage {
 };
 
 /// Depth along the optical axis (z of the optical frame, m), row 0 at the top; +inf where
-/// nothing lies between the near and far clip planes.
+/// nothing lies between the near and far clip planes, NaN where smoke or dust swallowed the
+/// sensor's light (its two-way transmittance below 5 %, docs/environment.md).
 struct DepthImage {
   int width = 0, height = 0;
   std::vector<float> z;
@@ -41,6 +42,8 @@ struct DepthImage {
 /// Apparent temperature (K) per pixel after the Gaussian blur, row 0 at the top. A surface at
 /// temperature T with emissivity e reads e·T + (1 − e)·T_ambient (it reflects its surroundings,
 /// taken to be at ambient); where nothing is in view the camera reads the ambient temperature.
+/// Through smoke or dust of long-wave optical depth τ it reads T_ambient + (that − T_ambient)·e^−τ
+/// (the media are at ambient).
 struct ThermalImage {
   int width = 0, height = 0;
   std::vector<float> kelvin;

@@ -54,6 +54,13 @@ double medium_echo_probability(SensingBand band) {
   return 0.0;
 }
 
+double scattering_albedo(MediumSpec::Kind kind) {
+  // Flaming-combustion smoke: soot aggregates absorb most of what they extinguish (measured
+  // single-scattering albedos of soot-laden smoke lie around 0.2-0.4). Mineral dust scatters
+  // most of it (0.85-0.95 in visible light).
+  return kind == MediumSpec::Kind::smoke ? 0.3 : 0.9;
+}
+
 Polygon2 medium_outline(const MediumSpec& medium, double t) {
   const Polygon2& p = medium.outline;
   const std::size_t n = p.size();

@@ -37,6 +37,12 @@ double visibility(double sigma);
 /// visible, 0 for long-wave infrared and ultrasound (docs/environment.md).
 double medium_echo_probability(SensingBand band);
 
+/// The single-scattering albedo of a medium in visible light: the fraction of the light it
+/// removes from a ray that it scatters rather than absorbs, and so the brightness of the haze it
+/// lays over a camera image (the airlight): 0.3 for smoke (soot from flaming combustion is mostly
+/// black carbon), 0.9 for mineral dust (docs/environment.md).
+double scattering_albedo(MediumSpec::Kind kind);
+
 /// The footprint at sim time t (s): each edge moved outward by growth * t (corners mitred), then
 /// the whole moved by drift * t. Exact for convex footprints; a concave one's grown outline may
 /// cross itself, and is then read with the even-odd rule.

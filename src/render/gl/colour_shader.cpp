@@ -151,6 +151,9 @@ uniform mat4 u_model;
 invariant gl_Position;
 out float v_height;
 out float v_upright;
+#if MEDIA
+out vec3 v_world;
+#endif
 out vec2 v_uv;
 out vec3 v_ambient;
 out vec3 v_direct;
@@ -158,6 +161,9 @@ flat out int v_material;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   vec3 n = normalize(mat3(u_model) * a_normal);
+#if MEDIA
+  v_world = world.xyz;
+#endif
   v_height = world.z;
   v_upright = 1.0 - abs(n.z);
   v_uv = a_uv;
@@ -188,6 +194,21 @@ in float v_height;
 in float v_upright;
 in vec3 v_ambient;
 in vec3 v_direct;
+#if MEDIA
+in vec3 v_world;
+#endif
+#endif
+#if MEDIA
+uniform vec3 u_fog_light;                // light on the media, as a white matte surface reflects it (linear)
+
+// the surface seen through the media: dimmed by exp(-tau) and veiled by the light they scatter
+// towards the camera (the airlight: their albedo times the light on them)
+vec3 fogged(vec3 color, vec3 p) {
+  vec4 tau = fog_depth(p - u_eye);
+  float t = exp(-tau.x);
+  vec3 air = tau.x > 0.0 ? u_fog_light * (tau.w / tau.x) : vec3(0.0);
+  return color * t + air * (1.0 - t);
+}
 #endif
 #if SHADOWS
 uniform int u_shadow_light;              // light with the shadow map, -1 = none
@@ -250,6 +271,9 @@ void main() {
   }
 #else
   vec3 color = albedo * (v_ambient * contact(v_height, v_upright) + v_direct);
+#endif
+#if MEDIA
+  color = fogged(color, v_world);
 #endif
   vec3 encoded = to_srgb(color);
   o_color = vec4(encoded, dot(encoded, vec3(0.299, 0.587, 0.114)));

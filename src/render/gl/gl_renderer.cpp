@@ -27,6 +27,7 @@
 #include "render/gl/gpu_scene.h"
 #include "render/gl/render_targets.h"
 #include "render/gl/shaders.h"
+#include "render/fog_volumes.h"
 
 namespace rescuesim::gl {
 
@@ -42,6 +43,12 @@ constexpr int kPatternSize = 512;      ///< texels across a pattern layer
 constexpr float kPatternPeriod = 2.0f; ///< m covered by a pattern layer (3.9 mm texels)
 constexpr int kPatternLayers = 6;      ///< one per TextureKind; mesh images follow them (kImageLayer in the shader)
 constexpr int kMaxImages = 16;         ///< mesh images per scene (each a 512 x 512 layer, 1.4 MB with mipmaps)
+constexpr int kMaxFogPieces = 32;      ///< convex pieces of smoke and dust the camera shaders take
+constexpr int kMaxFogSides = 192;      ///< and their sides (pieces x the most sides of any)
+/// The depth camera's return is lost where its light's two-way transmittance through smoke or
+/// dust falls below this: an active sensor tuned to find a dark surface at its full range has
+/// perhaps 20x margin in clear air (docs/environment.md).
+constexpr float kDepthMinReturn = 0.05f;
 
 // lighting beside the scene's lights: ambient from the sky and the ground, a weak fill light
 // from the side opposite the sun (all linear)
@@ -104,8 +111,21 @@ class GlRenderer final : public Renderer {
   /// Decodes an image file and writes it, resampled to a layer, into layer `layer` of patterns_;
   /// false (and a warning) when the file cannot be decoded.
   bool upload_image(const std::string& file, int layer);
-  /// Compiles the three colour programs for `lights` lights (0..kMaxLights).
+  /// Compiles the three colour programs for `lights` lights (0..kMaxLights) and the fog of
+  /// fog_pieces_ pieces (none: no fog code at all).
   void build_color_programs(int lights);
+  /// Compiles the sky, depth and thermal fog programs for these pieces when their number or
+  /// their sides' differ from what they were compiled for; true when they did (the colour
+  /// programs must then be compiled again). Throws Error past kMaxFogPieces or kMaxFogSides.
+  bool compile_fog(const std::vector<FogPiece>& pieces);
+  /// Takes the pieces for every fog program: pieces past the compiled counts are left out (a
+  /// footprint that stopped being simple as it grew), missing ones are clear air.
+  void upload_fog(const std::vector<FogPiece>& pieces, double time);
+  /// The pieces as seen from `eye` (world, m), into program `p`, before it draws a view.
+  void set_fog_eye(const Program& p, const Vec3& eye) const;
+  /// Draws the sky through the media where the colour pass left the clear value.
+  void draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj);
+  bool fog() const { return fog_pieces_ > 0; }
 
   EglContext context_;  // first member: made first, destroyed last, after every GL object
   Program color_[3];    // per Quality: shadows from medium, SSAO at high
@@ -113,6 +133,13 @@ class GlRenderer final : public Renderer {
   std::map<int, Program> blur_;  ///< blur programs by radius (px), made on first use
   GLint color_model_[3] = {-1, -1, -1}, depth_model_ = -1, thermal_model_ = -1;
   Texture patterns_;
+  std::vector<MediumSpec> media_;  ///< the scene's smoke and dust
+  double fog_time_ = -1;           ///< sim time the fog uniforms were cut at
+  int fog_pieces_ = 0, fog_sides_ = 0;  ///< what the fog programs were compiled for: pieces, sides of each
+  std::vector<FogPiece> fog_;           ///< the pieces now, fog_pieces_ of them (clear air after the real ones)
+  Program fog_sky_, depth_fog_, thermal_fog_;
+  GLint depth_fog_model_ = -1, thermal_fog_model_ = -1;
+  Eigen::Vector3f fog_light_ = Eigen::Vector3f::Zero();  ///< linear light on the media
   std::vector<std::string> images_;  ///< image files of the scene, in layer order after the patterns
   int light_count_ = -1;  ///< lights the colour programs were compiled for
   VertexArray empty_vao_;
@@ -149,11 +176,13 @@ GlRenderer::GlRenderer(Quality q) : Renderer(q) {
 void GlRenderer::build_color_programs(int lights) {
   for (int i = 0; i < 3; ++i) {
     // low: Gouraud lighting, no shadows; medium: per-pixel with shadows; high: and SSAO
-    const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n",
-                                           lights, i > 0 ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0);
+    const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n"
+                                           "#define MEDIA {}\n#define MEDIA_SIDES {}\n",
+                                           lights, i > 0 ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_, std::max(fog_sides_, 1));
     const std::string common = header + shaders::kLightUniforms;
+    const std::string fog_code = fog() ? shaders::kFogFunctions : "";
     color_[i] = Program("colour", i == 0 ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
-                        common + shaders::kColorFragment);
+                        common + fog_code + shaders::kColorFragment);
     color_model_[i] = color_[i].uniform("u_model");
     // samplers of different types may not share a texture unit
     color_[i].set("u_shadow_map", 1);
@@ -310,7 +339,10 @@ void GlRenderer::do_load(const RenderScene& scene) {
       shadow_direction_ = l.direction;
     }
   }
-  if (count != light_count_) build_color_programs(count);
+  media_ = scene.media;
+  const std::vector<FogPiece> pieces = fog_pieces(media_, scene.time);
+  const bool fog_compiled = compile_fog(pieces);
+  if (count != light_count_ || fog_compiled) build_color_programs(count);
   // the fill light comes from the side the sun shines towards, a little above the horizon
   Vec3 across(sun.x(), sun.y(), 0);
   across = across.norm() > 1e-6 ? across.normalized() : Vec3::UnitX();
@@ -326,12 +358,115 @@ void GlRenderer::do_load(const RenderScene& scene) {
   const Eigen::Vector3f sky = scene.sky_color.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
   sky_ = Eigen::Vector4f(sky.x(), sky.y(), sky.z(), sky.dot(Eigen::Vector3f(0.299f, 0.587f, 0.114f)));
   ambient_temperature_ = static_cast<float>(scene.ambient_temperature);
+  // the light on the media: the ambient a matte surface gets from all round, and a quarter of
+  // each directional light's (an isotropic scatterer sends 1/4pi of it per steradian where a
+  // Lambertian surface facing it sends 1/pi); point lights are left out
+  Eigen::Vector3f light = 0.5f * (kSkyAmbient + kGroundAmbient) + 0.25f * kFillColor;
+  for (int i = 0; i < count; ++i) {
+    const RenderLight& l = scene.lights[static_cast<std::size_t>(i)];
+    if (l.directional) light += 0.25f * l.color.cast<float>();
+  }
+  fog_light_ = light;
+  if (fog()) upload_fog(pieces, scene.time);
   shadow_dirty_ = true;
+}
+
+bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
+  int sides = 0;
+  for (const FogPiece& p : pieces) sides = std::max(sides, static_cast<int>(p.half_planes.size()));
+  const int n = static_cast<int>(pieces.size());
+  if (n > kMaxFogPieces || n * sides > kMaxFogSides) {
+    throw Error(SourceRef{"", 0, "Renderer::load"},
+                fmt::format("the smoke and dust make {} convex pieces of up to {} sides; the cameras draw at most {} pieces and {} "
+                            "sides in all (fewer media, or footprints with fewer corners)", n, sides, kMaxFogPieces, kMaxFogSides));
+  }
+  if (n == fog_pieces_ && sides == fog_sides_) return false;
+  fog_pieces_ = n;
+  fog_sides_ = sides;
+  fog_sky_ = Program();
+  depth_fog_ = Program();
+  thermal_fog_ = Program();
+  if (n > 0) {
+    const std::string head = fmt::format("#version 450 core\n#define MEDIA {}\n#define MEDIA_SIDES {}\n{}", n, sides, shaders::kFogFunctions);
+    fog_sky_ = Program("fog sky", shaders::kFullscreenVertex, head + shaders::kFogSkyFragment);
+    depth_fog_ = Program("depth through fog", shaders::kFogVertex, head + shaders::kDepthFogFragment);
+    thermal_fog_ = Program("thermal through fog", shaders::kFogVertex, head + shaders::kThermalFogFragment);
+    depth_fog_model_ = depth_fog_.uniform("u_model");
+    thermal_fog_model_ = thermal_fog_.uniform("u_model");
+    depth_fog_.set("u_min_return", kDepthMinReturn);
+  }
+  return true;
+}
+
+void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
+  fog_.assign(static_cast<std::size_t>(fog_pieces_), FogPiece{});
+  std::vector<float> sigma(4 * static_cast<std::size_t>(fog_pieces_), 0.0f);
+  for (int i = 0; i < fog_pieces_ && i < static_cast<int>(pieces.size()); ++i) {
+    const FogPiece& p = pieces[static_cast<std::size_t>(i)];
+    if (static_cast<int>(p.half_planes.size()) > fog_sides_) continue;  // grown past what the programs were compiled for: left out
+    fog_[static_cast<std::size_t>(i)] = p;
+    const auto at = 4 * static_cast<std::size_t>(i);
+    sigma[at] = static_cast<float>(p.sigma_visible);
+    sigma[at + 1] = static_cast<float>(p.sigma_near_infrared);
+    sigma[at + 2] = static_cast<float>(p.sigma_long_wave);
+    sigma[at + 3] = static_cast<float>(p.albedo);
+  }
+  for (const Program* p : {&color_[0], &color_[1], &color_[2], &fog_sky_, &depth_fog_, &thermal_fog_}) {
+    glProgramUniform4fv(p->id(), p->uniform("u_fog_sigma"), fog_pieces_, sigma.data());
+  }
+  for (const Program& p : color_) p.set("u_fog_light", fog_light_);
+  fog_sky_.set("u_fog_light", fog_light_);
+  fog_time_ = time;
+}
+
+void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
+  // a side n·p <= c as (n, n·eye - c): the shader adds n·d; unused sides hold everything
+  std::vector<float> edge(4 * static_cast<std::size_t>(fog_pieces_ * fog_sides_), 0.0f), slab(4 * fog_.size(), 0.0f);
+  for (std::size_t k = 2; k < edge.size(); k += 4) edge[k] = -1e30f;
+  for (std::size_t i = 0; i < fog_.size(); ++i) {
+    const FogPiece& f = fog_[i];
+    for (std::size_t k = 0; k < f.half_planes.size(); ++k) {
+      const Vec3& h = f.half_planes[k];
+      float* e = &edge[4 * (i * static_cast<std::size_t>(fog_sides_) + k)];
+      e[0] = static_cast<float>(h.x());
+      e[1] = static_cast<float>(h.y());
+      e[2] = static_cast<float>(h.x() * eye.x() + h.y() * eye.y() - h.z());
+    }
+    slab[4 * i] = static_cast<float>(f.bottom - eye.z());
+    slab[4 * i + 1] = static_cast<float>(f.top - eye.z());
+  }
+  glProgramUniform4fv(p.id(), p.uniform("u_fog_edge"), fog_pieces_ * fog_sides_, edge.data());
+  glProgramUniform4fv(p.id(), p.uniform("u_fog_slab"), fog_pieces_, slab.data());
+  p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
+}
+
+void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj) {
+  const int w = view.k.width, h = view.k.height;
+  glViewport(0, 0, w, h);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_EQUAL);  // the full-screen triangle lies at depth 0, the clear value: only where nothing was drawn
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(fog_sky_.id());
+  fog_sky_.set("u_inv_view_proj", Eigen::Matrix4f(view_proj.inverse()));
+  fog_sky_.set("u_size", Eigen::Vector2f(static_cast<float>(w), static_cast<float>(h)));
+  set_fog_eye(fog_sky_, view.X_WC.p);
+  const auto linear = [](float c) { return static_cast<float>(srgb_to_linear(c)); };
+  fog_sky_.set("u_sky", Eigen::Vector3f(linear(sky_.x()), linear(sky_.y()), linear(sky_.z())));
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
 }
 
 void GlRenderer::do_update(const RenderScene& scene) {
   scene_.update(scene);
   shadow_dirty_ = true;
+  // media that grow or drift are cut again at the scene's time
+  const bool moving = std::any_of(media_.begin(), media_.end(), [](const MediumSpec& m) { return m.growth != 0 || m.drift != Vec2::Zero(); });
+  if (fog() && moving && scene.time != fog_time_) {
+    context_.make_current();
+    upload_fog(fog_pieces(media_, scene.time), scene.time);
+  }
 }
 
 void GlRenderer::do_set_quality(Quality q) {
@@ -474,10 +609,12 @@ void GlRenderer::do_color(const CameraView& view, ColorImage& out) {
   glClearNamedFramebufferfv(t.scene.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
   color().set("u_eye", Eigen::Vector3f(view.X_WC.p.cast<float>()));
+  if (fog()) set_fog_eye(color(), view.X_WC.p);
   if (shadows) glBindTextureUnit(1, shadow_map_.id());
   if (ao) glBindTextureUnit(2, t.ao_tex.id());
   glBindTextureUnit(3, patterns_.id());
   draw_scene(color(), color_model_[static_cast<int>(quality())], view_proj, {view.hide_robot, false});
+  if (fog()) draw_fog_sky(view, view_proj);
 
   // anti-aliasing: FXAA into the output (medium) or the multisample resolve (high)
   if (quality() == Quality::medium) {
@@ -506,12 +643,21 @@ void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
   const float zero = 0.0f;
   glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
-  draw_scene(depth_, depth_model_, view_projection(view), {view.hide_robot, false});
+  if (fog()) {
+    set_fog_eye(depth_fog_, view.X_WC.p);
+    draw_scene(depth_fog_, depth_fog_model_, view_projection(view), {view.hide_robot, false});
+  } else {
+    draw_scene(depth_, depth_model_, view_projection(view), {view.hide_robot, false});
+  }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(out.z.size() * sizeof(float)), out.z.data());
-  // reversed Z: 0 is the far plane (and the clear value), so nothing in view reads +inf
+  // reversed Z: 0 is the far plane (and the clear value), so nothing in view reads +inf; the fog
+  // pass marks a lost return with a depth far below any the far plane allows (NaN)
   const double n = view.near_clip, f = view.far_clip;
-  for (float& d : out.z) d = d > 0.0f ? static_cast<float>(depth_from_reversed_z(d, n, f)) : std::numeric_limits<float>::infinity();
+  for (float& d : out.z) {
+    d = d > 1e-20f ? static_cast<float>(depth_from_reversed_z(d, n, f))
+                   : d > 0.0f ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  }
 }
 
 void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, ThermalImage& out) {
@@ -525,7 +671,13 @@ void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, Therma
   glClearNamedFramebufferfv(t.fbo.id(), GL_COLOR, 0, background);
   glClearNamedFramebufferfv(t.fbo.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
-  draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
+  if (fog()) {
+    set_fog_eye(thermal_fog_, view.X_WC.p);
+    thermal_fog_.set("u_ambient", ambient_temperature_);
+    draw_scene(thermal_fog_, thermal_fog_model_, view_projection(view), {view.hide_robot, false});
+  } else {
+    draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
+  }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo.id());
   glNamedFramebufferReadBuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0);
   glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.kelvin.size() * sizeof(float)), out.kelvin.data());

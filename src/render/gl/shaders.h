@@ -32,6 +32,19 @@ extern const char* const kBlurFragment;
 extern const char* const kFxaaFragment;
 /// Screen-space ambient occlusion from a reversed-Z depth texture (1 = open, 0 = occluded).
 extern const char* const kSsaoFragment;
+/// Smoke and dust (media_shader.cpp). kFogFunctions declares the media's uniforms and
+/// fog_depth(d), the optical depths of the segment from the camera to camera + d; compose
+/// "#version 450 core", "#define MEDIA n" (pieces, ≥ 1) and "#define MEDIA_SLABS m" (slabs of
+/// each, ≥ 2), it, then a stage. The colour
+/// fragment fogs itself when MEDIA > 0; kFogSkyFragment fogs the sky (a full-screen pass where
+/// the depth is still the clear value); kDepthFogFragment and kThermalFogFragment follow
+/// kFogVertex for the depth and thermal cameras.
+extern const char* const kFogFunctions;
+/// Vertex stage of kDepthFogFragment and kThermalFogFragment: v_world and v_temperature only.
+extern const char* const kFogVertex;
+extern const char* const kFogSkyFragment;
+extern const char* const kDepthFogFragment;
+extern const char* const kThermalFogFragment;
 /// The bare benchmark loop's shaders: position in, flat colour out.
 extern const char* const kBareVertex;
 extern const char* const kBareFragment;

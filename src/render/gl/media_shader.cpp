@@ -1,0 +1,112 @@
+// The camera shaders' smoke and dust: the optical depth of a ray through the media's convex
+// prisms (render/fog_volumes.h), and the passes that use it — the colour camera's fog over the
+// sky, the depth camera losing its return, the thermal camera's slight attenuation. The physics
+// is in docs/environment.md ("Cameras").
+
+#include "render/gl/shaders.h"
+
+namespace rescuesim::gl::shaders {
+
+const char* const kFogFunctions = R"(
+uniform vec4 u_fog_edge[MEDIA * MEDIA_SIDES];  // (nx, ny, s): a side n.p <= c of a piece's footprint as s = n.eye - c for this view (m)
+uniform vec4 u_fog_slab[MEDIA];                // bottom - eye z, top - eye z (m)
+uniform vec4 u_fog_sigma[MEDIA];               // extinction (1/m): visible, near infrared, long-wave infrared; scattering albedo
+
+// Optical depths of the segment from the camera (the eye of u_fog_edge and u_fog_slab) to
+// eye + d: visible, near infrared, long-wave infrared, and in w the visible depth weighted by
+// each medium's scattering albedo. Each piece clips the segment against its floor-to-top slab
+// and its footprint's sides (Cyrus-Beck). Every piece has MEDIA_SIDES sides (padded with ones
+// that hold everything), so both loops have constant bounds and constant uniform indices.
+vec4 fog_depth(vec3 d) {
+  float len = length(d);
+  float inv_dz = abs(d.z) > 1e-9 ? 1.0 / d.z : 1e9;
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < MEDIA; ++i) {
+    vec2 slab = u_fog_slab[i].xy * inv_dz;
+    float t0 = max(0.0, min(slab.x, slab.y)), t1 = min(1.0, max(slab.x, slab.y));
+    for (int e = 0; e < MEDIA_SIDES; ++e) {
+      vec4 h = u_fog_edge[i * MEDIA_SIDES + e];
+      float ds = dot(h.xy, d.xy);
+      float t = -h.z / ds;               // +-inf when parallel: then only the sign of s decides
+      t1 = ds > 0.0 ? min(t1, t) : t1;
+      t0 = ds < 0.0 ? max(t0, t) : t0;
+      t1 = (ds == 0.0 && h.z > 0.0) ? -1.0 : t1;
+    }
+    vec4 s = u_fog_sigma[i];
+    sum += vec4(s.xyz, s.x * s.w) * (max(t1 - t0, 0.0) * len);
+  }
+  return sum;
+}
+)";
+
+// the depth and thermal cameras' vertex stage through media: the world position, and the
+// apparent temperature for the thermal camera (the scene vertex's other outputs would cost a CPU
+// rasteriser their interpolation)
+const char* const kFogVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 4) in float a_temperature;
+uniform mat4 u_view_proj;
+uniform mat4 u_model;
+invariant gl_Position;
+out vec3 v_world;
+flat out float v_temperature;
+void main() {
+  vec4 world = u_model * vec4(a_position, 1.0);
+  v_world = world.xyz;
+  v_temperature = a_temperature;
+  gl_Position = u_view_proj * world;
+}
+)";
+
+// No #version: "#version 450 core", MEDIA, MEDIA_SIDES, kFogFunctions, then this.
+const char* const kFogSkyFragment = R"(
+uniform mat4 u_inv_view_proj;  // clip -> world of the camera
+uniform vec2 u_size;           // px
+uniform vec3 u_eye;            // m
+uniform vec3 u_sky;            // linear
+uniform vec3 u_fog_light;      // light on the media, as a white matte surface reflects it (linear)
+layout(location = 0) out vec4 o_color;
+
+vec3 to_srgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+// where nothing was drawn: the sky seen through the media up to the far clip plane (reversed Z: depth 0)
+void main() {
+  vec4 far = u_inv_view_proj * vec4(2.0 * gl_FragCoord.xy / u_size - 1.0, 0.0, 1.0);
+  vec4 tau = fog_depth(far.xyz / far.w - u_eye);
+  float t = exp(-tau.x);
+  vec3 air = tau.x > 0.0 ? u_fog_light * (tau.w / tau.x) : vec3(0.0);
+  vec3 encoded = to_srgb(u_sky * t + air * (1.0 - t));
+  o_color = vec4(encoded, dot(encoded, vec3(0.299, 0.587, 0.114)));
+}
+)";
+
+// No #version (as above). The depth camera's light goes out and back through the media: a pixel
+// whose two-way transmittance falls below u_min_return has no return, written as a depth just
+// above the far plane's 0 that the read-back turns into NaN. Optical depth only grows along a
+// ray, so nothing behind a lost pixel can be nearer and valid.
+const char* const kDepthFogFragment = R"(
+layout(depth_less) out float gl_FragDepth;  // only ever lowered (reversed Z: farther): early depth tests stay valid
+in vec3 v_world;
+uniform vec3 u_eye;
+uniform float u_min_return;
+void main() {
+  float tau = fog_depth(v_world - u_eye).y;
+  gl_FragDepth = exp(-2.0 * tau) < u_min_return ? 1e-30 : gl_FragCoord.z;
+}
+)";
+
+// No #version (as above). The thermal camera sees the surface through the media's long-wave
+// extinction and the media's own emission at the ambient temperature.
+const char* const kThermalFogFragment = R"(
+flat in float v_temperature;
+in vec3 v_world;
+uniform vec3 u_eye;
+uniform float u_ambient;
+layout(location = 0) out float o_kelvin;
+void main() { o_kelvin = mix(u_ambient, v_temperature, exp(-fog_depth(v_world - u_eye).z)); }
+)";
+
+}  // namespace rescuesim::gl::shaders
