@@ -121,6 +121,8 @@ std::uint64_t digest(const Message& m) {
           d(x.header), d(x.height), d(x.width), d(x.fields), d(x.is_bigendian), d(x.point_step), d(x.row_step), d(x.data), d(x.is_dense);
         } else if constexpr (std::is_same_v<T, String>) {
           d(x.data);
+        } else if constexpr (std::is_same_v<T, Bool>) {
+          d(x.data);
         } else {
           static_assert(sizeof(T) == 0, "digest: a message type without its fields here");
         }

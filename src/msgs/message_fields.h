@@ -330,6 +330,13 @@ void visit_fields(V& v, M& m) {
   v.value("data", m.data);
 }
 
+/// The fields of std_msgs/Bool, in .msg order.
+template <class V, class M>
+  requires Is<M, Bool>
+void visit_fields(V& v, M& m) {
+  v.value("data", m.data);
+}
+
 /// Implementation of with_alternative: a table of one call per alternative.
 template <class F, std::size_t... I>
 decltype(auto) with_alternative_impl(std::size_t index, F&& f, std::index_sequence<I...>) {

@@ -27,6 +27,7 @@ RS_MSG_NAME(Image, "sensor_msgs/Image")
 RS_MSG_NAME(CameraInfo, "sensor_msgs/CameraInfo")
 RS_MSG_NAME(PointCloud2, "sensor_msgs/PointCloud2")
 RS_MSG_NAME(String, "std_msgs/String")
+RS_MSG_NAME(Bool, "std_msgs/Bool")
 #undef RS_MSG_NAME
 }  // namespace
 
@@ -74,6 +75,7 @@ RS_INSTANTIATE(Image)
 RS_INSTANTIATE(CameraInfo)
 RS_INSTANTIATE(PointCloud2)
 RS_INSTANTIATE(String)
+RS_INSTANTIATE(Bool)
 #undef RS_INSTANTIATE
 
 }  // namespace rescuesim::msg

@@ -124,6 +124,11 @@ struct String {
   std::string data;
 };
 
+/// std_msgs/Bool: one switch, e.g. /lights (a robot's lamps on or off).
+struct Bool {
+  bool data = false;
+};
+
 /// Bodies touching a robot's chassis (like a bumper), by object name.
 struct Contacts {
   Header header;
@@ -176,7 +181,7 @@ struct PointCloud2 {
 
 /// Any message on the Bus. New types go at the end: an alternative's index is part of digests.
 using Message = std::variant<Clock, LaserScan, Range, Imu, Twist, Odometry, JointState, TFMessage, PoseStamped, Path,
-                             OccupancyGrid, Float64MultiArray, Contacts, Image, CameraInfo, PointCloud2, String>;
+                             OccupancyGrid, Float64MultiArray, Contacts, Image, CameraInfo, PointCloud2, String, Bool>;
 
 /// The ROS type name of each alternative ("sensor_msgs/LaserScan"); ROS 2 inserts "/msg/".
 const char* type_name(const Message& m);

@@ -199,6 +199,12 @@ TEST(CdrSerialize, String) {
   EXPECT_EQ(cdr(String{}), encapsulated().hex("01 00 00 00  00").bytes());  // the empty string is its NUL
 }
 
+TEST(CdrSerialize, Bool) {
+  // std_msgs/Bool: one octet, 1 for true
+  EXPECT_EQ(cdr(test::bool_msg()), encapsulated().hex("01").bytes());
+  EXPECT_EQ(cdr(Bool{}), encapsulated().hex("00").bytes());
+}
+
 TEST(CdrSerialize, Image2x1Rgb8) {
   const auto expected = encapsulated()
                             .at(0).hex("01 00 00 00  00 00 00 00")   // stamp 1 s

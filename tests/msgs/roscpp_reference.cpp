@@ -18,6 +18,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
 #include <std_msgs/Float64MultiArray.h>
+#include <std_msgs/Bool.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 
@@ -173,6 +174,11 @@ RoscppSample roscpp_sample(const std::string& type, std::uint32_t seq) {
   if (type == "std_msgs/Float64MultiArray") {
     std_msgs::Float64MultiArray m;
     m.data = {1.5, -2.0};
+    return serialize(m);
+  }
+  if (type == "std_msgs/Bool") {
+    std_msgs::Bool m;
+    m.data = true;
     return serialize(m);
   }
   if (type == "std_msgs/String") {

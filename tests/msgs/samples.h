@@ -154,11 +154,13 @@ inline PointCloud2 point_cloud2() {
 
 inline String string_msg() { return String{"ab"}; }
 
+inline Bool bool_msg() { return Bool{true}; }
+
 /// One sample of every alternative, in msg::Message order.
 inline std::vector<Message> all_samples() {
   return {clock_msg(), laser_scan(),   range_msg(),           imu(),      twist(),         odometry(),
           joint_state(), tf_message(), pose_stamped(),        path(),     occupancy_grid(), float64_multi_array(),
-          contacts(),  image(),        camera_info(),         point_cloud2(), string_msg()};
+          contacts(),  image(),        camera_info(),         point_cloud2(), string_msg(), bool_msg()};
 }
 
 /// Expected bytes, built little endian by shifts (not by the code under test's memcpy).

@@ -27,6 +27,7 @@ const std::pair<const char*, const char*> kRosMd5[] = {
     {"nav_msgs/OccupancyGrid", "3381f2d731d4076ec5c71b0759edbe4e"},
     {"std_msgs/Float64MultiArray", "4b7d974086d4060e7db4613a7e6c3ba4"},
     {"std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1"},
+    {"std_msgs/Bool", "8b94c1b53db61fb6aed406028ad6332a"},
     {"sensor_msgs/Image", "060021388200f6f0f447d0fcd9c64743"},
     {"sensor_msgs/CameraInfo", "c9a58c1b0b154e0e6da7578cb991d214"},
     {"sensor_msgs/PointCloud2", "1158d486dd51d683ce2f1be655c3c181"},

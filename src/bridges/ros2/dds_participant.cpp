@@ -40,7 +40,7 @@ const std::map<std::string_view, const dds_topic_descriptor_t*>& descriptors() {
       RS_DDS_TYPE(nav_msgs, OccupancyGrid),    RS_DDS_TYPE(std_msgs, Float64MultiArray),
       RS_DDS_TYPE(rescuesim_msgs, Contacts),   RS_DDS_TYPE(sensor_msgs, Image),
       RS_DDS_TYPE(sensor_msgs, CameraInfo),    RS_DDS_TYPE(sensor_msgs, PointCloud2),
-      RS_DDS_TYPE(std_msgs, String),
+      RS_DDS_TYPE(std_msgs, String), RS_DDS_TYPE(std_msgs, Bool),
   };
   return table;
 }
