@@ -74,6 +74,11 @@ int add_mesh(RenderScene& s, const Geometry& g) {
 
 }  // namespace
 
+double linear_to_srgb(double c) {
+  c = std::clamp(c, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
+
 double srgb_to_linear(double c) {
   c = std::clamp(c, 0.0, 1.0);
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -147,11 +152,30 @@ RenderScene build_render_scene(const World& world) {
     light.casts_shadows = l.casts_shadows;
     s.lights.push_back(light);
   }
-  if (s.lights.empty()) {
+  if (s.lights.empty() && world.sun) {
     RenderLight sun;
     sun.direction = Vec3(-0.35, 0.45, -1.0).normalized();
     sun.color = Vec3(1.0, 0.96, 0.90);
     s.lights.push_back(sun);
+  }
+  s.world_lights = s.lights.size();
+  s.ambient_light = world.ambient_light;
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    const RobotSpec& spec = world.robots[r].spec;
+    for (const RobotLightSpec& l : spec.lights) {
+      RenderLamp lamp;
+      lamp.robot = static_cast<int>(r);
+      lamp.link = spec.link_index(l.link);
+      lamp.X_LF = l.X_LF;
+      lamp.light.directional = false;
+      lamp.light.spot = true;
+      lamp.light.casts_shadows = false;
+      lamp.light.color = l.color * l.intensity;
+      lamp.light.cone = l.cone;
+      lamp.light.inner_cone = std::min(l.inner_cone, l.cone);
+      lamp.light.range = l.range;
+      if (lamp.link >= 0) s.lamps.push_back(lamp);
+    }
   }
   return s;
 }
@@ -174,6 +198,16 @@ void update_render_scene(RenderScene& scene, const State& state) {
       }
       item.X_WI = state.robots[r].X_WL[l] * item.X_PI;
     }
+  }
+  scene.lights.resize(scene.world_lights);
+  for (const RenderLamp& lamp : scene.lamps) {
+    const auto r = static_cast<std::size_t>(lamp.robot), l = static_cast<std::size_t>(lamp.link);
+    if (r >= state.robots.size() || !state.robots[r].lights_on || l >= state.robots[r].X_WL.size()) continue;
+    const Pose3 X_WF = state.robots[r].X_WL[l] * lamp.X_LF;
+    RenderLight light = lamp.light;
+    light.position = X_WF.p;
+    light.direction = X_WF.q.toRotationMatrix().col(0);
+    scene.lights.push_back(light);
   }
 }
 

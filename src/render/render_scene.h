@@ -57,13 +57,25 @@ struct RenderItem {
   bool movable() const { return source != Source::static_object; }
 };
 
-/// A light: directional (the sun) or point.
+/// A light: directional (the sun), point, or spot (a point light with a cone: a robot's lamp).
 struct RenderLight {
   bool directional = true;
-  Vec3 direction{-0.3, -0.2, -1.0};  ///< directional: unit direction the light travels, world frame
-  Vec3 position{0, 0, 3};            ///< point: world frame (m)
+  Vec3 direction{-0.3, -0.2, -1.0};  ///< directional and spot: unit direction the light travels, world frame
+  Vec3 position{0, 0, 3};            ///< point and spot: world frame (m)
   Vec3 color{1, 1, 1};               ///< linear colour times intensity
-  bool casts_shadows = true;
+  bool casts_shadows = true;         ///< directional only: the first such light gets the shadow map
+  bool spot = false;                 ///< point lights: lit only inside a cone around `direction`
+  double cone = 0;                   ///< spot: half-angle of the cone's edge (rad)
+  double inner_cone = 0;             ///< spot: half-angle of the fully lit core (rad), < cone
+  double range = 0;                  ///< point and spot: distance where the light has faded out (m); 0 = unlimited
+};
+
+/// A robot's lamp (RobotSpec::lights): where it is, and the light it gives when on.
+struct RenderLamp {
+  int robot = -1;       ///< World::robots index
+  int link = -1;        ///< link index
+  Pose3 X_LF;           ///< lamp frame in the link (x: where it shines)
+  RenderLight light;    ///< a spot light, posed by update_render_scene
 };
 
 /// Everything a renderer needs; items keep World order (statics, then rubble, then robot links).
@@ -71,7 +83,12 @@ struct RenderScene {
   std::vector<RenderMesh> meshes;
   std::vector<RenderMaterial> materials;
   std::vector<RenderItem> items;
-  std::vector<RenderLight> lights;           ///< World::lights, or one default sun when it has none (renderers use the first 4)
+  /// World::lights (or one default sun when it has none and World::sun), then the lamps of the
+  /// robots whose lights are on (update_render_scene); renderers use the first 8
+  std::vector<RenderLight> lights;
+  std::size_t world_lights = 0;              ///< how many of `lights` are the world's
+  std::vector<RenderLamp> lamps;             ///< every robot lamp, on or off
+  double ambient_light = 1.0;                ///< World::ambient_light: scales the ambient and fill light and the sky
   double ambient_temperature = 293.15;       ///< K, also what a thermal camera sees where nothing is
   Vec3 sky_color{0.62, 0.70, 0.80};          ///< background, sRGB in [0, 1]
   std::vector<MediumSpec> media;             ///< World::media: smoke and dust the cameras look through
@@ -87,12 +104,15 @@ struct RenderScene {
 RenderScene build_render_scene(const World& world);
 
 /// Moves rubble to State::dynamics[i].X_WB and robot link shapes to
-/// State::robots[r].X_WL[l] * X_LG, and sets the scene's time to the State's. Throws Error when the State does not match the scene's World
+/// State::robots[r].X_WL[l] * X_LG, sets the scene's time to the State's, and puts the lamps
+/// of robots whose lights are on (RobotState::lights_on) after the world's lights. Throws Error when the State does not match the scene's World
 /// (counts of rubble, robots or links differ).
 void update_render_scene(RenderScene& scene, const State& state);
 
 /// Linear value of one sRGB component in [0, 1].
 double srgb_to_linear(double c);
+/// The sRGB encoding of a linear value (clamped to [0, 1]).
+double linear_to_srgb(double c);
 
 /// The render mesh of a geometry in its own frame (boxes, cylinders and spheres with smooth or
 /// per-face normals and metric texture coordinates; convex and mesh shapes flat-shaded, a mesh

@@ -80,6 +80,12 @@ void add_sensor_head(RobotSpec& r, const std::string& parent_link, const Pose3& 
     r.head_joints.push_back(s.joint);
     parent = s.link;
   }
+  // a lamp under the cameras, shining where they look (off until /lights turns it on)
+  RobotLightSpec lamp;
+  lamp.name = "head_lamp";
+  lamp.link = "head";
+  lamp.X_LF = at(0.101, 0, -0.035);
+  r.lights.push_back(lamp);
 }
 
 void add_sensors(RobotSpec& r, const Pose3& X_laser, const std::vector<SonarMount>& sonars, double sonar_z) {

@@ -115,6 +115,12 @@ void Simulation::setup_topics() {
     const int ri = static_cast<int>(r);
     description_topics_[r] = bus_.advertise(topic_name(ri, "robot_description"), "std_msgs/String", 0, true, ri);
   }
+  // a robot with lamps switches them all on and off with /lights (std_msgs/Bool)
+  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
+    if (world_.robots[r].spec.lights.empty()) continue;
+    add_input({topic_name(static_cast<int>(r), "lights"), "std_msgs/Bool", static_cast<int>(r)},
+              [this, r](const msg::Message& m) { state_.robots[r].lights_on = std::get<msg::Bool>(m).data; });
+  }
   // one random stream and one schedule per sensor, in robot and spec order
   for (std::size_t r = 0; r < world_.robots.size(); ++r) {
     const RobotInstance& robot = world_.robots[r];

@@ -103,6 +103,20 @@ struct DriveSpec {
   double brake_gain = 20.0;
 };
 
+/// A lamp on a robot link: a spot light shining along its frame's x axis, with a soft-edged
+/// cone and a range. Intensity is in the renderer's units: a surface d metres away facing the
+/// lamp is lit like one facing the default sun when intensity / d^2 = 1.
+struct RobotLightSpec {
+  std::string name;
+  std::string link = "base_link";   ///< the link it is fixed to
+  Pose3 X_LF;                       ///< the lamp's frame in the link (x: where it shines)
+  Vec3 color{1.0, 0.95, 0.85};      ///< linear colour (a warm white LED)
+  double intensity = 8.0;
+  double range = 12.0;              ///< m: the light fades smoothly to nothing here
+  double cone = 0.45;               ///< rad: half-angle of the cone's edge
+  double inner_cone = 0.3;          ///< rad: half-angle of the fully lit core
+};
+
 /// A whole robot model.
 struct RobotSpec {
   std::string model;                 ///< e.g. "rescue_robot"
@@ -113,6 +127,9 @@ struct RobotSpec {
   /// Position joints driven by /flippers/command (std_msgs/Float64MultiArray, rad), in message
   /// order: a tracked robot's flippers. They are also joint_command joints.
   std::vector<std::string> flipper_joints;
+  /// Lamps on the robot's links, switched together over /lights (std_msgs/Bool).
+  std::vector<RobotLightSpec> lights;
+  bool lights_on = false;  ///< whether the lamps are on at the start
   std::vector<SensorSpec> sensors;
   /// The robot's own materials (a URDF's <material>s and mesh colours), added to the world's
   /// when it is compiled; names are prefixed with the model name to keep them apart.

@@ -67,6 +67,11 @@ struct CameraSpec {
   /// colour: Brown distortion k1, k2, p1, p2, k3 (all zero = an ideal pinhole)
   std::array<double, 5> distortion{0, 0, 0, 0, 0};
   double exposure = 1.0;             ///< colour: linear gain before encoding
+  /// colour: the gain follows the light, so that the image's mean linear luminance is 0.18 (mid
+  /// grey), within [exposure / max_gain, exposure * max_gain]; the pixel noise grows with the
+  /// gain above `exposure` (read noise amplified), so dark scenes come out grainy
+  bool auto_exposure = false;
+  double max_gain = 16.0;
   std::string depth_encoding = "32FC1";  ///< depth: 32FC1 (m) or 16UC1 (mm)
   double depth_noise_quadratic = 0.0;    ///< depth: extra noise sigma = this x z^2 (structured-light sensors, ~0.0012 /m)
   bool point_cloud = true;           ///< depth: also publish a PointCloud2

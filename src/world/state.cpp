@@ -132,6 +132,7 @@ State initial_state(const World& world) {
       if (spec.joints[j].control == JointSpec::Control::position) rs.joint_target[j] = spec.joints[j].initial;
     }
     for (const auto& name : spec.head_joints) rs.head_target.push_back(spec.joints[static_cast<std::size_t>(spec.joint_index(name))].initial);
+    rs.lights_on = spec.lights_on && !spec.lights.empty();
     s.robots.push_back(std::move(rs));
   }
   s.victims.assign(world.victims.size(), VictimState{});

@@ -53,6 +53,7 @@ struct RobotState {
   std::vector<double> brake_q;          ///< per joint: the angle a braked wheel is held at (rad)
   std::vector<double> joint_target;     ///< per joint: velocity target (velocity control) or position target
   std::vector<double> head_target;      ///< per head joint (rad)
+  bool lights_on = false;               ///< the robot's lamps (RobotSpec::lights), switched by /lights
 
   // wheel odometry, integrated from wheel joint velocities
   Pose2 odom;                           ///< pose of base_link in odom
@@ -194,6 +195,7 @@ void visit_fields(S& r, V& v) {
     w("brake_q", r.brake_q);
     w("joint_target", r.joint_target);
     w("head_target", r.head_target);
+    w("lights_on", r.lights_on);
   });
   v.group("odometry", [&](auto& w) {
     w("odom", r.odom);

@@ -67,6 +67,8 @@ struct World {
   std::vector<Victim> victims;
   std::vector<RobotInstance> robots;
   std::vector<LightSpec> lights;
+  double ambient_light = 1.0;          ///< fraction of the default ambient light (WorldSpec::ambient_light)
+  bool sun = true;                     ///< a world without lights gets the default sun
   std::vector<MediumSpec> media;       ///< smoke and dust (world/media.h); empty: clear air, and no sensor pays for media
   std::uint64_t world_seed = 0;        ///< of a generated world
 

@@ -106,6 +106,8 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
   w.gravity = spec.gravity;
   w.materials = spec.materials;
   w.lights = spec.lights;
+  w.ambient_light = spec.ambient_light;
+  w.sun = spec.sun;
   w.media = spec.media;
   w.world_seed = spec.seed;
   // robots need their materials even when a hand-built spec left them out

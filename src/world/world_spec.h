@@ -209,6 +209,10 @@ struct WorldSpec {
   std::vector<RubbleSpec> rubble;
   std::vector<VictimSpec> victims;
   std::vector<LightSpec> lights;
+  /// Daylight: the ambient light (sky and bounce) as a fraction of a bright overcast day's, 0 for
+  /// none; and whether a world without lights of its own gets the default sun (docs/environment.md).
+  double ambient_light = 1.0;
+  bool sun = true;
   std::vector<RobotPlacement> robots;
   std::vector<SolidSpec> solids;    ///< fixed 3-D solids (from SDF)
   std::vector<BodySpec> bodies;     ///< loose rigid bodies (from SDF)

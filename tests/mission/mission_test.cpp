@@ -199,8 +199,9 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   Simulation sim(line_world({}, {0, 5}));
   Mission mission(wss_mission(), sim);
   const std::vector<HostInput> inputs = sim.inputs();
-  ASSERT_EQ(inputs.size(), 8u);  // per robot: report, comms/send, drop_relay, report_image
-  EXPECT_EQ(inputs[0].type, "geometry_msgs/PoseStamped");
+  ASSERT_EQ(inputs.size(), 10u);  // per robot: lights (the simulation's), report, comms/send, drop_relay, report_image
+  EXPECT_EQ(inputs[static_cast<std::size_t>(input_index(sim, "/a/rescue/report"))].type, "geometry_msgs/PoseStamped");
+  EXPECT_EQ(inputs[static_cast<std::size_t>(input_index(sim, "/a/lights"))].type, "std_msgs/Bool");
   const int report = input_index(sim, "/a/rescue/report"), send = input_index(sim, "/a/rescue/comms/send"),
             relay = input_index(sim, "/a/rescue/drop_relay");
   ASSERT_GE(report, 0);

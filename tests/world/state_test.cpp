@@ -105,9 +105,9 @@ TEST(StateHash, EveryFieldOfTheListChangesTheHash) {
   Perturber count;
   State probe = base;
   visit_fields(probe, count);
-  // 2 top-level leaves, 4 sequences, 5 per body, per robot its base's 5 + 1 + 1 + 3 + 10 + 3 + 3,
+  // 2 top-level leaves, 4 sequences, 5 per body, per robot its base's 5 + 1 + 1 + 3 + 11 + 3 + 3,
   // 3 per victim, 8 per sensor slot, 4 schedule and 3 trouble leaves
-  EXPECT_EQ(count.seen, 2 + 4 + 5 + 26 + 3 + 8 + 4 + 3);
+  EXPECT_EQ(count.seen, 2 + 4 + 5 + 27 + 3 + 8 + 4 + 3);
   for (int k = 0; k < count.seen; ++k) {
     State s = base;
     Perturber p;

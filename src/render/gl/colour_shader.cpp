@@ -122,8 +122,10 @@ const char* const kLightUniforms = R"(
 uniform vec3 u_eye;                      // camera position, world (m)
 uniform vec3 u_sky_ambient;              // ambient light from above (linear)
 uniform vec3 u_ground_ambient;           // ambient light from below
-uniform vec4 u_light[4];                 // w = 0: direction the light travels; w = 1: position (m)
-uniform vec3 u_light_color[4];
+uniform vec4 u_light[8];                 // w = 0: direction the light travels; w = 1: position (m)
+uniform vec3 u_light_color[8];
+uniform vec4 u_light_cone[8];            // spot: unit axis the light shines along, cos of the cone's edge (< -1: no cone)
+uniform vec4 u_light_shape[8];           // cos of the fully lit core; 1 / range^2 (0: unlimited)
 uniform vec3 u_fill_dir;                 // unit, towards the fill light
 uniform vec3 u_fill_color;
 
@@ -133,9 +135,16 @@ vec3 to_light(int i, vec3 p) {
   vec3 d = u_light[i].xyz - p * u_light[i].w;
   return u_light[i].w == 0.0 ? -normalize(d) : normalize(d);
 }
+// a point light falls off as 1/d^2, times a window that takes it smoothly to 0 at its range
+// ((1 - (d/range)^4)^2, as Filament and Unreal do), times its cone: 1 in the core, 0 outside the edge
 vec3 radiance(int i, vec3 p) {
+  if (u_light[i].w == 0.0) return u_light_color[i];
   vec3 d = u_light[i].xyz - p;
-  return u_light[i].w == 0.0 ? u_light_color[i] : u_light_color[i] / max(dot(d, d), 0.01);
+  float d2 = max(dot(d, d), 0.01);
+  float x = d2 * u_light_shape[i].y;
+  float window = clamp(1.0 - x * x, 0.0, 1.0);
+  float cone = smoothstep(u_light_cone[i].w, u_light_shape[i].x, dot(-d, u_light_cone[i].xyz) * inversesqrt(d2));
+  return u_light_color[i] * (cone * window * window / d2);
 }
 )";
 

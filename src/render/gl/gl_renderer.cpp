@@ -34,7 +34,7 @@ namespace rescuesim::gl {
 namespace {
 
 constexpr int kMaxMaterials = 64;
-constexpr int kMaxLights = 4;
+constexpr int kMaxLights = 8;          ///< the shaders' light arrays (kLightUniforms)
 constexpr int kMaxBlurRadius = 96;
 constexpr std::size_t kMaxCachedSizes = 8;
 constexpr double kAoRadius = 0.35;     ///< SSAO sampling radius (m)
@@ -111,9 +111,15 @@ class GlRenderer final : public Renderer {
   /// Decodes an image file and writes it, resampled to a layer, into layer `layer` of patterns_;
   /// false (and a warning) when the file cannot be decoded.
   bool upload_image(const std::string& file, int layer);
-  /// Compiles the three colour programs for `lights` lights (0..kMaxLights) and the fog of
-  /// fog_pieces_ pieces (none: no fog code at all).
-  void build_color_programs(int lights);
+  /// Compiles the three colour programs for `lights` lights (0..kMaxLights), per pixel at every
+  /// quality when `spots` (a cone's edge needs it), and the fog of fog_pieces_ pieces (none: no
+  /// fog code at all).
+  void build_color_programs(int lights, bool spots);
+  /// Uploads the scene's lights to the colour programs, compiling them again first when the
+  /// number of lights or whether there are spots changed, or when `rebuild`.
+  void set_lights(const RenderScene& scene, bool rebuild);
+  /// The loaded scene's materials into the colour programs.
+  void upload_materials();
   /// Compiles the sky, depth and thermal fog programs for these pieces when their number or
   /// their sides' differ from what they were compiled for; true when they did (the colour
   /// programs must then be compiled again). Throws Error past kMaxFogPieces or kMaxFogSides.
@@ -142,6 +148,9 @@ class GlRenderer final : public Renderer {
   Eigen::Vector3f fog_light_ = Eigen::Vector3f::Zero();  ///< linear light on the media
   std::vector<std::string> images_;  ///< image files of the scene, in layer order after the patterns
   int light_count_ = -1;  ///< lights the colour programs were compiled for
+  bool spot_lights_ = false;  ///< whether they were compiled for spot lights
+  std::vector<float> material_, layer_;  ///< the colour programs' material uniforms
+  float ambient_light_ = 1.0f;           ///< RenderScene::ambient_light
   VertexArray empty_vao_;
   GpuScene scene_;
   Eigen::Vector4f sky_ = Eigen::Vector4f::Zero();  ///< sRGB clear colour, luma in alpha
@@ -158,7 +167,7 @@ class GlRenderer final : public Renderer {
 };
 
 GlRenderer::GlRenderer(Quality q) : Renderer(q) {
-  build_color_programs(1);
+  build_color_programs(1, false);
   depth_ = Program("depth", shaders::kDepthVertex, shaders::kDepthFragment);
   thermal_ = Program("thermal", shaders::kSceneVertex, shaders::kThermalFragment);
   fxaa_ = Program("fxaa", shaders::kFullscreenVertex, shaders::kFxaaFragment);
@@ -173,15 +182,17 @@ GlRenderer::GlRenderer(Quality q) : Renderer(q) {
   configure_shadows(q);
 }
 
-void GlRenderer::build_color_programs(int lights) {
+void GlRenderer::build_color_programs(int lights, bool spots) {
   for (int i = 0; i < 3; ++i) {
-    // low: Gouraud lighting, no shadows; medium: per-pixel with shadows; high: and SSAO
+    // low: Gouraud lighting (per pixel when there are spot lights), no shadows; medium: per-pixel
+    // with shadows; high: and SSAO
+    const bool per_pixel = i > 0 || spots;
     const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n"
                                            "#define MEDIA {}\n#define MEDIA_SIDES {}\n",
-                                           lights, i > 0 ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_, std::max(fog_sides_, 1));
+                                           lights, per_pixel ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_, std::max(fog_sides_, 1));
     const std::string common = header + shaders::kLightUniforms;
     const std::string fog_code = fog() ? shaders::kFogFunctions : "";
-    color_[i] = Program("colour", i == 0 ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
+    color_[i] = Program("colour", !per_pixel ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
                         common + fog_code + shaders::kColorFragment);
     color_model_[i] = color_[i].uniform("u_model");
     // samplers of different types may not share a texture unit
@@ -189,11 +200,10 @@ void GlRenderer::build_color_programs(int lights) {
     color_[i].set("u_ao", 2);
     color_[i].set("u_patterns", 3);
     color_[i].set("u_period", kPatternPeriod);
-    color_[i].set("u_sky_ambient", kSkyAmbient);
-    color_[i].set("u_ground_ambient", kGroundAmbient);
     color_[i].set("u_shadow_light", -1);
   }
   light_count_ = lights;
+  spot_lights_ = spots;
 }
 
 void GlRenderer::bake_patterns() {
@@ -303,72 +313,108 @@ void GlRenderer::do_load(const RenderScene& scene) {
 
   // materials: linear albedo and roughness, texture kind or image layer (the first kMaxImages
   // images; materials with more are drawn in their pattern)
-  std::vector<float> material(4 * kMaxMaterials, 0.0f), layer(kMaxMaterials, 0.0f);
+  material_.assign(4 * kMaxMaterials, 0.0f);
+  layer_.assign(kMaxMaterials, 0.0f);
   std::vector<std::string> images;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const RenderMaterial& m = scene.materials[i];
-    for (int c = 0; c < 3; ++c) material[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(m.albedo[c]);
-    material[4 * i + 3] = static_cast<float>(m.roughness);
-    layer[i] = static_cast<float>(m.texture);
+    for (int c = 0; c < 3; ++c) material_[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(m.albedo[c]);
+    material_[4 * i + 3] = static_cast<float>(m.roughness);
+    layer_[i] = static_cast<float>(m.texture);
     if (m.image.empty()) continue;
     auto it = std::find(images.begin(), images.end(), m.image);
     if (it == images.end() && images.size() < static_cast<std::size_t>(kMaxImages)) it = images.insert(images.end(), m.image);
-    if (it != images.end()) layer[i] = static_cast<float>(kPatternLayers + (it - images.begin()));
+    if (it != images.end()) layer_[i] = static_cast<float>(kPatternLayers + (it - images.begin()));
   }
   if (images != images_) {
     images_ = std::move(images);
     patterns_ = Texture();  // baked again, with these images, on the next colour image
   }
 
-  // lights: the first kMaxLights; the first shadow-casting directional one gets the shadow map
+  // daylight: the sky and the ambient and fill light scale together
+  ambient_light_ = static_cast<float>(std::max(0.0, scene.ambient_light));
+  Eigen::Vector3f sky = scene.sky_color.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
+  if (ambient_light_ < 1.0f) {
+    for (int c = 0; c < 3; ++c) sky[c] = static_cast<float>(linear_to_srgb(srgb_to_linear(sky[c]) * ambient_light_));
+  }
+  sky_ = Eigen::Vector4f(sky.x(), sky.y(), sky.z(), sky.dot(Eigen::Vector3f(0.299f, 0.587f, 0.114f)));
+  ambient_temperature_ = static_cast<float>(scene.ambient_temperature);
+
+  media_ = scene.media;
+  const std::vector<FogPiece> pieces = fog_pieces(media_, scene.time);
+  const bool fog_compiled = compile_fog(pieces);
+  set_lights(scene, fog_compiled);
+  upload_materials();
+  if (fog()) upload_fog(pieces, scene.time);
+  shadow_dirty_ = true;
+}
+
+void GlRenderer::upload_materials() {
+  if (material_.empty()) return;
+  for (const Program& p : color_) {
+    glProgramUniform4fv(p.id(), p.uniform("u_material"), kMaxMaterials, material_.data());
+    glProgramUniform1fv(p.id(), p.uniform("u_layer"), kMaxMaterials, layer_.data());
+  }
+}
+
+void GlRenderer::set_lights(const RenderScene& scene, bool rebuild) {
+  // the first kMaxLights; the first shadow-casting directional one gets the shadow map
   const int count = std::min<int>(kMaxLights, static_cast<int>(scene.lights.size()));
-  std::vector<float> where(4 * kMaxLights, 0.0f), color(3 * kMaxLights, 0.0f);
+  std::vector<float> where(4 * kMaxLights, 0.0f), color(3 * kMaxLights, 0.0f), cone(4 * kMaxLights, 0.0f), shape(4 * kMaxLights, 0.0f);
+  bool spots = false;
   shadow_light_ = -1;
   Vec3 sun = Vec3(-0.35, 0.45, -1.0).normalized();
+  // the light on the media: the ambient a matte surface gets from all round, and a quarter of
+  // each directional light's (an isotropic scatterer sends 1/4pi of it per steradian where a
+  // Lambertian surface facing it sends 1/pi); point and spot lights are left out
+  Eigen::Vector3f on_media = ambient_light_ * (0.5f * (kSkyAmbient + kGroundAmbient) + 0.25f * kFillColor);
   for (int i = 0; i < count; ++i) {
     const RenderLight& l = scene.lights[static_cast<std::size_t>(i)];
+    const auto at = static_cast<std::size_t>(i);
     const Vec3 v = l.directional ? l.direction : l.position;
     for (int c = 0; c < 3; ++c) {
-      where[static_cast<std::size_t>(4 * i + c)] = static_cast<float>(v[c]);
-      color[static_cast<std::size_t>(3 * i + c)] = static_cast<float>(l.color[c]);
+      where[4 * at + static_cast<std::size_t>(c)] = static_cast<float>(v[c]);
+      color[3 * at + static_cast<std::size_t>(c)] = static_cast<float>(l.color[c]);
     }
-    where[static_cast<std::size_t>(4 * i + 3)] = l.directional ? 0.0f : 1.0f;
+    where[4 * at + 3] = l.directional ? 0.0f : 1.0f;
+    // a cone (spot lights) as the axis and the cosines of its edge and core; none: cosines
+    // below -1, so every direction is inside
+    const bool spot = !l.directional && l.spot;
+    const Vec3 axis = l.direction.norm() > 1e-9 ? l.direction.normalized() : Vec3(1, 0, 0);
+    for (int c = 0; c < 3; ++c) cone[4 * at + static_cast<std::size_t>(c)] = static_cast<float>(axis[c]);
+    cone[4 * at + 3] = spot ? static_cast<float>(std::cos(l.cone)) : -3.0f;
+    shape[4 * at] = spot ? static_cast<float>(std::cos(std::min(l.inner_cone, l.cone - 1e-3))) : -2.0f;
+    shape[4 * at + 1] = !l.directional && l.range > 0 ? static_cast<float>(1.0 / (l.range * l.range)) : 0.0f;
+    spots = spots || spot;
+    if (l.directional) on_media += 0.25f * l.color.cast<float>();
     if (l.directional && shadow_light_ < 0) sun = l.direction;
     if (l.directional && l.casts_shadows && shadow_light_ < 0) {
       shadow_light_ = i;
       shadow_direction_ = l.direction;
     }
   }
-  media_ = scene.media;
-  const std::vector<FogPiece> pieces = fog_pieces(media_, scene.time);
-  const bool fog_compiled = compile_fog(pieces);
-  if (count != light_count_ || fog_compiled) build_color_programs(count);
+  fog_light_ = on_media;
+  if (rebuild || count != light_count_ || spots != spot_lights_) {
+    build_color_programs(count, spots);
+    upload_materials();
+    if (fog()) upload_fog(fog_, fog_time_);
+    shadow_dirty_ = true;
+  }
   // the fill light comes from the side the sun shines towards, a little above the horizon
   Vec3 across(sun.x(), sun.y(), 0);
   across = across.norm() > 1e-6 ? across.normalized() : Vec3::UnitX();
   for (const Program& p : color_) {
-    glProgramUniform4fv(p.id(), p.uniform("u_material"), kMaxMaterials, material.data());
-    glProgramUniform1fv(p.id(), p.uniform("u_layer"), kMaxMaterials, layer.data());
     glProgramUniform4fv(p.id(), p.uniform("u_light"), kMaxLights, where.data());
     glProgramUniform3fv(p.id(), p.uniform("u_light_color"), kMaxLights, color.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_light_cone"), kMaxLights, cone.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_light_shape"), kMaxLights, shape.data());
     p.set("u_fill_dir", Eigen::Vector3f((across + Vec3(0, 0, 0.7)).normalized().cast<float>()));
-    p.set("u_fill_color", kFillColor);
+    p.set("u_fill_color", Eigen::Vector3f(ambient_light_ * kFillColor));
+    p.set("u_sky_ambient", Eigen::Vector3f(ambient_light_ * kSkyAmbient));
+    p.set("u_ground_ambient", Eigen::Vector3f(ambient_light_ * kGroundAmbient));
+    if (fog()) p.set("u_fog_light", fog_light_);
   }
-
-  const Eigen::Vector3f sky = scene.sky_color.cast<float>().cwiseMax(0.0f).cwiseMin(1.0f);
-  sky_ = Eigen::Vector4f(sky.x(), sky.y(), sky.z(), sky.dot(Eigen::Vector3f(0.299f, 0.587f, 0.114f)));
-  ambient_temperature_ = static_cast<float>(scene.ambient_temperature);
-  // the light on the media: the ambient a matte surface gets from all round, and a quarter of
-  // each directional light's (an isotropic scatterer sends 1/4pi of it per steradian where a
-  // Lambertian surface facing it sends 1/pi); point lights are left out
-  Eigen::Vector3f light = 0.5f * (kSkyAmbient + kGroundAmbient) + 0.25f * kFillColor;
-  for (int i = 0; i < count; ++i) {
-    const RenderLight& l = scene.lights[static_cast<std::size_t>(i)];
-    if (l.directional) light += 0.25f * l.color.cast<float>();
-  }
-  fog_light_ = light;
-  if (fog()) upload_fog(pieces, scene.time);
-  shadow_dirty_ = true;
+  if (fog()) fog_sky_.set("u_fog_light", fog_light_);
 }
 
 bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
@@ -461,6 +507,11 @@ void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& vie
 void GlRenderer::do_update(const RenderScene& scene) {
   scene_.update(scene);
   shadow_dirty_ = true;
+  // robot lamps move with their links and switch on and off
+  if (!scene.lamps.empty()) {
+    context_.make_current();
+    set_lights(scene, false);
+  }
   // media that grow or drift are cut again at the scene's time
   const bool moving = std::any_of(media_.begin(), media_.end(), [](const MediumSpec& m) { return m.growth != 0 || m.drift != Vec2::Zero(); });
   if (fog() && moving && scene.time != fog_time_) {

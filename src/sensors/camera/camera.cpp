@@ -1,6 +1,7 @@
 #include "sensors/camera/camera.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
@@ -27,13 +28,26 @@ BrownDistortion distortion_of(const CameraSpec& c) {
   return d;
 }
 
-bool has_distortion(const CameraSpec& c) {
-  return std::any_of(c.distortion.begin(), c.distortion.end(), [](double x) { return x != 0; });
+/// Automatic exposure: the gain that brings the mean linear luminance of `rgb` (sRGB bytes) to
+/// 0.18, within [exposure / max_gain, exposure * max_gain].
+double auto_exposure_gain(const std::vector<std::uint8_t>& rgb, const CameraSpec& c) {
+  static const auto table = [] {
+    std::array<double, 256> t{};
+    for (int i = 0; i < 256; ++i) t[static_cast<std::size_t>(i)] = srgb_to_linear(i / 255.0);
+    return t;
+  }();
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    sum += 0.2126 * table[rgb[i]] + 0.7152 * table[rgb[i + 1]] + 0.0722 * table[rgb[i + 2]];
+    ++n;
+  }
+  const double mean = n > 0 ? sum / static_cast<double>(n) : 0.18;
+  return c.exposure * std::clamp(0.18 / std::max(mean, 1e-6), 1.0 / c.max_gain, c.max_gain);
 }
 
-double linear_to_srgb(double c) {
-  c = std::clamp(c, 0.0, 1.0);
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+bool has_distortion(const CameraSpec& c) {
+  return std::any_of(c.distortion.begin(), c.distortion.end(), [](double x) { return x != 0; });
 }
 
 /// Bilinear sample of an RGB8 image at (u, v) in pixel coordinates (pixel centres at integers).
@@ -111,15 +125,18 @@ msg::Image color_message(const ColorImage& image, const SensorSpec& spec, const 
   } else {
     std::memcpy(m.data.data(), image.rgb.data(), m.data.size());
   }
-  // exposure acts on linear light; noise on the encoded values (like sensor read noise)
-  if (c.exposure != 1.0 || c.noise.stddev > 0) {
+  // exposure acts on linear light; noise on the encoded values (like sensor read noise), grown
+  // by the gain an automatic exposure adds
+  const double gain = c.auto_exposure ? auto_exposure_gain(m.data, c) : c.exposure;
+  const double noise = c.noise.stddev * std::max(1.0, gain / c.exposure);
+  if (gain != 1.0 || noise > 0) {
     std::uint8_t lut[256];
     for (int i = 0; i < 256; ++i) {
-      lut[i] = static_cast<std::uint8_t>(std::lround(255 * linear_to_srgb(srgb_to_linear(i / 255.0) * c.exposure)));
+      lut[i] = static_cast<std::uint8_t>(std::lround(255 * linear_to_srgb(srgb_to_linear(i / 255.0) * gain)));
     }
     for (auto& px : m.data) {
       double v = lut[px];
-      if (c.noise.stddev > 0) v += rng.normal(0, c.noise.stddev * 255);
+      if (noise > 0) v += rng.normal(0, noise * 255);
       px = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
     }
   }

@@ -238,6 +238,8 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   for (const auto& p : root.strings("resource_paths", {})) s.resource_paths.push_back(beside_scenario(p));
   s.includes = read_includes(w, on_disk ? file : "");
   s.media = read_media(w, on_disk ? file : "");
+  if (w.has("ambient_light")) s.ambient_light = w.number("ambient_light", 1.0, 0.0, 10.0);
+  if (w.has("sun")) s.sun = w.boolean("sun", true);
   w.finish();
   s.physics_dt_given = dt_given;
   // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
@@ -298,6 +300,8 @@ WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
   }
   w.ambient_temperature = scenario.svg_options.ambient_temperature;
   w.media.insert(w.media.end(), scenario.media.begin(), scenario.media.end());
+  if (scenario.ambient_light) w.ambient_light = *scenario.ambient_light;
+  if (scenario.sun) w.sun = *scenario.sun;
   // the scenario's robots take the world's starts in order, unless they bring their own
   if (!scenario.robots.empty()) {
     std::vector<RobotPlacement> placed;

@@ -60,6 +60,9 @@ struct Scenario {
   std::shared_ptr<const SdfWorld> models;    ///< null when the scenario has neither sdf nor include
   /// Smoke and dust added to the world (world.media; docs/environment.md), whatever its source.
   std::vector<MediumSpec> media;
+  /// Daylight (world.ambient_light, world.sun; docs/environment.md): unset keeps the world's own.
+  std::optional<double> ambient_light;
+  std::optional<bool> sun;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
 
   /// Folders where package:// URIs are looked for first (relative entries are taken from the

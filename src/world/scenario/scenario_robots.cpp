@@ -85,6 +85,11 @@ void read_sensor(const YamlNode& n, SensorSpec& s) {
       read_ranges(n, c.min_range, c.max_range);
       read_noise(n, "", c.noise);
       c.blur_sigma = n.number("blur_sigma", c.blur_sigma, 0, 50);
+      if (s.type == SensorSpec::Type::color_camera) {
+        c.exposure = n.number("exposure", c.exposure, 1e-3, 1e3);
+        c.auto_exposure = n.boolean("auto_exposure", c.auto_exposure);
+        c.max_gain = n.number("max_gain", c.max_gain, 1, 1e4);
+      }
       break;
     }
     case SensorSpec::Type::ground_truth:
@@ -227,6 +232,10 @@ RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, 
     add_standard_sensors(c.spec);
   }
   c.controller = node.choice("controller", c.controller, {"explorer", "wall_follower", "none"});
+  if (node.has("lights")) {
+    if (c.spec.lights.empty()) throw Error(node.where("lights"), "robot model '" + c.model + "' has no lamps to switch on");
+    c.spec.lights_on = node.boolean("lights", false);
+  }
   if (node.has("start")) {
     const YamlNode s = node.map("start");
     c.start = Pose2{s.required_number("x"), s.required_number("y"), s.number("yaw", 0, -360, 360) * kDeg};

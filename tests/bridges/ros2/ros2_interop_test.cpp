@@ -183,7 +183,7 @@ TEST(Ros2Interop, FastDdsPeerReadsSensorsDrivesTheRobotAndSeesTheNode) {
   EXPECT_TRUE(r["discovery"]["gid_padding_zero"].get<bool>());
   EXPECT_TRUE(r["discovery"]["scan_writer_listed"].get<bool>());
   EXPECT_GT(r["discovery"]["writers"].get<int>(), 10);
-  EXPECT_EQ(r["discovery"]["readers"], 2);  // cmd_vel, head/command
+  EXPECT_EQ(r["discovery"]["readers"], 3);  // cmd_vel, head/command, lights
 
   EXPECT_NE(s.sim_out.find("bridge ros2:"), std::string::npos) << s.sim_out;
   EXPECT_EQ(s.sim_err.find("rejected"), std::string::npos) << s.sim_err;
