@@ -60,6 +60,8 @@ struct Scenario {
   std::shared_ptr<const SdfWorld> models;    ///< null when the scenario has neither sdf nor include
   /// Smoke and dust added to the world (world.media; docs/environment.md), whatever its source.
   std::vector<MediumSpec> media;
+  /// Floor patches of other materials added to the world (world.ground; docs/terrain.md), whatever its source.
+  std::vector<GroundAreaSpec> ground;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
 
   /// Folders where package:// URIs are looked for first (relative entries are taken from the
