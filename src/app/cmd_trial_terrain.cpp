@@ -68,7 +68,9 @@ void add_trial_terrain_command(CLI::App& app, Action& action) {
       "  rescuesim arena --lanes stepfield,stairs,curb --out arena.svg\n"
       "  rescuesim trial-terrain arena.svg --lane stairs --robot tracked_robot --laps 10 --out stairs\n"
       "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --robot rescue_robot --laps 3\n"
-      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --pattern back-and-forth --laps 4");
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --pattern back-and-forth --laps 4\n\n"
+      "Many trials with their own seeds, resumable and summarised: rescuesim batch --trial-terrain\n"
+      "(docs/batch.md).");
   cmd->add_option("world", c->world, "the arena (an SVG world with terrain elements, e.g. from rescuesim arena)")->required();
   cmd->add_option("--lane", c->trial.lane, "the element's name (its SVG id), or a kind: the first element of that kind")->required();
   cmd->add_option("--robot", c->trial.robot, "built-in model: tracked_robot or rescue_robot")->capture_default_str();
