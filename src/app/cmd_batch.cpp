@@ -43,6 +43,10 @@ struct BatchCommand {
   bool retry_failed = false;
   bool threads = false;
   bool quiet = false;
+  // terrain trials (--trial-terrain ARENA.svg)
+  std::string terrain_world;
+  std::string pattern = "laps";
+  TerrainTrialOptions terrain;
 };
 
 struct MergeCommand {
@@ -67,7 +71,11 @@ void print_progress(const BatchProgress& p, bool tty) {
   if (!tty) {
     if (!p.last) return;
     const TrialRecord& r = *p.last;
-    if (r.status == "ok") {
+    if (r.status == "ok" && r.terrain) {
+      std::fprintf(stderr, "[%d/%d] trial %d (seed %llu): %d/%d repetitions, %d falls, %d stuck, %.1f s in %.1f s\n", p.done, p.planned,
+                   r.trial, static_cast<unsigned long long>(r.seed), r.terrain->repetitions, r.terrain->laps, r.terrain->falls,
+                   r.terrain->stuck, r.sim_time, r.wall_time);
+    } else if (r.status == "ok") {
       std::fprintf(stderr, "[%d/%d] trial %d (seed %llu): %d/%d victims, %.0f%% coverage, %d collisions, %.1f s in %.1f s\n", p.done,
                    p.planned, r.trial, static_cast<unsigned long long>(r.seed), r.victims_found, r.victims_total, 100 * r.coverage,
                    r.collisions, r.sim_time, r.wall_time);
@@ -95,7 +103,15 @@ void print_progress(const BatchProgress& p, bool tty) {
 void print_summary_line(const std::map<int, TrialRecord>& records) {
   int failed = 0, successes = 0, found = 0, total = 0;
   double coverage = 0;
+  int terrain = 0, laps = 0, reps = 0, falls = 0, stuck = 0;
   for (const auto& [t, r] : records) {
+    if (r.terrain) {
+      ++terrain;
+      laps += r.terrain->laps;
+      reps += r.terrain->repetitions;
+      falls += r.terrain->falls;
+      stuck += r.terrain->stuck;
+    }
     failed += r.status != "ok";
     successes += r.success;
     found += r.victims_found;
@@ -103,6 +119,11 @@ void print_summary_line(const std::map<int, TrialRecord>& records) {
     coverage += r.coverage;
   }
   const double n = std::max<double>(1, static_cast<double>(records.size()));
+  if (terrain > 0) {
+    std::printf("%zu trials recorded: %d completed every repetition (%.0f%%), %d failed; repetitions %d/%d, %d falls, %d stuck\n",
+                records.size(), successes, 100.0 * successes / n, failed, reps, laps, falls, stuck);
+    return;
+  }
   std::printf("%zu trials recorded: %d found every victim (%.0f%%), %d failed; victims found %d/%d, mean coverage %.0f%%\n",
               records.size(), successes, 100.0 * successes / n, failed, found, total, 100.0 * coverage / n);
 }
@@ -110,18 +131,38 @@ void print_summary_line(const std::map<int, TrialRecord>& records) {
 int run_batch(const BatchCommand& c) {
   if (!c.trials) throw Error("batch: --trials N is required (how many trials the batch has)");
   const ModelMap models = builtin_models();
-  const BatchScenario bs = load_batch_scenario(c.scenario, models);
+  const bool terrain = !c.terrain_world.empty();
+  if (terrain && !c.scenario.empty()) throw Error("batch: give a scenario or --trial-terrain ARENA.svg, not both");
+  if (!terrain && !c.terrain.lane.empty()) throw Error("batch: --lane belongs to --trial-terrain ARENA.svg");
+  if (terrain && c.terrain.lane.empty()) throw Error("batch: --trial-terrain needs --lane (an element's name or a kind, e.g. stairs)");
+  // a terrain batch's scenario is its arena: the SVG by its absolute path, so child processes and
+  // reruns from another folder find it; its text is part of the fingerprint like a scenario's
+  const BatchScenario bs = terrain ? parse_batch_scenario("name: " + fs::path(c.terrain_world).stem().string() + "\nseed: 1\nworld:\n  svg: \"" +
+                                                              fs::absolute(c.terrain_world).lexically_normal().string() + "\"\n",
+                                                          "<built-in>", models)
+                                   : load_batch_scenario(c.scenario, models);
   TrialOptions to;
   to.duration = c.duration;
   to.controller = c.controller;
   to.cameras = c.cameras;
   to.stop_when_all_found = !c.full_duration;
+  if (terrain) {
+    to.terrain = c.terrain;
+    to.terrain->pattern = parse_terrain_pattern(c.pattern);
+    // fails now (exit 2) rather than in every trial: a world that does not load, a lane it lacks
+    const WorldSpec world = build_world(bs.scenario);
+    validate(world).throw_if_errors();
+    bool found = false;
+    for (const auto& t : world.terrain) found = found || t.name == c.terrain.lane || c.terrain.lane == TerrainSpec::kind_name(t.kind);
+    if (!found) throw Error({c.terrain_world, 0, "--lane"}, "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
+    if (!models.count(c.terrain.robot)) throw Error("batch: unknown robot '" + c.terrain.robot + "' (expected tracked_robot or rescue_robot)");
+  }
   const std::string fingerprint = batch_fingerprint(bs.text, to);
   const std::uint64_t base_seed = c.seed ? *c.seed : bs.scenario.seed;
   const Shard shard = c.shard.empty() ? Shard{} : parse_shard(c.shard);
   // a bad time limit is an error of the command, not of every trial
   const double duration = to.duration ? *to.duration : bs.scenario.duration;
-  if (!std::isfinite(duration) || duration <= 0) throw Error({bs.file, 0, "duration"}, "a batch needs a finite time limit per trial: give --duration");
+  if (!terrain && (!std::isfinite(duration) || duration <= 0)) throw Error({bs.file, 0, "duration"}, "a batch needs a finite time limit per trial: give --duration");
   const fs::path out = c.out.empty() ? fs::path("batches") / bs.scenario.name : fs::path(c.out);
   const int jobs = c.jobs > 0 ? c.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
@@ -152,6 +193,10 @@ int run_batch(const BatchCommand& c) {
   std::printf("batch %s (%s): trials 0..%d with seeds %llu..%llu%s\n", bs.scenario.name.c_str(), fingerprint.c_str(), *c.trials - 1,
               static_cast<unsigned long long>(base_seed), static_cast<unsigned long long>(trial_seed(base_seed, *c.trials - 1)),
               c.shard.empty() ? "" : (", shard " + c.shard + " (" + std::to_string(mine.size()) + " trials)").c_str());
+  if (terrain) {
+    std::printf("  terrain trials: lane '%s', %s, %d %s at %.2f m/s\n", c.terrain.lane.c_str(), c.terrain.robot.c_str(), c.terrain.laps,
+                to.terrain->pattern == TerrainPattern::laps ? "laps" : "crossings back and forth", c.terrain.speed);
+  }
   std::printf("  %zu already recorded in %s, %zu to run, %d at a time in %s%s\n", mine.size() - todo.size(), results.path().string().c_str(),
               todo.size(), jobs, c.threads ? "threads" : "child processes", c.cameras ? ", cameras on" : ", no cameras");
   std::fflush(stdout);
@@ -219,7 +264,14 @@ void add_batch_command(CLI::App& app, Action& action) {
       "  rescuesim batch --trials 100 --jobs 2                 the default scenario\n"
       "  rescuesim batch worlds/arena.yaml --trials 50 --seed 1000 --out batches/arena\n"
       "  rescuesim batch s.yaml --trials 1000 --shard 3/10 --out part3   (one of ten machines)\n"
-      "  rescuesim batch merge part0 part1 part2 --out all\n\n"
+      "  rescuesim batch merge part0 part1 part2 --out all\n"
+      "  rescuesim batch --trial-terrain worlds/terrain_lanes.svg --lane stairs --robot tracked_robot \\\n"
+      "      --laps 5 --trials 20 --out batches/stairs\n\n"
+      "Terrain trials (--trial-terrain ARENA.svg --lane L): trial i is `rescuesim trial-terrain`\n"
+      "on that lane with seed S+i (--seed, default 1); it succeeds when every one of its --laps\n"
+      "repetitions is completed. Each results.jsonl line then has a \"terrain\" object (lane, kind,\n"
+      "robot, pattern, laps, repetitions, falls, stuck, timeouts, mean_time_s), and summary.json a\n"
+      "\"terrain\" section (repetition rate, falls, stuck) beside the success rate.\n\n"
       "Exit codes: 0 all trials recorded and none failed, 1 some failed or the batch was\n"
       "interrupted, 2 bad input. See docs/batch.md (Slurm arrays, Dask).");
   cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
@@ -236,6 +288,25 @@ void add_batch_command(CLI::App& app, Action& action) {
   cmd->add_flag("--retry-failed", c->retry_failed, "run the trials recorded as failed again");
   cmd->add_flag("--threads", c->threads, "run trials in threads of this process instead of child processes (a crash then ends the batch)");
   cmd->add_flag("--quiet,-q", c->quiet, "no progress output");
+  CLI::Option* terrain = cmd->add_option("--trial-terrain", c->terrain_world,
+                                         "run terrain trials on this arena (an SVG world with terrain elements) instead of a scenario")
+                             ->check(CLI::ExistingFile);
+  cmd->add_option("--lane", c->terrain.lane, "terrain trials: the element's name (its SVG id), or a kind: the first element of that kind")
+      ->needs(terrain);
+  cmd->add_option("--robot", c->terrain.robot, "terrain trials: built-in model, tracked_robot or rescue_robot")->capture_default_str()->needs(terrain);
+  cmd->add_option("--laps", c->terrain.laps, "terrain trials: laps (or crossings back and forth) per trial")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000))
+      ->needs(terrain);
+  cmd->add_option("--pattern", c->pattern, "terrain trials: laps (each from the start line) or back-and-forth (end to end without a reset)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"laps", "back-and-forth"}))
+      ->needs(terrain);
+  cmd->add_option("--speed", c->terrain.speed, "terrain trials: m/s")->capture_default_str()->check(CLI::Range(0.05, 2.0))->needs(terrain);
+  cmd->add_option("--time-limit", c->terrain.time_limit, "terrain trials: s per lap (per crossing)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 3600.0))
+      ->needs(terrain);
 
   CLI::App* merge = cmd->add_subcommand("merge", "Combine the results of several batch folders (shards) into one");
   merge->footer(

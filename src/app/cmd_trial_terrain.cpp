@@ -17,19 +17,21 @@ namespace {
 struct TrialCommand {
   std::string world;
   std::string out = "trial";
+  std::string pattern = "laps";
   TerrainTrialOptions trial;
 };
 
-int run_trial(const TrialCommand& c) {
+int run_trial(TrialCommand c) {
   namespace fs = std::filesystem;
+  c.trial.pattern = parse_terrain_pattern(c.pattern);
   const SvgLoadResult loaded = load_svg_world(c.world);
   validate(loaded.world).throw_if_errors();
   const auto models = builtin_models();
-  std::printf("trial: %s, lane '%s', %s, %d laps at %.2f m/s\n", c.world.c_str(), c.trial.lane.c_str(), c.trial.robot.c_str(), c.trial.laps,
-              c.trial.speed);
+  std::printf("trial: %s, lane '%s', %s, %d %s at %.2f m/s\n", c.world.c_str(), c.trial.lane.c_str(), c.trial.robot.c_str(), c.trial.laps,
+              c.trial.pattern == TerrainPattern::laps ? "laps" : "crossings back and forth", c.trial.speed);
   const TerrainTrialResult r = run_terrain_trial(loaded.world, models, c.trial, [](const TerrainLap& l) {
-    std::printf("  lap %2d  %-9s %6.1f s  %5.2f m along  pitch up to %3.0f deg  roll up to %3.0f deg\n", l.lap, l.outcome.c_str(), l.time,
-                l.progress, l.max_pitch, l.max_roll);
+    std::printf("  lap %2d  %-7s %-9s %6.1f s  %5.2f m along  pitch up to %3.0f deg  roll up to %3.0f deg\n", l.lap,
+                l.reverse ? "back" : "forward", l.outcome.c_str(), l.time, l.progress, l.max_pitch, l.max_roll);
     std::fflush(stdout);
   });
   const fs::path dir = c.out;
@@ -48,29 +50,40 @@ void add_trial_terrain_command(CLI::App& app, Action& action) {
   auto c = std::make_shared<TrialCommand>();
   CLI::App* cmd = app.add_subcommand("trial-terrain", "Drive a robot across one lane of a test-method arena, lap after lap, and count");
   cmd->footer(
-      "Each lap starts on the lane's start line (--approach before the element), a few centimetres\n"
+      "--pattern laps (the default): each lap starts on the lane's start line (--approach before\n"
+      "the element), a few centimetres\n"
       "and degrees off its centre line (seeded), and drives along it at --speed until the end line\n"
       "(--approach beyond the element): a repetition. A lap ends early when the robot falls over\n"
       "(pitch beyond 75 or roll beyond 60 degrees), is stuck (no 5 cm of progress in --stuck-time s)\n"
       "or runs out of --time-limit. The scripted driver keeps to the centre line and works the\n"
       "flippers of a robot that has them: raised when level, laid on the obstacle once the nose is\n"
       "17 degrees up, lowered ahead when the nose tips down (docs/terrain.md, \"Trials\").\n\n"
+      "--pattern back-and-forth: end-to-end repetitions without a reset, as the ASTM test methods\n"
+      "count them: from the start line forward to the end line, then backwards (reversing, facing\n"
+      "the same way) to the start line, and so on; each crossing is one repetition and one entry of\n"
+      "--laps. The first crossing that fails (fell, stuck, out of time) ends the trial.\n\n"
       "Writes DIR/trial.json (repetitions, falls, stuck, mean time, each lap) and DIR/trial.png\n"
       "(the lane from above with every lap's path: green completed, red fell, orange stuck).\n\n"
       "Examples:\n"
       "  rescuesim arena --lanes stepfield,stairs,curb --out arena.svg\n"
       "  rescuesim trial-terrain arena.svg --lane stairs --robot tracked_robot --laps 10 --out stairs\n"
-      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --robot rescue_robot --laps 3");
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --robot rescue_robot --laps 3\n"
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --pattern back-and-forth --laps 4\n\n"
+      "Many trials with their own seeds, resumable and summarised: rescuesim batch --trial-terrain\n"
+      "(docs/batch.md).");
   cmd->add_option("world", c->world, "the arena (an SVG world with terrain elements, e.g. from rescuesim arena)")->required();
   cmd->add_option("--lane", c->trial.lane, "the element's name (its SVG id), or a kind: the first element of that kind")->required();
   cmd->add_option("--robot", c->trial.robot, "built-in model: tracked_robot or rescue_robot")->capture_default_str();
-  cmd->add_option("--laps", c->trial.laps, "attempts")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_option("--laps", c->trial.laps, "attempts (laps), or crossings wanted (back-and-forth)")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_option("--pattern", c->pattern, "laps: each from the start line; back-and-forth: end to end and back without a reset")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"laps", "back-and-forth"}));
   cmd->add_option("--seed", c->trial.seed, "seed of the laps' start offsets")->capture_default_str();
   cmd->add_option("--speed", c->trial.speed, "m/s")->capture_default_str()->check(CLI::Range(0.05, 2.0));
   cmd->add_option("--approach", c->trial.approach, "m of floor between the element and the start and end lines")
       ->capture_default_str()
       ->check(CLI::Range(0.3, 10.0));
-  cmd->add_option("--time-limit", c->trial.time_limit, "s per lap")->capture_default_str()->check(CLI::Range(1.0, 3600.0));
+  cmd->add_option("--time-limit", c->trial.time_limit, "s per lap (per crossing)")->capture_default_str()->check(CLI::Range(1.0, 3600.0));
   cmd->add_option("--stuck-time", c->trial.stuck_time, "s without progress that count as stuck")->capture_default_str()->check(CLI::Range(1.0, 3600.0));
   cmd->add_option("--out,-o", c->out, "directory for trial.json and trial.png")->capture_default_str();
   cmd->final_callback([c, &action] { action = [c] { return run_trial(*c); }; });

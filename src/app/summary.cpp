@@ -30,6 +30,11 @@ std::string world_summary(const WorldSpec& w) {
     for (const auto& t : w.terrain) s += std::string(" ") + TerrainSpec::kind_name(t.kind) + " '" + t.name + "'";
     s += "\n";
   }
+  if (!w.ground.empty()) {
+    s += "  ground areas  " + std::to_string(w.ground.size()) + ":";
+    for (const auto& g : w.ground) s += " " + g.material + " '" + g.name + "'";
+    s += "\n";
+  }
   if (!w.media.empty()) {
     s += "  smoke, dust   " + std::to_string(w.media.size()) + "\n";
     for (const auto& m : w.media) {

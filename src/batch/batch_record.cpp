@@ -88,6 +88,13 @@ std::string to_json_line(const TrialRecord& r) {
   } else {
     j["mission"] = json();
   }
+  // a terrain trial's counts; left out of other trials' lines, so that those read as before
+  if (r.terrain) {
+    const TrialTerrain& t = *r.terrain;
+    j["terrain"] = {{"lane", t.lane},           {"kind", t.kind},   {"robot", t.robot},   {"pattern", t.pattern},
+                    {"laps", t.laps},           {"repetitions", t.repetitions},           {"falls", t.falls},
+                    {"stuck", t.stuck},         {"timeouts", t.timeouts},                 {"mean_time_s", finite_or_zero(t.mean_time)}};
+  }
   // one line: dump() without indentation never emits a newline (strings are escaped)
   return j.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
 }
@@ -143,6 +150,23 @@ TrialRecord parse_trial_line(std::string_view line) {
     if (tm.contact_fraction < 0 || tm.contact_fraction > 1) throw Error("mission.contact_fraction should lie in [0, 1]");
     r.mission = tm;
   }
+  if (j.contains("terrain") && !j["terrain"].is_null()) {
+    const json& t = j["terrain"];
+    if (!t.is_object()) throw Error("key \"terrain\" should be an object or null");
+    TrialTerrain tt;
+    tt.lane = text(t, "lane");
+    tt.kind = text(t, "kind");
+    tt.robot = text(t, "robot");
+    tt.pattern = text(t, "pattern");
+    tt.laps = static_cast<int>(integer(t, "laps", 0));
+    tt.repetitions = static_cast<int>(integer(t, "repetitions", 0));
+    tt.falls = static_cast<int>(integer(t, "falls", 0));
+    tt.stuck = static_cast<int>(integer(t, "stuck", 0));
+    tt.timeouts = static_cast<int>(integer(t, "timeouts", 0));
+    tt.mean_time = number(t, "mean_time_s");
+    if (tt.repetitions > tt.laps) throw Error("terrain.repetitions exceeds terrain.laps");
+    r.terrain = tt;
+  }
   if (r.victims_found > r.victims_total) throw Error("victims_found exceeds victims_total");
   if (r.coverage < 0 || r.coverage > 1) throw Error("coverage should lie in [0, 1]");
   return r;
@@ -153,7 +177,7 @@ bool same_outcome(const TrialRecord& a, const TrialRecord& b) {
          a.error == b.error && a.success == b.success && a.success_time == b.success_time && a.stop_reason == b.stop_reason &&
          a.victims_total == b.victims_total && a.victims_found == b.victims_found && a.victims == b.victims &&
          a.coverage == b.coverage && a.distance == b.distance && a.collisions == b.collisions && a.sim_time == b.sim_time &&
-         a.state_hash == b.state_hash && a.mission == b.mission;
+         a.state_hash == b.state_hash && a.mission == b.mission && a.terrain == b.terrain;
 }
 
 }  // namespace rescuesim

@@ -29,6 +29,17 @@ struct TrialMission {
   bool operator==(const TrialMission&) const = default;
 };
 
+/// A terrain trial's counts (batches of `--trial-terrain`; docs/terrain.md, "Trials").
+struct TrialTerrain {
+  std::string lane, kind, robot, pattern;
+  int laps = 0;                 ///< laps (or crossings) driven
+  int repetitions = 0;          ///< of them completed
+  int falls = 0, stuck = 0, timeouts = 0;
+  double mean_time = 0;         ///< s per completed repetition (0: none)
+
+  bool operator==(const TrialTerrain&) const = default;
+};
+
 /// What one trial did.
 struct TrialRecord {
   int trial = -1;               ///< index in the batch (0-based)
@@ -52,6 +63,7 @@ struct TrialRecord {
   std::string state_hash;       ///< 16 hex digits: hash of the final State ("" when none)
   std::string host;             ///< machine that ran it
   std::optional<TrialMission> mission;  ///< the referee's figures; none without a mission (key "mission": null)
+  std::optional<TrialTerrain> terrain;  ///< a terrain trial's counts; none for a scenario run (key "terrain" left out)
 };
 
 /// The record as one line of JSON (keys in a fixed order, ending in '\n').

@@ -62,6 +62,8 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
   int ok = 0, failed = 0, successes = 0, victims = 0, found = 0;
   std::vector<double> success_times, victims_found, coverage, distance, collisions, sim_time, wall_time, rtf;
   std::vector<double> score, reported, false_reports, contact;  // trials with a mission
+  std::vector<double> repetitions, rep_time;                   // terrain trials
+  int laps = 0, reps = 0, falls = 0, stuck = 0, timeouts = 0;
   json failures = json::array();
   for (const auto& [trial, r] : records) {
     wall_time.push_back(r.wall_time);
@@ -86,6 +88,15 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
       reported.push_back(r.mission->victims_reported);
       false_reports.push_back(r.mission->false_reports);
       contact.push_back(r.mission->contact_fraction);
+    }
+    if (r.terrain) {
+      repetitions.push_back(r.terrain->repetitions);
+      if (r.terrain->repetitions > 0) rep_time.push_back(r.terrain->mean_time);
+      laps += r.terrain->laps;
+      reps += r.terrain->repetitions;
+      falls += r.terrain->falls;
+      stuck += r.terrain->stuck;
+      timeouts += r.terrain->timeouts;
     }
   }
   const int n = static_cast<int>(records.size());
@@ -116,6 +127,18 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
     for (const auto& [trial, r] : records) {
       if (r.status == "ok" && r.mission) j["mission"]["per_seed"].push_back({{"trial", trial}, {"seed", r.seed}, {"score", r.mission->score}});
     }
+  }
+  if (!repetitions.empty()) {
+    // terrain trials (rescuesim batch --trial-terrain): a success is a trial with every repetition completed
+    j["terrain"] = {{"trials", repetitions.size()},
+                    {"laps", laps},
+                    {"repetitions", reps},
+                    {"repetition_rate", laps > 0 ? static_cast<double>(reps) / laps : 0.0},
+                    {"falls", falls},
+                    {"stuck", stuck},
+                    {"timeouts", timeouts},
+                    {"repetitions_per_trial", stat_json(stat_of(repetitions))},
+                    {"mean_time_per_repetition_s", stat_json(stat_of(rep_time))}};
   }
   if (run.trials_run > 0 && run.wall_time > 0) {
     j["run"] = {{"jobs", run.jobs}, {"trials", run.trials_run}, {"wall_time_s", run.wall_time},

@@ -32,8 +32,15 @@ std::string batch_fingerprint(const std::string& scenario_text, const TrialOptio
   if (options.duration) std::snprintf(duration, sizeof duration, "%.17g", *options.duration);
   const std::string key = scenario_text + "\n--\nduration=" + duration + "\ncontroller=" + options.controller +
                           "\ncameras=" + (options.cameras ? "1" : "0") + "\nstop_when_all_found=" + (options.stop_when_all_found ? "1" : "0");
+  std::string terrain;
+  if (const auto& t = options.terrain) {
+    // only terrain batches carry these, so other batches keep their fingerprints
+    char numbers[200];
+    std::snprintf(numbers, sizeof numbers, "%d %.17g %.17g %.17g %.17g", t->laps, t->speed, t->approach, t->time_limit, t->stuck_time);
+    terrain = "\nterrain=" + t->lane + " " + t->robot + " " + terrain_pattern_name(t->pattern) + " " + numbers;
+  }
   char out[24];
-  std::snprintf(out, sizeof out, "rs1-%016llx", static_cast<unsigned long long>(fnv1a64(key)));
+  std::snprintf(out, sizeof out, "rs1-%016llx", static_cast<unsigned long long>(fnv1a64(key + terrain)));
   return out;
 }
 
@@ -100,12 +107,56 @@ TrialRecord failed_trial(const Scenario& base, int trial, std::uint64_t seed, co
   return r;
 }
 
+namespace {
+
+/// A terrain trial (TrialOptions::terrain) on the scenario's world, seeded with the trial's seed.
+TrialRecord run_terrain(const Scenario& base, const ModelMap& models, int trial, std::uint64_t seed, const TerrainTrialOptions& options,
+                        const std::string& batch) {
+  TerrainTrialOptions o = options;
+  o.seed = seed;
+  const WorldSpec world = build_world(base);
+  validate(world).throw_if_errors();
+  const TerrainTrialResult r = run_terrain_trial(world, models, o);
+  TrialRecord rec;
+  rec.trial = trial;
+  rec.seed = seed;
+  rec.batch = batch;
+  rec.scenario = base.name;
+  rec.success = r.repetitions == o.laps;
+  rec.success_time = rec.success ? r.sim_time : -1;
+  // why the trial fell short: the first lap that did not complete (fell, stuck, timeout)
+  rec.stop_reason = "all repetitions completed";
+  for (const TerrainLap& l : r.laps) {
+    if (l.outcome != "completed") {
+      rec.stop_reason = l.outcome;
+      break;
+    }
+  }
+  rec.sim_time = r.sim_time;
+  // the distance along each lap's path (sampled every 0.1 s)
+  for (const TerrainLap& l : r.laps) {
+    for (std::size_t i = 1; i < l.path.size(); ++i) rec.distance += (l.path[i] - l.path[i - 1]).norm();
+  }
+  rec.host = host_name();
+  rec.terrain = TrialTerrain{r.element.name, TerrainSpec::kind_name(r.element.kind), r.robot, terrain_pattern_name(o.pattern),
+                             static_cast<int>(r.laps.size()), r.repetitions, r.falls, r.stuck, r.timeouts, r.mean_time};
+  return rec;
+}
+
+}  // namespace
+
 TrialRecord run_trial(const Scenario& base, const ModelMap& models, int trial, std::uint64_t seed, const TrialOptions& options,
                       const std::string& batch) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   TrialRecord rec;
   try {
+    if (options.terrain) {
+      rec = run_terrain(base, models, trial, seed, *options.terrain, batch);
+      rec.wall_time = std::chrono::duration<double>(clock::now() - t0).count();
+      rec.real_time_factor = rec.wall_time > 0 ? rec.sim_time / rec.wall_time : 0;
+      return rec;
+    }
     const Scenario s = trial_scenario(base, seed, options, models);
     SessionOptions so;
     so.cameras = options.cameras;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "batch/batch_record.h"
+#include "session/terrain_trial.h"
 #include "world/scenario/scenario.h"
 
 namespace rescuesim {
@@ -21,6 +22,9 @@ struct TrialOptions {
   std::string controller;           ///< explorer or wall_follower for every robot; "" keeps the scenario's
   bool cameras = false;             ///< render the camera sensors (victims then count when seen in thermal images)
   bool stop_when_all_found = true;  ///< end a trial once every victim is found (else run to the time limit)
+  /// A terrain trial (docs/terrain.md, "Trials") on the scenario's world instead of its run:
+  /// trial i drives the lane with seed S + i; success is every repetition completed.
+  std::optional<TerrainTrialOptions> terrain;
 };
 
 /// A batch's scenario with the text it came from (the text is part of the batch's fingerprint).

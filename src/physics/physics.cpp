@@ -6,6 +6,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -58,6 +59,55 @@ int bullet_activation(BodyState::Sleep s) {
 bool finite(const Pose3& X) {
   return std::isfinite(X.p.x()) && std::isfinite(X.p.y()) && std::isfinite(X.p.z()) && std::isfinite(X.q.w()) &&
          std::isfinite(X.q.x()) && std::isfinite(X.q.y()) && std::isfinite(X.q.z());
+}
+
+/// Floor patches of other materials (World::ground), as the floor's body sees them. A patch is
+/// not a solid of its own: a thin slab on the floor would give every wheel an edge to catch on
+/// and a second contact (two frictions under one wheel), and a slab sunk flush with the floor
+/// would still leave its rim for Bullet's contact generation to find. Instead the floor stays
+/// one plane, and each contact with it takes its friction from the material under the contact
+/// point: Bullet's contact-added callback, which Bullet calls for every contact point it makes or
+/// refreshes with a body flagged CF_CUSTOM_MATERIAL_CALLBACK (only the floor is, and only in a
+/// world with patches, so other worlds step exactly as before). The friction is combined as
+/// Bullet combines it elsewhere, the product of the two bodies' (clamped to 10); likewise the
+/// restitution.
+struct GroundPatches {
+  struct Patch {
+    Polygon2 outline;
+    Box2 box;
+    double friction, restitution;
+  };
+  std::vector<Patch> patches;
+  int floor_child = -1;  ///< with compound statics, the floor's child index in the compound (else -1)
+
+  /// The patch under a point of the floor, or nullptr for the floor's own material.
+  const Patch* at(const Vec2& p) const {
+    for (const Patch& g : patches) {
+      if (g.box.contains(p) && contains(g.outline, p)) return &g;
+    }
+    return nullptr;
+  }
+};
+
+/// gContactAddedCallback: a floor contact's friction and restitution from the patch under it.
+/// A pure function of the contact and the world, so it is safe on the worker threads.
+bool ground_contact(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int index0, const btCollisionObjectWrapper* w1, int,
+                    int index1) {
+  const btCollisionObject* o0 = w0->getCollisionObject();
+  const btCollisionObject* o1 = w1->getCollisionObject();
+  const bool floor0 = (o0->getCollisionFlags() & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && o0->getUserPointer();
+  const bool floor1 = !floor0 && (o1->getCollisionFlags() & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) && o1->getUserPointer();
+  if (!floor0 && !floor1) return false;
+  const auto* ground = static_cast<const GroundPatches*>((floor0 ? o0 : o1)->getUserPointer());
+  if (ground->floor_child >= 0 && (floor0 ? index0 : index1) != ground->floor_child) return false;
+  // A is the manifold's body 0, which is w0's object
+  const btVector3 p = floor0 ? cp.getPositionWorldOnA() : cp.getPositionWorldOnB();
+  const GroundPatches::Patch* patch = ground->at(Vec2(p.x(), p.y()));
+  if (!patch) return false;
+  const btCollisionObject* other = floor0 ? o1 : o0;
+  cp.m_combinedFriction = std::clamp(btScalar(patch->friction) * other->getFriction(), btScalar(-10), btScalar(10));
+  cp.m_combinedRestitution = btScalar(patch->restitution) * other->getRestitution();
+  return true;
 }
 
 /// A track belt over one collision shape of a robot body (LinkShape::belt_joint).
@@ -176,6 +226,7 @@ struct Physics::Impl {
     int code;
   };
   std::vector<StaticPart> static_parts;
+  std::unique_ptr<GroundPatches> ground;  // World::ground for the floor's contact callback; null without patches
   std::vector<std::unique_ptr<btRigidBody>> rubble;      // per World::dynamics
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<RobotBody> robots;
@@ -201,6 +252,7 @@ struct Physics::Impl {
       groups.push_back(std::move(group));
     }
     build_statics();
+    build_ground();
     for (auto& g : groups) add_statics(*g);
     build_rubble();
     for (std::size_t r = 0; r < w.robots.size(); ++r) build_robot(static_cast<int>(r));
@@ -261,10 +313,28 @@ struct Physics::Impl {
     }
   }
 
-  /// A group's own static bodies, in build order.
+  /// The floor patches (World::ground) with their materials; nothing when the world has none.
+  void build_ground() {
+    if (world.ground.empty()) return;
+    ground = std::make_unique<GroundPatches>();
+    for (const GroundArea& g : world.ground) {
+      const MaterialSpec& m = material(g.material);
+      ground->patches.push_back({g.outline, bounds(g.outline), m.friction, m.restitution});
+    }
+    ground->floor_child = options.compound_statics ? 0 : -1;
+    gContactAddedCallback = ground_contact;
+  }
+
+  /// A group's own static bodies, in build order; the floor's (static part 0, World::statics[0])
+  /// asks for the floor patches' callback when there are patches.
   void add_statics(PhysicsGroup& g) const {
     for (const StaticPart& part : static_parts) {
       g.statics.push_back(make_body(part.shape, nullptr, part.X, 0, Vec3::Zero(), material(part.material), part.code));
+      if (ground && &part == &static_parts.front() && world.statics[0].kind == ObjectKind::floor) {
+        btRigidBody* floor = g.statics.back().get();
+        floor->setCollisionFlags(floor->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+        floor->setUserPointer(ground.get());
+      }
       g.dynamics.addRigidBody(g.statics.back().get());
     }
   }

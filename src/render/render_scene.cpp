@@ -12,6 +12,9 @@ namespace rescuesim {
 
 namespace {
 
+/// Thickness of the sheet a floor patch is drawn as (m).
+constexpr double kGroundSheet = 0.002;
+
 TextureKind texture_kind(const std::string& name) {
   if (name == "tiles") return TextureKind::tiles;
   if (name == "concrete") return TextureKind::concrete;
@@ -108,6 +111,19 @@ RenderScene build_render_scene(const World& world) {
     item.temperature = world.temperature_of(o);
     item.X_WI = o.X_WO;
     item.casts_shadows = o.kind != ObjectKind::floor;
+    s.items.push_back(item);
+  }
+  // floor patches of other materials: a sheet 2 mm thick on the floor, in the patch's material
+  // (2 mm is nothing to a camera, and enough depth for the two surfaces not to flicker); the
+  // patches are not solids, so the sheet has no StaticObject (index -1) and casts no shadow
+  for (const GroundArea& g : world.ground) {
+    RenderItem item;
+    item.source = RenderItem::Source::static_object;
+    item.index = -1;
+    item.mesh = add_mesh(s, Geometry::triangles(extrude(g.outline, 0, kGroundSheet)));
+    item.material = g.material;
+    item.temperature = material_temperature(g.material);
+    item.casts_shadows = false;
     s.items.push_back(item);
   }
   // rubble at its initial pose

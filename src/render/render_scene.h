@@ -46,7 +46,7 @@ struct RenderMaterial {
 struct RenderItem {
   enum class Source { static_object, dynamic_object, robot_link };
   Source source = Source::static_object;
-  int index = -1;           ///< World::statics or World::dynamics index, or the link index
+  int index = -1;           ///< World::statics or World::dynamics index, or the link index; -1 for a floor patch (World::ground)
   int robot = -1;           ///< World::robots index for robot links, else -1
   int mesh = 0;             ///< index into RenderScene::meshes
   int material = 0;         ///< index into RenderScene::materials
@@ -78,7 +78,7 @@ struct RenderLamp {
   RenderLight light;    ///< a spot light, posed by update_render_scene
 };
 
-/// Everything a renderer needs; items keep World order (statics, then rubble, then robot links).
+/// Everything a renderer needs; items keep World order (statics, floor patches, then rubble, then robot links).
 struct RenderScene {
   std::vector<RenderMesh> meshes;
   std::vector<RenderMaterial> materials;
@@ -98,7 +98,8 @@ struct RenderScene {
   std::size_t triangle_count() const;
 };
 
-/// Builds the scene: statics at their World poses, rubble at World::dynamics[i].X_WO, robots at
+/// Builds the scene: statics at their World poses, floor patches (World::ground) as 2 mm sheets on
+/// the floor after them, rubble at World::dynamics[i].X_WO, robots at
 /// their start poses with joints at their initial positions. Link shapes whose material the
 /// world does not have are drawn in "robot_body" (or grey).
 RenderScene build_render_scene(const World& world);

@@ -57,12 +57,14 @@ class LaneDriver {
  public:
   LaneDriver(const TerrainSpec& lane, const RobotSpec& robot, const TerrainTrialOptions& o) : lane_(lane), robot_(robot), o_(o) {}
 
-  msg::Twist twist(const Pose3& X) const {
+  /// Forward along the lane, or (reverse) backwards along it, facing the same way: backing up,
+  /// a turn moves the robot across the lane the other way, so the offset term changes sign.
+  msg::Twist twist(const Pose3& X, bool reverse = false) const {
     const double across = in_lane(X).y();
     const double heading = std::remainder(X.yaw() - lane_.pose.yaw, 2 * M_PI);
     msg::Twist t;
-    t.linear.x() = o_.speed;
-    t.angular.z() = std::clamp(-2.0 * heading - 2.5 * across, -0.8, 0.8);
+    t.linear.x() = reverse ? -o_.speed : o_.speed;
+    t.angular.z() = std::clamp(-2.0 * heading + (reverse ? 2.5 : -2.5) * across, -0.8, 0.8);
     return t;
   }
 
@@ -98,8 +100,10 @@ class LaneDriver {
   bool started_ = false;
 };
 
-TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>& models, const TerrainSpec& lane,
-                   const TerrainTrialOptions& o, int lap, Rng& rng) {
+/// A simulation with the robot on the lane's start line, up to start_offset off its centre line
+/// and start_yaw turned (drawn from `rng`), run seed `seed`.
+Simulation start_on_lane(const WorldSpec& base, const std::map<std::string, RobotSpec>& models, const TerrainSpec& lane,
+                         const TerrainTrialOptions& o, std::uint64_t seed, Rng& rng) {
   WorldSpec spec = base;
   const double offset = rng.uniform(-o.start_offset, o.start_offset);
   const double yaw = rng.uniform(-o.start_yaw, o.start_yaw) * kDeg;
@@ -112,19 +116,28 @@ TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>
   spec.robots = {r};
   spec.victims.clear();
   SimOptions so;
-  so.seed = o.seed + static_cast<std::uint64_t>(lap);
-  Simulation sim(compile_world(spec, models), so);
+  so.seed = seed;
+  return Simulation(compile_world(spec, models), so);
+}
+
+/// One crossing of the lane from where the robot is: forward to the end line, or (reverse)
+/// backwards to the start line. Progress is measured in the direction of travel from where the
+/// crossing began (forward: from the start line); time from the crossing's start. `floor_z` is
+/// the base's height when standing on the floor.
+TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lane, const TerrainTrialOptions& o, int lap, bool reverse,
+                     double floor_z) {
   const RobotSpec& robot = sim.world().robots[0].spec;
-  LaneDriver driver(lane, robot, o);
   const double goal = lane_goal(lane, o);
+  const double t0 = sim.time().seconds();
+  const double from = driver.along(sim.state().robots[0].base.X_WB);
   TerrainLap out;
   out.lap = lap;
+  out.reverse = reverse;
   double best = 0, best_at = 0;
-  const double floor_z = sim.state().robots[0].base.X_WB.p.z();
   const long steps = std::lround(o.time_limit / sim.dt());
   for (long i = 0;; ++i) {
     const Pose3& X = sim.state().robots[0].base.X_WB;
-    const double t = sim.time().seconds();
+    const double t = sim.time().seconds() - t0;
     double roll = 0, pitch = 0;
     roll_pitch(X.q, roll, pitch);
     out.max_pitch = std::max(out.max_pitch, std::abs(pitch) / kDeg);
@@ -132,10 +145,11 @@ TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>
     out.max_height = std::max(out.max_height, X.p.z() - floor_z);
     if (i % std::max<long>(1, std::lround(0.1 / sim.dt())) == 0) out.path.push_back(X.p.head<2>());
     const double along = driver.along(X);
-    if (along > best + 0.05) best = along, best_at = t;
-    out.progress = std::max(out.progress, along);
+    const double gone = reverse ? from - along : along;
+    if (gone > best + 0.05) best = gone, best_at = t;
+    out.progress = std::max(out.progress, gone);
     out.time = t;
-    if (along >= goal) {
+    if (reverse ? along <= 0 : along >= goal) {
       out.outcome = "completed";
       break;
     }
@@ -151,7 +165,7 @@ TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>
       out.outcome = "timeout";
       break;
     }
-    sim.command_velocity(0, driver.twist(X));
+    sim.command_velocity(0, driver.twist(X, reverse));
     if (const std::vector<double> f = driver.flippers(pitch); !f.empty()) {
       msg::JointState js;
       js.name = robot.flipper_joints;
@@ -161,6 +175,16 @@ TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>
     sim.step();
   }
   out.path.push_back(sim.state().robots[0].base.X_WB.p.head<2>());
+  return out;
+}
+
+/// One lap of the `laps` pattern: a fresh simulation, from the start line to the end line.
+TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>& models, const TerrainSpec& lane,
+                   const TerrainTrialOptions& o, int lap, Rng& rng, double& sim_time) {
+  Simulation sim = start_on_lane(base, models, lane, o, o.seed + static_cast<std::uint64_t>(lap), rng);
+  LaneDriver driver(lane, sim.world().robots[0].spec, o);
+  TerrainLap out = drive_lap(sim, driver, lane, o, lap, false, sim.state().robots[0].base.X_WB.p.z());
+  sim_time += sim.time().seconds();
   return out;
 }
 
@@ -183,17 +207,39 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   result.options = options;
   Rng rng(options.seed, "terrain_trial");
   double total = 0;
-  for (int lap = 1; lap <= options.laps; ++lap) {
-    TerrainLap l = run_lap(world, models, result.element, options, lap, rng);
+  const auto count = [&](TerrainLap l) {
     if (l.outcome == "completed") ++result.repetitions, total += l.time;
     if (l.outcome == "fell") ++result.falls;
     if (l.outcome == "stuck") ++result.stuck;
     if (l.outcome == "timeout") ++result.timeouts;
     if (progress) progress(l);
     result.laps.push_back(std::move(l));
+  };
+  if (options.pattern == TerrainPattern::laps) {
+    for (int lap = 1; lap <= options.laps; ++lap) count(run_lap(world, models, result.element, options, lap, rng, result.sim_time));
+  } else {
+    // back and forth without a reset: odd crossings forward to the end line, even ones backwards
+    // to the start line, until the repetitions asked for or the first that fails
+    Simulation sim = start_on_lane(world, models, result.element, options, options.seed + 1, rng);
+    LaneDriver driver(result.element, sim.world().robots[0].spec, options);
+    const double floor_z = sim.state().robots[0].base.X_WB.p.z();
+    for (int lap = 1; lap <= options.laps; ++lap) {
+      count(drive_lap(sim, driver, result.element, options, lap, lap % 2 == 0, floor_z));
+      if (result.laps.back().outcome != "completed") break;
+    }
+    result.sim_time = sim.time().seconds();
   }
   result.mean_time = result.repetitions > 0 ? total / result.repetitions : 0.0;
   return result;
+}
+
+const char* terrain_pattern_name(TerrainPattern p) { return p == TerrainPattern::laps ? "laps" : "back-and-forth"; }
+
+TerrainPattern parse_terrain_pattern(const std::string& name) {
+  for (TerrainPattern p : {TerrainPattern::laps, TerrainPattern::back_and_forth}) {
+    if (name == terrain_pattern_name(p)) return p;
+  }
+  throw Error("unknown pattern '" + name + "'; expected laps or back-and-forth");
 }
 
 std::string terrain_trial_json(const TerrainTrialResult& r) {
@@ -201,6 +247,7 @@ std::string terrain_trial_json(const TerrainTrialResult& r) {
   j["lane"] = r.element.name;
   j["kind"] = TerrainSpec::kind_name(r.element.kind);
   j["robot"] = r.robot;
+  j["pattern"] = terrain_pattern_name(r.options.pattern);
   j["seed"] = r.options.seed;
   j["laps"] = r.laps.size();
   j["repetitions"] = r.repetitions;
@@ -210,9 +257,11 @@ std::string terrain_trial_json(const TerrainTrialResult& r) {
   j["mean_time_s"] = r.mean_time;
   j["lane_length_m"] = lane_goal(r.element, r.options);
   j["speed_m_s"] = r.options.speed;
+  j["sim_time_s"] = r.sim_time;
   nlohmann::ordered_json laps = nlohmann::ordered_json::array();
   for (const auto& l : r.laps) {
     laps.push_back({{"lap", l.lap},
+                    {"direction", l.reverse ? "back" : "forward"},
                     {"outcome", l.outcome},
                     {"time_s", l.time},
                     {"progress_m", l.progress},

@@ -1,8 +1,10 @@
 #pragma once
 /// A test-method trial (docs/terrain.md, "Trials"): a robot driven across one lane of a
-/// test-method arena by a simple scripted driver, lap after lap, each lap from the lane's start
-/// line with a small seeded offset, and what happened counted as the standards count it:
-/// repetitions completed, time per repetition, falls (rollovers) and stuck events. Runs
+/// test-method arena by a simple scripted driver, and what happened counted as the standards
+/// count it: repetitions completed, time per repetition, falls (rollovers) and stuck events.
+/// Two patterns: `laps`, each lap from the lane's start line with a small seeded offset, and
+/// `back-and-forth`, end-to-end repetitions without a reset (forward to the end line, reversing
+/// back to the start line, each crossing one repetition) until the first failure. Runs
 /// `rescuesim trial-terrain` and the batch's terrain trials.
 
 #include <cstdint>
@@ -17,10 +19,22 @@
 
 namespace rescuesim {
 
+/// How repetitions are driven.
+enum class TerrainPattern {
+  laps,            ///< every lap from the start line, forward to the end line; a failure costs one lap
+  back_and_forth,  ///< no reset: forward to the end line, back (reversing) to the start line, ...; a failure ends the trial
+};
+
+/// The pattern's name in files and options ("laps", "back-and-forth").
+const char* terrain_pattern_name(TerrainPattern p);
+/// The pattern by name; throws Error listing the names for anything else.
+TerrainPattern parse_terrain_pattern(const std::string& name);
+
 struct TerrainTrialOptions {
   std::string lane;               ///< a terrain element's name, or a kind ("stairs": the first of that kind)
   std::string robot = "tracked_robot";  ///< a built-in model
-  int laps = 10;                  ///< attempts, each from the start line
+  TerrainPattern pattern = TerrainPattern::laps;
+  int laps = 10;                  ///< laps: attempts, each from the start line; back-and-forth: crossings wanted
   std::uint64_t seed = 1;         ///< the laps' start offsets
   double speed = 0.3;             ///< m/s along the lane
   double approach = 0.8;          ///< m of floor between the element and the start and end lines
@@ -35,9 +49,10 @@ struct TerrainTrialOptions {
 /// One lap.
 struct TerrainLap {
   int lap = 0;
+  bool reverse = false;           ///< back-and-forth: driven backwards, from the end line to the start line
   std::string outcome;            ///< "completed", "fell", "stuck" or "timeout"
-  double time = 0;                ///< s from the start to the end line (or to the event)
-  double progress = 0;            ///< m along the lane beyond the start line, at most
+  double time = 0;                ///< s from the lap's start to its goal line (or to the event)
+  double progress = 0;            ///< m along the lane in the lap's direction from where it began, at most
   double max_pitch = 0, max_roll = 0;  ///< degrees, largest magnitudes
   double max_height = 0;          ///< m, highest base above the floor
   std::vector<Vec2> path;         ///< the base's track in the world, every 0.1 s
@@ -50,6 +65,7 @@ struct TerrainTrialResult {
   std::vector<TerrainLap> laps;
   int repetitions = 0, falls = 0, stuck = 0, timeouts = 0;
   double mean_time = 0;           ///< s per completed repetition (0: none)
+  double sim_time = 0;            ///< s simulated, all laps
 };
 
 /// Runs the trial on `world` (its robots are replaced by the trial's). Throws Error (exit 2) for

@@ -227,6 +227,14 @@ void draw_map(Canvas& canvas, const PlotFrame& f, const WorldSpec& world, bool g
   if (grid) draw_grid(canvas, f, floor);
   canvas.polyline(to_px(f, floor_poly), kFloorEdge, 1.0, true);
 
+  // ground areas (floor patches of other materials) in their material's colour, the grid showing through
+  for (const auto& g : world.ground) {
+    const MaterialSpec* m = world.find_material(g.material);
+    const Vec3 c = m ? m->color : Vec3(0.8, 0.8, 0.8);
+    const auto byte = [](double v) { return static_cast<std::uint8_t>(std::lround(255 * std::clamp(v, 0.0, 1.0))); };
+    canvas.fill_polygon(to_px(f, g.outline), Rgb8{byte(c.x()), byte(c.y()), byte(c.z())}, 0.7);
+  }
+
   // raised areas: ramps first in a lighter red, then the platform tops
   for (const auto& r : world.raised_areas) {
     const int n = static_cast<int>(r.outline.size());

@@ -53,6 +53,7 @@ class Validator {
     for (std::size_t i = 0; i < w_.terrain.size(); ++i) check_terrain(i);
     for (std::size_t i = 0; i < w_.bodies.size(); ++i) check_body(w_.bodies[i], i);
     for (std::size_t i = 0; i < w_.media.size(); ++i) check_medium(w_.media[i], i);
+    for (std::size_t i = 0; i < w_.ground.size(); ++i) check_ground(i);
     check_robots();
     if (w_.walls.empty() && w_.blocks.empty() && w_.raised_areas.empty() && w_.rubble.empty() && w_.victims.empty() &&
         w_.solids.empty() && w_.bodies.empty() && w_.terrain.empty()) {
@@ -304,6 +305,52 @@ class Validator {
     if (!std::isfinite(m.height) || !(m.height > 0)) d_.error(where, "height " + num(m.height) + " m is not positive");
     if (!std::isfinite(m.growth) || m.growth < 0) d_.error(where, "growth " + num(m.growth) + " m/s is not 0 or more (a footprint only grows)");
     if (!finite(m.drift)) d_.error(where, "drift is not a finite velocity");
+  }
+
+  /// A floor patch: a known material, a footprint with area, and no overlap with another patch
+  /// (two materials at one point would be ambiguous). Patches edge to edge are fine.
+  void check_ground(std::size_t i) {
+    const GroundAreaSpec& g = w_.ground[i];
+    const SourceRef where = ref(g.source, "ground area '" + g.name + "' (" + std::to_string(i) + ")");
+    if (g.material.empty()) {
+      d_.error(where, "ground area has no material; expected one such as concrete, wood, sand or wet_tiles");
+    } else {
+      check_material_ref(g.material, where);
+    }
+    if (g.outline.size() < 3) {
+      d_.error(where, "footprint has " + std::to_string(g.outline.size()) + " points; expected a polygon of at least 3");
+      return;
+    }
+    if (!finite(g.outline)) {
+      d_.error(where, "footprint has a point that is not a finite number");
+      return;
+    }
+    if (!(std::abs(signed_area(g.outline)) > 1e-12)) {
+      d_.error(where, "footprint has no area; expected a polygon of at least 3 points not on one line");
+      return;
+    }
+    if (!is_simple(g.outline)) {
+      d_.error(where, "footprint crosses itself; expected a simple polygon");
+      return;
+    }
+    // each vertex 1 mm towards the centroid: patches that only share an edge do not overlap
+    const auto shrunk = [](const Polygon2& p) {
+      const Vec2 c = centroid(p);
+      Polygon2 out;
+      for (const Vec2& v : p) {
+        const double d = (v - c).norm();
+        out.push_back(d > 2e-3 ? Vec2(c + (v - c) * (1 - 1e-3 / d)) : v);
+      }
+      return out;
+    };
+    for (std::size_t k = 0; k < i; ++k) {
+      const GroundAreaSpec& o = w_.ground[k];
+      if (o.outline.size() < 3 || !finite(o.outline)) continue;
+      if (polygons_overlap(shrunk(g.outline), shrunk(o.outline))) {
+        d_.error(where, "overlaps ground area '" + o.name + "'" + (o.source.line > 0 ? " (line " + std::to_string(o.source.line) + ")" : std::string()) +
+                            "; ground areas must not overlap, so that every point of the floor has one material (expected patches side by side)");
+      }
+    }
   }
 
   void check_body(const BodySpec& b, std::size_t i) {

@@ -48,6 +48,14 @@ struct Victim {
   double skin_temperature = 307.15, clothes_temperature = 301.15;
 };
 
+/// A floor patch of another material (WorldSpec::ground): no solid, only the friction of floor
+/// contacts inside its footprint and the floor's look there.
+struct GroundArea {
+  std::string name;
+  Polygon2 outline;           ///< footprint, counter-clockwise, m
+  int material = 0;           ///< index into World::materials
+};
+
 /// A robot in the world.
 struct RobotInstance {
   std::string name;           ///< unique, used for topic namespaces
@@ -70,6 +78,7 @@ struct World {
   double ambient_light = 1.0;          ///< fraction of the default ambient light (WorldSpec::ambient_light)
   bool sun = true;                     ///< a world without lights gets the default sun
   std::vector<MediumSpec> media;       ///< smoke and dust (world/media.h); empty: clear air, and no sensor pays for media
+  std::vector<GroundArea> ground;      ///< floor patches of other materials; empty: the floor's material everywhere
   std::uint64_t world_seed = 0;        ///< of a generated world
 
   /// Index of a material by name; throws Error when it is missing.

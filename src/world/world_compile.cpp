@@ -147,6 +147,10 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
       w.statics.push_back({std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, -1});
     }
   }
+  // floor patches: no solids, only the floor's material inside their footprints
+  for (const GroundAreaSpec& g : spec.ground) {
+    w.ground.push_back({g.name, normalized(g.outline), w.material_index(g.material)});
+  }
   for (std::size_t i = 0; i < spec.rubble.size(); ++i) {
     const RubbleSpec& r = spec.rubble[i];
     DynamicObject d;

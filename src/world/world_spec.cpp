@@ -58,6 +58,7 @@ Box2 WorldSpec::content_bounds() const {
     }
   }
   for (const auto& t : terrain) b.extend(bounds(t.outline()));
+  for (const auto& g : ground) b.extend(bounds(g.outline));
   for (const auto& r : rubble) b.extend(r.pose.position());
   for (const auto& v : victims) b.extend(bounds(victim_outline(v)));
   for (const auto& r : robots) b.extend(r.start.position());
@@ -87,6 +88,18 @@ std::vector<MaterialSpec> default_materials() {
   m.push_back({"robot_body", {0.95, 0.55, 0.10}, 0.5, "none", -1, 0.90, 0.5, 0.05});
   m.push_back({"robot_wheel", {0.08, 0.08, 0.08}, 0.9, "none", -1, 0.95, 1.0, 0.0});
   m.push_back({"robot_sensor", {0.15, 0.15, 0.17}, 0.4, "none", -1, 0.90, 0.5, 0.05});
+  // ground materials for floor patches (GroundAreaSpec; docs/terrain.md, "Ground materials").
+  // Bullet multiplies the frictions of the two bodies in a contact, and the robots' rubber
+  // (robot_wheel, the tracks' belts) has 1.0, so each value here is the Coulomb coefficient of
+  // rubber on that ground, as handbooks tabulate it: dry concrete 0.6-0.85 (0.8); planed wood
+  // about 0.6; loose dry sand gives a tyre a traction coefficient of 0.3-0.5, since the sand
+  // shears before the rubber slips (0.4); wet glazed tiles 0.2-0.3 (0.25). Sand is drawn with
+  // the concrete pattern in a sand colour, wet tiles with the tile pattern and a low roughness
+  // (a wet sheen).
+  m.push_back({"concrete", {0.62, 0.62, 0.60}, 0.9, "concrete", -1, 0.92, 0.8, 0.05});
+  m.push_back({"wood", {0.64, 0.47, 0.30}, 0.7, "wood", -1, 0.90, 0.6, 0.05});
+  m.push_back({"sand", {0.82, 0.72, 0.52}, 1.0, "concrete", -1, 0.90, 0.4, 0.0});
+  m.push_back({"wet_tiles", {0.52, 0.58, 0.62}, 0.2, "tiles", -1, 0.95, 0.25, 0.05});
   return m;
 }
 

@@ -123,6 +123,17 @@ struct MediumSpec {
   static const char* kind_name(Kind kind);
 };
 
+/// A patch of floor of another material (docs/terrain.md, "Ground materials"): sand, wet tiles
+/// and the like, flush with the floor. It changes the friction of whatever touches the floor
+/// inside its footprint, and how the floor looks there; it adds no solid (nothing to catch on).
+/// Ground areas must not overlap, so every point of the floor has one material.
+struct GroundAreaSpec {
+  std::string name;
+  Polygon2 outline;             ///< footprint, counter-clockwise, m
+  std::string material;         ///< a material name (required; e.g. concrete, wood, sand, wet_tiles)
+  SourceRef source;
+};
+
 /// A victim lying or sitting on the floor; the thermal camera sees skin warmer than clothes.
 struct VictimSpec {
   enum class Posture { lying, sitting };
@@ -217,6 +228,7 @@ struct WorldSpec {
   std::vector<SolidSpec> solids;    ///< fixed 3-D solids (from SDF)
   std::vector<BodySpec> bodies;     ///< loose rigid bodies (from SDF)
   std::vector<MediumSpec> media;    ///< smoke and dust volumes (no solids; only what sensors see through)
+  std::vector<GroundAreaSpec> ground;  ///< floor patches of other materials (no solids; friction and looks)
   std::map<std::string, std::string> metadata;  ///< generator parameters and the like
 
   /// The material with this name, or nullptr.
@@ -234,7 +246,8 @@ struct WorldSpec {
 };
 
 /// Materials every world starts with: floor, wall, obstacle, raised, rubble, victim_skin,
-/// victim_clothes, robot_body, robot_wheel, robot_sensor.
+/// victim_clothes, robot_body, robot_wheel, robot_sensor, then the ground materials concrete,
+/// wood, sand and wet_tiles (in this order; new ones are added at the end).
 std::vector<MaterialSpec> default_materials();
 
 /// Options for validation.

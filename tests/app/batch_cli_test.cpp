@@ -67,6 +67,49 @@ class BatchCli : public ::testing::Test {
   fs::path dir_, scenario_;
 };
 
+// Terrain trials in a batch: one results line per trial with the trial's counts, and the success
+// rate over trials. The lane is a 3 cm curb 0.6 m deep, which the tracked robot crosses every time:
+// 2 x 0.8 m of approach + 0.6 m at 0.5 m/s, about 4.4 s a lap.
+TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
+  const fs::path arena = dir_ / "curb.svg";
+  write_text(arena,
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"300cm\" height=\"600cm\" viewBox=\"0 0 300 600\">\n"
+             "  <rect x=\"0\" y=\"0\" width=\"300\" height=\"600\" fill=\"none\" stroke=\"#000\" stroke-width=\"5\"/>\n"
+             "  <rect id=\"low\" x=\"90\" y=\"270\" width=\"120\" height=\"60\" data-kind=\"curb\" data-height=\"3cm\" data-yaw=\"90\"/>\n"
+             "  <circle cx=\"150\" cy=\"500\" r=\"30\" fill=\"#2ca02c\" data-yaw=\"90\"/>\n"
+             "</svg>\n");
+  const auto r = rescuesim("batch --trial-terrain '" + arena.string() + "' --lane curb --robot tracked_robot --laps 1 --speed 0.5 --trials 2 --jobs 2 --out '" +
+                           (dir_ / "curb").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 trials recorded: 2 completed every repetition (100%), 0 failed; repetitions 2/2"), std::string::npos) << r.out;
+  EXPECT_EQ(lines("curb"), 2);
+  const auto rec = records("curb");
+  ASSERT_EQ(rec.size(), 2u);
+  for (const auto& [trial, t] : rec) {
+    EXPECT_EQ(t.status, "ok") << t.error;
+    EXPECT_EQ(t.seed, 1u + static_cast<std::uint64_t>(trial));
+    ASSERT_TRUE(t.terrain);
+    EXPECT_EQ(t.terrain->lane, "low");
+    EXPECT_EQ(t.terrain->kind, "curb");
+    EXPECT_EQ(t.terrain->pattern, "laps");
+    EXPECT_EQ(t.terrain->laps, 1);
+    EXPECT_EQ(t.terrain->repetitions, 1);
+    EXPECT_TRUE(t.success);
+    EXPECT_GT(t.sim_time, 2.2 / 0.5);
+    EXPECT_LT(t.sim_time, 2.2 / 0.5 + 1.5);
+  }
+  const nlohmann::json summary = nlohmann::json::parse(slurp(dir_ / "curb" / "summary.json"));
+  EXPECT_DOUBLE_EQ(summary["success_rate"].get<double>(), 1.0);
+  EXPECT_EQ(summary["terrain"]["repetitions"], 2);
+
+  // bad input is exit 2: a lane the arena lacks, a scenario and an arena at once
+  const auto lane = rescuesim("batch --trial-terrain '" + arena.string() + "' --lane stairs --trials 1 --out '" + (dir_ / "x").string() + "'");
+  EXPECT_EQ(lane.exit_code, 2);
+  EXPECT_NE(lane.err.find("no lane 'stairs'"), std::string::npos) << lane.err;
+  const auto both = rescuesim("batch '" + scenario_.string() + "' --trial-terrain '" + arena.string() + "' --lane curb --trials 1");
+  EXPECT_EQ(both.exit_code, 2);
+}
+
 TEST_F(BatchCli, JobsDoNotChangeTheResults) {
   const auto one = batch("one", "--trials 20 --jobs 1");
   ASSERT_EQ(one.exit_code, 0) << one.err;

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include "support/command.h"
 
@@ -136,6 +138,29 @@ TEST_F(CheckBadInput, StartInsideAWallIsNamed) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("<circle id=\"robot\">"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("wall1"), std::string::npos) << r.err;
+}
+
+// Ground areas (docs/terrain.md, "Ground materials"): each bad kind is exit 2 with the file, the
+// line and the element.
+TEST_F(CheckBadInput, BadGroundAreasAreNamed) {
+  const auto world = [](const std::string& area) {
+    return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"5m\" height=\"5m\" viewBox=\"0 0 500 500\">\n" + area +
+           "\n<line x1=\"0\" y1=\"0\" x2=\"500\" y2=\"0\" stroke=\"black\" stroke-width=\"5\"/>\n</svg>\n";
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"(<rect id="pit" x="100" y="100" width="200" height="100" data-kind="ground" data-material="lava"/>)", "unknown material 'lava'"},
+      {R"(<rect id="pit" x="100" y="100" width="200" height="100" data-kind="ground"/>)", "a ground area needs data-material"},
+      {R"(<polyline id="pit" points="100,100 200,100 300,100" data-kind="ground" data-material="sand"/>)", "needs a footprint with an area"},
+      {R"(<rect id="a" x="0" y="300" width="100" height="100" data-kind="ground" data-material="sand"/>
+<rect id="pit" x="50" y="350" width="100" height="100" data-kind="ground" data-material="wood"/>)",
+       "overlaps ground area 'a'"},
+  };
+  for (const auto& [area, message] : cases) {
+    const auto r = check("ground.svg", world(area));
+    EXPECT_EQ(r.exit_code, 2) << area;
+    EXPECT_NE(r.err.find("ground.svg:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
 }
 
 TEST(CheckGood, SummaryOfASmallWorld) {

@@ -207,6 +207,56 @@ TEST(BatchPlan, TheFingerprintFollowsScenarioAndOptions) {
   EXPECT_NE(a, batch_fingerprint(std::string(kTinyYaml) + "# edited\n", o));
 }
 
+// A terrain trial's line carries its counts in a "terrain" object, which reads back exactly;
+// other lines leave the key out, and the fingerprint follows the terrain options.
+TEST(BatchRecord, ATerrainTrialsLineRoundTripsAndIsSummarised) {
+  std::map<int, TrialRecord> records;
+  for (int i = 0; i < 3; ++i) {
+    TrialRecord r;
+    r.trial = i;
+    r.seed = 1 + static_cast<std::uint64_t>(i);
+    r.batch = "rs1-0123456789abcdef";
+    r.scenario = "arena";
+    r.sim_time = 30;
+    r.terrain = TrialTerrain{"stairs", "stairs", "tracked_robot", "laps", 3, i == 0 ? 2 : 3, i == 0 ? 1 : 0, 0, 0, 12.5};
+    r.success = r.terrain->repetitions == r.terrain->laps;
+    records[i] = r;
+  }
+  const std::string line = to_json_line(records[0]);
+  EXPECT_NE(line.find("\"terrain\":{\"lane\":\"stairs\",\"kind\":\"stairs\",\"robot\":\"tracked_robot\",\"pattern\":\"laps\",\"laps\":3,"
+                      "\"repetitions\":2,\"falls\":1"),
+            std::string::npos)
+      << line;
+  const TrialRecord back = parse_trial_line(line);
+  ASSERT_TRUE(back.terrain);
+  EXPECT_EQ(*back.terrain, *records[0].terrain);
+  EXPECT_TRUE(same_outcome(back, records[0]));
+  EXPECT_EQ(to_json_line(sample_record(0)).find("terrain"), std::string::npos);
+  std::string bad = line;
+  bad.replace(bad.find("\"repetitions\":2"), 16, "\"repetitions\":9");
+  EXPECT_THROW(parse_trial_line(bad), Error);
+
+  // two of three trials completed every repetition; 8 of 9 repetitions, one fall
+  const nlohmann::json j = nlohmann::json::parse(batch_summary_json(records));
+  EXPECT_DOUBLE_EQ(j["success_rate"].get<double>(), 2.0 / 3.0);
+  EXPECT_EQ(j["terrain"]["repetitions"], 8);
+  EXPECT_EQ(j["terrain"]["laps"], 9);
+  EXPECT_EQ(j["terrain"]["falls"], 1);
+  EXPECT_NEAR(j["terrain"]["repetition_rate"].get<double>(), 8.0 / 9.0, 1e-12);
+
+  TrialOptions plain, terrain;
+  terrain.terrain = TerrainTrialOptions{};
+  terrain.terrain->lane = "stairs";
+  TrialOptions more = terrain;
+  more.terrain->laps = 5;
+  TrialOptions back_and_forth = terrain;
+  back_and_forth.terrain->pattern = TerrainPattern::back_and_forth;
+  const std::string a = batch_fingerprint(kTinyYaml, terrain);
+  EXPECT_NE(a, batch_fingerprint(kTinyYaml, plain));
+  EXPECT_NE(a, batch_fingerprint(kTinyYaml, more));
+  EXPECT_NE(a, batch_fingerprint(kTinyYaml, back_and_forth));
+}
+
 TEST(BatchTrial, ATrialReseedsTheMazeAndAppliesTheOptions) {
   const ModelMap models = builtin_models();
   const BatchScenario b = parse_batch_scenario(kTinyYaml, "tiny.yaml", models);

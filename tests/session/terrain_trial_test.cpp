@@ -58,6 +58,58 @@ TEST(TerrainTrial, TheTrackedRobotClimbsTheCurbLaneAndTheWheeledRobotIsStuckAtIt
   EXPECT_GT(figure.width(), 200);
 }
 
+// Back and forth without a reset over a 3 cm curb: every crossing completes, alternating forward
+// and back, so --laps 3 gives three repetitions. Each crossing runs the lane from line to line,
+// 2 x 0.3 m of approach + 1.2 m of curb = 1.8 m, at 0.6 m/s: 3 s, and less than 1.5 s more to
+// get going (or to stop and reverse).
+TEST(TerrainTrial, BackAndForthCountsEveryCrossingAsARepetition) {
+  WorldSpec world = arena({TerrainSpec::Kind::curb});
+  world.terrain[0].height = 0.03;
+  TerrainTrialOptions o;
+  o.lane = "curb";
+  o.pattern = TerrainPattern::back_and_forth;
+  o.laps = 3;
+  o.approach = 0.3;
+  o.speed = 0.6;
+  const TerrainTrialResult r = run_terrain_trial(world, builtin_models(), o);
+  ASSERT_EQ(r.laps.size(), 3u);
+  EXPECT_EQ(r.repetitions, 3);
+  const double lane = 2 * o.approach + r.element.length;
+  double total = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const TerrainLap& l = r.laps[i];
+    EXPECT_EQ(l.outcome, "completed") << i;
+    EXPECT_EQ(l.reverse, i == 1) << i;
+    EXPECT_GT(l.time, lane / o.speed) << i;
+    EXPECT_LT(l.time, lane / o.speed + 1.5) << i;
+    EXPECT_GT(l.progress, lane - 0.05) << i;
+    total += l.time;
+  }
+  EXPECT_NEAR(r.sim_time, total, 0.02);  // one simulation, crossing after crossing
+  const nlohmann::json j = nlohmann::json::parse(terrain_trial_json(r));
+  EXPECT_EQ(j["pattern"], "back-and-forth");
+  EXPECT_EQ(j["repetitions"], 3);
+  EXPECT_EQ(j["laps_detail"][1]["direction"], "back");
+  EXPECT_EQ(parse_terrain_pattern("back-and-forth"), TerrainPattern::back_and_forth);
+  EXPECT_THROW(parse_terrain_pattern("figure-eight"), Error);
+}
+
+// A crossing that fails ends a back-and-forth trial: the wheeled robot is stuck at a 15 cm curb
+// on its first crossing, and there is no second.
+TEST(TerrainTrial, BackAndForthEndsAtTheFirstFailure) {
+  const WorldSpec world = arena({TerrainSpec::Kind::curb});
+  TerrainTrialOptions o;
+  o.lane = "curb";
+  o.robot = "rescue_robot";
+  o.pattern = TerrainPattern::back_and_forth;
+  o.laps = 4;
+  o.stuck_time = 3;
+  const TerrainTrialResult r = run_terrain_trial(world, builtin_models(), o);
+  ASSERT_EQ(r.laps.size(), 1u);
+  EXPECT_EQ(r.repetitions, 0);
+  EXPECT_EQ(r.stuck, 1);
+}
+
 TEST(TerrainTrial, TheSameSeedRunsTheSameLaps) {
   const WorldSpec world = arena({TerrainSpec::Kind::curb});
   TerrainTrialOptions o;

@@ -55,6 +55,23 @@ Rgb8 at_world(const Canvas& c, const PlotFrame& f, Vec2 p) {
   return c.at(static_cast<int>(std::floor(px.x())), static_cast<int>(std::floor(px.y())));
 }
 
+// A floor patch is drawn in its material's colour at 70 % over the floor: sand (0.82, 0.72,
+// 0.52) x 255 = (209, 184, 133), over the floor's 250: 0.7 x 209 + 0.3 x 250 = 221.3, and so on.
+TEST(WorldPlot, AGroundAreaHasItsMaterialsColour) {
+  WorldSpec w = small_world();
+  w.materials = default_materials();
+  w.ground.push_back({"pit", {{0.5, 1.5}, {1.5, 1.5}, {1.5, 2.5}, {0.5, 2.5}}, "sand", {}});
+  WorldPlotOptions o;
+  o.grid = false;
+  const PlotFrame f = plot_frame_for(w, o);
+  const Canvas c = plot_world(w, o);
+  const Rgb8 sand = at_world(c, f, {1.02, 2.03});
+  EXPECT_NEAR(sand.r, 0.7 * 209 + 0.3 * 250, 1.5);
+  EXPECT_NEAR(sand.g, 0.7 * 184 + 0.3 * 250, 1.5);
+  EXPECT_NEAR(sand.b, 0.7 * 133 + 0.3 * 250, 1.5);
+  EXPECT_EQ(at_world(c, f, {3.02, 2.03}), kFloor);  // beside it, the floor
+}
+
 TEST(WorldPlot, ObjectsHaveTheirColours) {
   const WorldSpec w = small_world();
   WorldPlotOptions o;

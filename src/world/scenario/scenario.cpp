@@ -128,6 +128,60 @@ std::vector<SdfInclude> read_includes(const YamlNode& w, const std::string& file
   return out;
 }
 
+/// A map's `outline`: at least 3 [x, y] points (m), returned counter-clockwise.
+Polygon2 read_outline(const YamlNode& n) {
+  Polygon2 outline;
+  if (!n.has_sequence("outline")) throw Error(n.where("outline"), "expected the footprint as a list of at least 3 [x, y] points (m)");
+  for (const YamlNode& p : n.sequence("outline")) {
+    const std::vector<YamlNode> xy = p.is_sequence() ? p.items() : std::vector<YamlNode>{};
+    double v[2] = {0, 0};
+    bool ok = xy.size() == 2;
+    for (std::size_t k = 0; ok && k < 2; ++k) {
+      const std::string text = xy[k].is_sequence() || xy[k].is_map() ? std::string() : xy[k].scalar();
+      char* end = nullptr;
+      v[k] = std::strtod(text.c_str(), &end);
+      ok = !text.empty() && end && *end == 0 && std::isfinite(v[k]);
+    }
+    if (!ok) throw Error(p.where(), "expected a point [x, y] of two finite numbers (m)");
+    outline.push_back({v[0], v[1]});
+  }
+  if (outline.size() < 3) {
+    throw Error(n.where("outline"), "the footprint has " + std::to_string(outline.size()) + " points; expected at least 3 [x, y] points (m)");
+  }
+  if (signed_area(outline) < 0) std::reverse(outline.begin(), outline.end());
+  return outline;
+}
+
+/// world.ground: floor patches of other materials, each {material (required), name, outline:
+/// [[x, y], ...] (m)}. The material must be known (checked here, so the message has the line).
+std::vector<GroundAreaSpec> read_ground(const YamlNode& w, const std::string& file) {
+  std::vector<GroundAreaSpec> out;
+  if (!w.has("ground")) return out;
+  if (!w.has_sequence("ground")) throw Error(w.where("ground"), "expected a list of {material, outline} maps (docs/terrain.md, \"Ground materials\")");
+  const auto items = w.sequence("ground");
+  const std::vector<MaterialSpec> known = default_materials();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const YamlNode& n = items[i];
+    if (!n.is_map()) throw Error(n.where(), "expected a map {material, outline} (docs/terrain.md, \"Ground materials\")");
+    GroundAreaSpec g;
+    g.source = n.where();
+    if (g.source.file.empty()) g.source.file = file;
+    if (!n.has("material")) throw Error(n.where(), "a ground area needs a material, such as concrete, wood, sand or wet_tiles");
+    g.material = n.string("material", "");
+    const bool found = std::any_of(known.begin(), known.end(), [&](const MaterialSpec& m) { return m.name == g.material; });
+    if (!found) {
+      std::string names;
+      for (const auto& m : known) names += (names.empty() ? "" : ", ") + m.name;
+      throw Error(n.where("material"), "unknown material '" + g.material + "' (expected one of: " + names + ")");
+    }
+    g.name = n.string("name", g.material + "_" + std::to_string(i + 1));
+    g.outline = read_outline(n);
+    n.finish();
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
 /// world.media: smoke and dust volumes, each {kind: smoke|dust, name, outline: [[x, y], ...] (m),
 /// density (visible extinction, 1/m), bottom, height (m), growth (m/s), drift: [vx, vy] (m/s)}.
 std::vector<MediumSpec> read_media(const YamlNode& w, const std::string& file) {
@@ -149,24 +203,7 @@ std::vector<MediumSpec> read_media(const YamlNode& w, const std::string& file) {
     m.growth = n.number("growth", 0, 0, 1e3);
     const std::vector<double> drift = n.numbers("drift", {0, 0}, 2);
     m.drift = {drift[0], drift[1]};
-    if (!n.has_sequence("outline")) throw Error(n.where("outline"), "expected the footprint as a list of at least 3 [x, y] points (m)");
-    for (const YamlNode& p : n.sequence("outline")) {
-      const std::vector<YamlNode> xy = p.is_sequence() ? p.items() : std::vector<YamlNode>{};
-      double v[2] = {0, 0};
-      bool ok = xy.size() == 2;
-      for (std::size_t k = 0; ok && k < 2; ++k) {
-        const std::string text = xy[k].is_sequence() || xy[k].is_map() ? std::string() : xy[k].scalar();
-        char* end = nullptr;
-        v[k] = std::strtod(text.c_str(), &end);
-        ok = !text.empty() && end && *end == 0 && std::isfinite(v[k]);
-      }
-      if (!ok) throw Error(p.where(), "expected a point [x, y] of two finite numbers (m)");
-      m.outline.push_back({v[0], v[1]});
-    }
-    if (m.outline.size() < 3) {
-      throw Error(n.where("outline"), "the footprint has " + std::to_string(m.outline.size()) + " points; expected at least 3 [x, y] points (m)");
-    }
-    if (signed_area(m.outline) < 0) std::reverse(m.outline.begin(), m.outline.end());
+    m.outline = read_outline(n);
     n.finish();
     out.push_back(std::move(m));
   }
@@ -240,6 +277,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
   s.media = read_media(w, on_disk ? file : "");
   if (w.has("ambient_light")) s.ambient_light = w.number("ambient_light", 1.0, 0.0, 10.0);
   if (w.has("sun")) s.sun = w.boolean("sun", true);
+  s.ground = read_ground(w, on_disk ? file : "");
   w.finish();
   s.physics_dt_given = dt_given;
   // SDF content is read now, so that `rescuesim check` reports its errors with the scenario's
@@ -302,6 +340,7 @@ WorldSpec build_world(const Scenario& scenario, Diagnostics* diagnostics) {
   w.media.insert(w.media.end(), scenario.media.begin(), scenario.media.end());
   if (scenario.ambient_light) w.ambient_light = *scenario.ambient_light;
   if (scenario.sun) w.sun = *scenario.sun;
+  w.ground.insert(w.ground.end(), scenario.ground.begin(), scenario.ground.end());
   // the scenario's robots take the world's starts in order, unless they bring their own
   if (!scenario.robots.empty()) {
     std::vector<RobotPlacement> placed;

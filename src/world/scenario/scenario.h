@@ -63,6 +63,8 @@ struct Scenario {
   /// Daylight (world.ambient_light, world.sun; docs/environment.md): unset keeps the world's own.
   std::optional<double> ambient_light;
   std::optional<bool> sun;
+  /// Floor patches of other materials added to the world (world.ground; docs/terrain.md), whatever its source.
+  std::vector<GroundAreaSpec> ground;
   SvgLoadOptions svg_options;       ///< scale and per-kind defaults for SVG worlds
 
   /// Folders where package:// URIs are looked for first (relative entries are taken from the

@@ -55,7 +55,7 @@ Meaning meaning_of(const Shape& s) {
         return m;
       }
     }
-    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble, ignore, terrain: stepfield, stairs, crossing-ramps, curb, hurdle or gap, or a medium: smoke or dust");
+    throw Error(attr_ref(s, "kind"), "unknown kind '" + *k + "'; expected wall, obstacle, raised, victim, start, rubble, ignore, terrain: stepfield, stairs, crossing-ramps, curb, hurdle or gap, a medium: smoke or dust, or ground (a floor patch of another material)");
   }
   if (has_fill) {
     m.color = s.style.fill.rgb;
@@ -401,6 +401,41 @@ void add_medium(const Shape& s, MediumSpec::Kind kind, const SvgLoadOptions& o, 
   }
 }
 
+/// A floor patch of another material drawn as its footprint (docs/terrain.md, "Ground
+/// materials"): one ground area per closed outline, its material from data-material (required;
+/// data-temperature applies as for any element), its name from data-name or the id.
+void add_ground(const Shape& s, WorldSpec& world, Diagnostics& diag) {
+  const std::string* named = data(s, "material");
+  if (!named) {
+    throw Error(s.source, "a ground area needs data-material: the material of its floor, such as concrete, wood, sand or wet_tiles");
+  }
+  if (!world.find_material(*named)) {
+    std::string known;
+    for (const auto& m : world.materials) known += (known.empty() ? "" : ", ") + m.name;
+    throw Error(attr_ref(s, "material"), "unknown material '" + *named + "' (expected one of: " + known + ")");
+  }
+  const std::string material = material_for(s, *named, world);
+  std::size_t points = 0;
+  for (const auto& sp : s.subpaths) points = std::max(points, sp.points.size());
+  std::vector<Polygon2> polys;
+  if (points >= 3) polys = outlines(s, diag);
+  if (polys.empty()) {
+    throw Error(s.source, "a ground area needs a footprint with an area: a rect, or a polygon or closed path of at least 3 points not on one line (it has " +
+                              std::to_string(points) + (points == 1 ? " point)" : " points)"));
+  }
+  std::string base;
+  if (const std::string* n = data(s, "name")) base = *n;
+  else if (!s.id.empty()) base = s.id;
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    GroundAreaSpec g;
+    g.outline = std::move(polys[i]);
+    g.material = material;
+    g.source = s.source;
+    g.name = base.empty() ? *named + "_" + std::to_string(world.ground.size() + 1) : (polys.size() > 1 ? base + "_" + std::to_string(i + 1) : base);
+    world.ground.push_back(std::move(g));
+  }
+}
+
 struct Start {
   RobotPlacement placement;
   double radius = 0;
@@ -493,6 +528,10 @@ void build_world(const std::vector<Shape>& shapes, const SvgLoadOptions& o, Worl
     }
     if (const auto kind = medium_kind(s)) {
       add_medium(s, *kind, o, world, diag);
+      continue;
+    }
+    if (const std::string* k = data(s, "kind"); k && *k == "ground") {
+      add_ground(s, world, diag);
       continue;
     }
     const Meaning m = meaning_of(s);

@@ -99,6 +99,16 @@ std::string world_to_svg(const WorldSpec& w) {
   }
   o += "  </g>\n";
 
+  // floor patches of other materials (only when there are some, so other worlds write as before)
+  if (!w.ground.empty()) {
+    o += "  <g id=\"ground\" fill=\"#d8c8a0\" stroke=\"none\">\n";
+    for (const auto& g : w.ground) {
+      o += "    <polygon points=\"" + points(map, g.outline) + "\" data-kind=\"ground\" data-name=\"" + escape(g.name) +
+           "\" data-material=\"" + escape(g.material) + "\"/>\n";
+    }
+    o += "  </g>\n";
+  }
+
   // terrain: the footprint, its kind and every parameter, so it reads back the same
   o += "  <g id=\"terrain\" fill=\"#8c564b\" stroke=\"none\">\n";
   for (const auto& t : w.terrain) {

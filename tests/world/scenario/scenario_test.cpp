@@ -39,7 +39,7 @@ TEST(Scenario, SvgPathIsRelativeToTheScenarioFile) {
 }
 
 TEST(Scenario, ShippedWorldsLoadAndValidate) {
-  for (const char* f : {"default.yaml", "arena.yaml", "office.yaml", "smoke_corridor.yaml", "smoke_victim.yaml"}) {
+  for (const char* f : {"default.yaml", "arena.yaml", "office.yaml", "smoke_corridor.yaml", "smoke_victim.yaml", "ground_materials.yaml"}) {
     const Scenario s = load_scenario(std::string(RESCUESIM_SOURCE_DIR) + "/worlds/" + f, builtin_models());
     Diagnostics d;
     const WorldSpec w = build_world(s, &d);
