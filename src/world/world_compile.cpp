@@ -108,6 +108,8 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
   w.lights = spec.lights;
   w.ambient_light = spec.ambient_light;
   w.sun = spec.sun;
+  // no sun: the lights the SVG and maze loaders made up (unnamed) go; a model file's own stay
+  if (!spec.sun) std::erase_if(w.lights, [](const LightSpec& l) { return l.name.empty(); });
   w.media = spec.media;
   w.world_seed = spec.seed;
   // robots need their materials even when a hand-built spec left them out

@@ -221,7 +221,8 @@ struct WorldSpec {
   std::vector<VictimSpec> victims;
   std::vector<LightSpec> lights;
   /// Daylight: the ambient light (sky and bounce) as a fraction of a bright overcast day's, 0 for
-  /// none; and whether a world without lights of its own gets the default sun (docs/environment.md).
+  /// none; and the sun: false drops the lights the SVG and maze loaders make up (unnamed ones: a
+  /// sun, a maze's two overhead lamps) and the renderer's default sun (docs/environment.md).
   double ambient_light = 1.0;
   bool sun = true;
   std::vector<RobotPlacement> robots;

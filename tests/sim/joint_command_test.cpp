@@ -185,3 +185,31 @@ TEST(RobotDescription, NamespacedWithSeveralRobots) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+TEST(Lights, TheLightsTopicSwitchesTheRobotsLampsAtTheNextStep) {
+  // what a bridge does with std_msgs/Bool on /lights: submit_input, then the next step hands it over
+  Simulation sim(compile_world(testing::room_spec(), builtin_models()));
+  ASSERT_FALSE(sim.world().robots[0].spec.lights.empty());  // the rescue robot's head lamp
+  const std::vector<HostInput> inputs = sim.inputs();
+  std::size_t lights = inputs.size();
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (inputs[i].topic == "/lights") lights = i;
+  }
+  ASSERT_LT(lights, inputs.size());
+  EXPECT_EQ(inputs[lights].type, "std_msgs/Bool");
+  EXPECT_FALSE(sim.state().robots[0].lights_on);
+  EXPECT_FALSE(sim.submit_input(lights, msg::String{"on"}).accepted);  // the wrong type
+  EXPECT_TRUE(sim.submit_input(lights, msg::Bool{true}).accepted);
+  EXPECT_FALSE(sim.state().robots[0].lights_on);  // not before the step
+  sim.step();
+  EXPECT_TRUE(sim.state().robots[0].lights_on);
+  sim.submit_input(lights, msg::Bool{false});
+  sim.step();
+  EXPECT_FALSE(sim.state().robots[0].lights_on);
+}
+
+}  // namespace
+}  // namespace rescuesim

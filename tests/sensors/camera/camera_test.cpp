@@ -256,3 +256,57 @@ TEST(CameraColor, DistortionKeepsTheCentreAndNoiseIsRepeatable) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+/// A w × h colour image of one sRGB grey level.
+ColorImage uniform_image(int w, int h, std::uint8_t grey) {
+  ColorImage img;
+  img.width = w;
+  img.height = h;
+  img.rgb.assign(static_cast<std::size_t>(w * h * 3), grey);
+  return img;
+}
+
+TEST(ColorCamera, AutoExposureBringsTheMeanToMidGreyWithinItsGainAndNoiseGrowsWithTheGain) {
+  SensorSpec cam;
+  cam.type = SensorSpec::Type::color_camera;
+  cam.camera.auto_exposure = true;
+  cam.camera.max_gain = 16;
+  Rng rng(1, "ae");
+  const auto linear_of = [](std::uint8_t v) { return srgb_to_linear(v / 255.0); };
+  // a dim scene, linear 0.045 (sRGB 60): gain 0.18 / 0.045 = 4, brought to linear 0.18 (sRGB 118)
+  const std::uint8_t dim = 60;
+  const double gain = 0.18 / linear_of(dim);
+  ASSERT_LT(gain, 16);
+  const msg::Image m = color_message(uniform_image(40, 30, dim), cam, {}, rng);
+  for (std::uint8_t v : m.data) ASSERT_NEAR(linear_of(v), 0.18, 0.003);
+  // a dark one, linear 0.0012 (sRGB 5): the gain stops at 16, linear 0.019 (sRGB 37)
+  const std::uint8_t dark = 5;
+  const msg::Image d = color_message(uniform_image(40, 30, dark), cam, {}, rng);
+  const auto expected = static_cast<std::uint8_t>(std::lround(255 * linear_to_srgb(16 * linear_of(dark))));
+  for (std::uint8_t v : d.data) ASSERT_EQ(v, expected);
+  // read noise of 0.5 % at unit gain: 16 times that at gain 16, in 8-bit counts (0.005 × 16 × 255 = 20)
+  cam.camera.noise.stddev = 0.005;
+  const msg::Image n = color_message(uniform_image(100, 100, dark), cam, {}, rng);
+  double sum = 0, sum2 = 0;
+  for (std::uint8_t v : n.data) {
+    sum += v;
+    sum2 += static_cast<double>(v) * v;
+  }
+  const double count = static_cast<double>(n.data.size()), mean = sum / count;
+  EXPECT_NEAR(std::sqrt(sum2 / count - mean * mean), 0.005 * 16 * 255, 1.0);
+  // in a bright scene the gain drops below one, and the noise stays the sensor's own
+  const msg::Image b = color_message(uniform_image(100, 100, 230), cam, {}, rng);
+  sum = sum2 = 0;
+  for (std::uint8_t v : b.data) {
+    sum += v;
+    sum2 += static_cast<double>(v) * v;
+  }
+  EXPECT_NEAR(sum / count, 255 * linear_to_srgb(0.18), 1.0);
+  EXPECT_NEAR(std::sqrt(sum2 / count - (sum / count) * (sum / count)), 0.005 * 255, 0.2);
+}
+
+}  // namespace
+}  // namespace rescuesim
