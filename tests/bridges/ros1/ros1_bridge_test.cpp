@@ -248,6 +248,34 @@ TEST_F(Ros1Run, FlipperCommandsFromRostopicMoveTheTrackedRobotsFlippers) {
   EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
 }
 
+TEST_F(Ros1Run, LightsFromRostopicLightTheDarkRoomForTheColourCamera) {
+  SKIP_WITHOUT_ROS1();
+  dir_ = temp_dir("ros1-lights");
+  master_ = std::make_unique<RosMaster>(dir_);
+  ASSERT_TRUE(master_->start()) << "roscore did not come up on port " << master_->port();
+  write_room(dir_);
+  // the room at night (no daylight, no sun), with a tiny colour camera to read back in text
+  std::string yaml = kRoomYaml;
+  yaml.replace(yaml.find("  svg_scale: 100\n"), 0, "  ambient_light: 0\n  sun: false\n");
+  yaml.replace(yaml.find("{width: 160, height: 120, hfov: 70}"), 35, "{width: 16, height: 12, hfov: 70}");
+  write_text(dir_ / "dark.yaml", yaml);
+  ASSERT_TRUE(sim_.start(*master_, dir_, dir_ / "dark.yaml", {"--duration", "120"})) << sim_.output();
+  const auto brightness = [&] {
+    const std::vector<double> px = numbers(echo("/camera/color/image_raw"), "data");
+    double sum = 0;
+    for (double v : px) sum += v;
+    return px.empty() ? -1.0 : sum / static_cast<double>(px.size());
+  };
+  EXPECT_EQ(brightness(), 0.0);  // black: nothing lights the room
+  auto on = master_->spawn({"rostopic", "pub", "-r", "10", "/lights", "std_msgs/Bool", "data: true"});
+  EXPECT_TRUE(wait_until([&] { return brightness() > 5.0; }, kPatience)) << brightness();
+  on->interrupt();
+  auto off = master_->spawn({"rostopic", "pub", "-r", "10", "/lights", "std_msgs/Bool", "data: false"});
+  EXPECT_TRUE(wait_until([&] { return brightness() == 0.0; }, kPatience)) << brightness();
+  off->interrupt();
+  EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
+}
+
 TEST_F(Ros1Run, CmdVelDrivesTheRobotAndBadCommandsAreRefused) {
   SKIP_WITHOUT_ROS1();
   start("drive", {"--duration", "120", "--no-cameras"});
