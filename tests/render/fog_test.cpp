@@ -101,30 +101,40 @@ TEST(Fog, ColourContrastFallsAsExpOfTheOpticalDepth) {
   // the same smoke in front of a light and a dark wall: each pixel is C·T + A·(1 − T) with the
   // same transmittance T and airlight A, so the difference of the two images is T times the
   // difference without smoke, pixel by pixel
-  const std::vector<MediumSpec> media = {slab(0.5)};
-  const auto image = [&](double grey, const std::vector<MediumSpec>& m) {
-    renderer->load(build_render_scene(smoky_world(grey, m)));
-    return renderer->color(kView);
-  };
-  const ColorImage light_clear = image(0.9, {}), dark_clear = image(0.3, {});
-  const ColorImage light = image(0.9, media), dark = image(0.3, media);
-  render_test::dump("fog_wall_clear", light_clear);
-  render_test::dump("fog_wall_smoke", light);
-  int checked = 0;
-  for (int j = 28; j < 44; j += 3) {
-    for (int i = 4; i < 92; i += 5) {
-      if (i > 38 && i < 58) continue;  // the block
-      const std::size_t k = 3 * at(kView.k.width, i, j);
-      const double clear = linear(light_clear.rgb[k]) - linear(dark_clear.rgb[k]);
-      const double smoke = linear(light.rgb[k]) - linear(dark.rgb[k]);
-      ASSERT_GT(clear, 0.1);
-      // the wall's plane x = 6 at this pixel: depth along the axis 6 m
-      const double expected = std::exp(-tau_of_pixel(kView, media, i, j, 6.0, SensingBand::visible));
-      EXPECT_NEAR(smoke / clear, expected, 0.02 + 0.05 * expected) << "pixel " << i << ", " << j;
-      ++checked;
+  // once as an axis-aligned box (the shaders' fast path), once turned by 0.4 rad about its
+  // centre (the general convex path)
+  MediumSpec turned = slab(0.5);
+  for (Vec2& p : turned.outline) p = Vec2(3, 0) + Eigen::Rotation2Dd(0.4) * (p - Vec2(3, 0));
+  // and with a box behind the camera beside the turned slab: both paths in one program
+  MediumSpec behind = slab(2.0);
+  for (Vec2& p : behind.outline) p.x() -= 7;
+  for (const MediumSpec& medium : {slab(0.5), turned}) {
+    std::vector<MediumSpec> media = {medium};
+    if (medium.outline[0].y() != -2) media.push_back(behind);
+    const auto image = [&](double grey, const std::vector<MediumSpec>& m) {
+      renderer->load(build_render_scene(smoky_world(grey, m)));
+      return renderer->color(kView);
+    };
+    const ColorImage light_clear = image(0.9, {}), dark_clear = image(0.3, {});
+    const ColorImage light = image(0.9, media), dark = image(0.3, media);
+    render_test::dump("fog_wall_clear", light_clear);
+    render_test::dump(medium.outline[0].y() == -2 ? "fog_wall_smoke" : "fog_wall_smoke_turned", light);
+    int checked = 0;
+    for (int j = 28; j < 44; j += 3) {
+      for (int i = 4; i < 92; i += 5) {
+        if (i > 38 && i < 58) continue;  // the block
+        const std::size_t k = 3 * at(kView.k.width, i, j);
+        const double clear = linear(light_clear.rgb[k]) - linear(dark_clear.rgb[k]);
+        const double smoke = linear(light.rgb[k]) - linear(dark.rgb[k]);
+        ASSERT_GT(clear, 0.1);
+        // the wall's plane x = 6 at this pixel: depth along the axis 6 m
+        const double expected = std::exp(-tau_of_pixel(kView, media, i, j, 6.0, SensingBand::visible));
+        EXPECT_NEAR(smoke / clear, expected, 0.02 + 0.05 * expected) << "pixel " << i << ", " << j;
+        ++checked;
+      }
     }
+    EXPECT_GT(checked, 60);
   }
-  EXPECT_GT(checked, 60);
 }
 
 TEST(Fog, ThickSmokeShowsOnlyItsAirlightAndDustIsBrighter) {

@@ -56,6 +56,25 @@ const Eigen::Vector3f kSkyAmbient(0.30f, 0.33f, 0.38f);
 const Eigen::Vector3f kGroundAmbient(0.15f, 0.14f, 0.12f);
 const Eigen::Vector3f kFillColor(0.16f, 0.16f, 0.17f);
 
+/// Whether a fog piece is an axis-aligned box (a rect drawn in an SVG, unrotated), and its
+/// corners: the shaders clip a ray against such a box with three multiplications by the ray's
+/// inverse direction instead of a division per side.
+bool box_of(const FogPiece& p, Vec3& lo, Vec3& hi) {
+  if (p.half_planes.size() != 4) return false;
+  lo = Vec3(-1e300, -1e300, p.bottom);
+  hi = Vec3(1e300, 1e300, p.top);
+  int seen = 0;
+  for (const Vec3& h : p.half_planes) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const double along = h[axis], across = h[1 - axis];
+      if (std::abs(across) > 1e-12 || std::abs(std::abs(along) - 1) > 1e-12) continue;
+      if (along > 0) hi[axis] = h.z(); else lo[axis] = -h.z();
+      seen |= 1 << (2 * axis + (along > 0 ? 1 : 0));
+    }
+  }
+  return seen == 15;
+}
+
 int shadow_map_size(Quality q) { return q == Quality::high ? 2048 : q == Quality::medium ? 1024 : 0; }
 
 /// World → clip of a camera view.
@@ -131,7 +150,7 @@ class GlRenderer final : public Renderer {
   void set_fog_eye(const Program& p, const Vec3& eye) const;
   /// Draws the sky through the media where the colour pass left the clear value.
   void draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj);
-  bool fog() const { return fog_pieces_ > 0; }
+  bool fog() const { return fog_pieces_ + fog_boxes_ > 0; }
 
   EglContext context_;  // first member: made first, destroyed last, after every GL object
   Program color_[3];    // per Quality: shadows from medium, SSAO at high
@@ -141,8 +160,10 @@ class GlRenderer final : public Renderer {
   Texture patterns_;
   std::vector<MediumSpec> media_;  ///< the scene's smoke and dust
   double fog_time_ = -1;           ///< sim time the fog uniforms were cut at
-  int fog_pieces_ = 0, fog_sides_ = 0;  ///< what the fog programs were compiled for: pieces, sides of each
-  std::vector<FogPiece> fog_;           ///< the pieces now, fog_pieces_ of them (clear air after the real ones)
+  int fog_pieces_ = 0, fog_sides_ = 0;  ///< what the fog programs were compiled for: general pieces, sides of each,
+  int fog_boxes_ = 0;                   ///< and axis-aligned boxes
+  std::vector<FogPiece> fog_;           ///< the general pieces now, fog_pieces_ of them (clear air after the real ones)
+  std::vector<Eigen::AlignedBox3d> fog_box_;  ///< the boxes now, fog_boxes_ of them
   Program fog_sky_, depth_fog_, thermal_fog_;
   GLint depth_fog_model_ = -1, thermal_fog_model_ = -1;
   Eigen::Vector3f fog_light_ = Eigen::Vector3f::Zero();  ///< linear light on the media
@@ -188,8 +209,9 @@ void GlRenderer::build_color_programs(int lights, bool spots) {
     // with shadows; high: and SSAO
     const bool per_pixel = i > 0 || spots;
     const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n"
-                                           "#define MEDIA {}\n#define MEDIA_SIDES {}\n",
-                                           lights, per_pixel ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_, std::max(fog_sides_, 1));
+                                           "#define MEDIA {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n",
+                                           lights, per_pixel ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_ + fog_boxes_ > 0 ? 1 : 0,
+                                           std::max(fog_sides_, 1), fog_boxes_) + fmt::format("#define MEDIA_PIECES {}\n", fog_pieces_);
     const std::string common = header + shaders::kLightUniforms;
     const std::string fog_code = fog() ? shaders::kFogFunctions : "";
     color_[i] = Program("colour", !per_pixel ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
@@ -418,22 +440,31 @@ void GlRenderer::set_lights(const RenderScene& scene, bool rebuild) {
 }
 
 bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
-  int sides = 0;
-  for (const FogPiece& p : pieces) sides = std::max(sides, static_cast<int>(p.half_planes.size()));
-  const int n = static_cast<int>(pieces.size());
-  if (n > kMaxFogPieces || n * sides > kMaxFogSides) {
-    throw Error(SourceRef{"", 0, "Renderer::load"},
-                fmt::format("the smoke and dust make {} convex pieces of up to {} sides; the cameras draw at most {} pieces and {} "
-                            "sides in all (fewer media, or footprints with fewer corners)", n, sides, kMaxFogPieces, kMaxFogSides));
+  int sides = 0, n = 0, boxes = 0;
+  for (const FogPiece& p : pieces) {
+    Vec3 lo, hi;
+    if (box_of(p, lo, hi)) {
+      ++boxes;
+    } else {
+      ++n;
+      sides = std::max(sides, static_cast<int>(p.half_planes.size()));
+    }
   }
-  if (n == fog_pieces_ && sides == fog_sides_) return false;
+  if (n + boxes > kMaxFogPieces || n * sides > kMaxFogSides) {
+    throw Error(SourceRef{"", 0, "Renderer::load"},
+                fmt::format("the smoke and dust make {} convex pieces, {} of up to {} sides; the cameras draw at most {} pieces and {} "
+                            "sides in all (fewer media, or footprints with fewer corners)", n + boxes, n, sides, kMaxFogPieces, kMaxFogSides));
+  }
+  if (n == fog_pieces_ && sides == fog_sides_ && boxes == fog_boxes_) return false;
   fog_pieces_ = n;
   fog_sides_ = sides;
+  fog_boxes_ = boxes;
   fog_sky_ = Program();
   depth_fog_ = Program();
   thermal_fog_ = Program();
-  if (n > 0) {
-    const std::string head = fmt::format("#version 450 core\n#define MEDIA {}\n#define MEDIA_SIDES {}\n{}", n, sides, shaders::kFogFunctions);
+  if (fog()) {
+    const std::string head = fmt::format("#version 450 core\n#define MEDIA 1\n#define MEDIA_PIECES {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n{}",
+                                         n, std::max(sides, 1), boxes, shaders::kFogFunctions);
     fog_sky_ = Program("fog sky", shaders::kFullscreenVertex, head + shaders::kFogSkyFragment);
     depth_fog_ = Program("depth through fog", shaders::kFogVertex, head + shaders::kDepthFogFragment);
     thermal_fog_ = Program("thermal through fog", shaders::kFogVertex, head + shaders::kThermalFogFragment);
@@ -446,19 +477,31 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
 
 void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
   fog_.assign(static_cast<std::size_t>(fog_pieces_), FogPiece{});
-  std::vector<float> sigma(4 * static_cast<std::size_t>(fog_pieces_), 0.0f);
-  for (int i = 0; i < fog_pieces_ && i < static_cast<int>(pieces.size()); ++i) {
-    const FogPiece& p = pieces[static_cast<std::size_t>(i)];
-    if (static_cast<int>(p.half_planes.size()) > fog_sides_) continue;  // grown past what the programs were compiled for: left out
-    fog_[static_cast<std::size_t>(i)] = p;
-    const auto at = 4 * static_cast<std::size_t>(i);
-    sigma[at] = static_cast<float>(p.sigma_visible);
-    sigma[at + 1] = static_cast<float>(p.sigma_near_infrared);
-    sigma[at + 2] = static_cast<float>(p.sigma_long_wave);
-    sigma[at + 3] = static_cast<float>(p.albedo);
+  fog_box_.assign(static_cast<std::size_t>(fog_boxes_), Eigen::AlignedBox3d(Vec3::Zero(), Vec3::Zero()));
+  std::vector<float> sigma(4 * static_cast<std::size_t>(fog_pieces_), 0.0f), box_sigma(4 * static_cast<std::size_t>(fog_boxes_), 0.0f);
+  const auto coefficients = [](const FogPiece& p, float* out) {
+    out[0] = static_cast<float>(p.sigma_visible);
+    out[1] = static_cast<float>(p.sigma_near_infrared);
+    out[2] = static_cast<float>(p.sigma_long_wave);
+    out[3] = static_cast<float>(p.albedo);
+  };
+  int general = 0, boxes = 0;
+  for (const FogPiece& p : pieces) {
+    Vec3 lo, hi;
+    if (box_of(p, lo, hi)) {
+      if (boxes >= fog_boxes_) continue;  // more than the programs were compiled for: left out
+      fog_box_[static_cast<std::size_t>(boxes)] = Eigen::AlignedBox3d(lo, hi);
+      coefficients(p, &box_sigma[4 * static_cast<std::size_t>(boxes++)]);
+    } else {
+      // grown past what the programs were compiled for: left out
+      if (general >= fog_pieces_ || static_cast<int>(p.half_planes.size()) > fog_sides_) continue;
+      fog_[static_cast<std::size_t>(general)] = p;
+      coefficients(p, &sigma[4 * static_cast<std::size_t>(general++)]);
+    }
   }
   for (const Program* p : {&color_[0], &color_[1], &color_[2], &fog_sky_, &depth_fog_, &thermal_fog_}) {
-    glProgramUniform4fv(p->id(), p->uniform("u_fog_sigma"), fog_pieces_, sigma.data());
+    if (fog_pieces_ > 0) glProgramUniform4fv(p->id(), p->uniform("u_fog_sigma"), fog_pieces_, sigma.data());
+    if (fog_boxes_ > 0) glProgramUniform4fv(p->id(), p->uniform("u_fog_box_sigma"), fog_boxes_, box_sigma.data());
   }
   for (const Program& p : color_) p.set("u_fog_light", fog_light_);
   fog_sky_.set("u_fog_light", fog_light_);
@@ -481,8 +524,22 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
     slab[4 * i] = static_cast<float>(f.bottom - eye.z());
     slab[4 * i + 1] = static_cast<float>(f.top - eye.z());
   }
-  glProgramUniform4fv(p.id(), p.uniform("u_fog_edge"), fog_pieces_ * fog_sides_, edge.data());
-  glProgramUniform4fv(p.id(), p.uniform("u_fog_slab"), fog_pieces_, slab.data());
+  // a box's corners as seen from the eye
+  std::vector<float> lo(4 * fog_box_.size(), 0.0f), hi(4 * fog_box_.size(), 0.0f);
+  for (std::size_t i = 0; i < fog_box_.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      lo[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::max(fog_box_[i].min()[c] - eye[c], -1e30));
+      hi[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::min(fog_box_[i].max()[c] - eye[c], 1e30));
+    }
+  }
+  if (fog_pieces_ > 0) {
+    glProgramUniform4fv(p.id(), p.uniform("u_fog_edge"), fog_pieces_ * fog_sides_, edge.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_fog_slab"), fog_pieces_, slab.data());
+  }
+  if (fog_boxes_ > 0) {
+    glProgramUniform4fv(p.id(), p.uniform("u_fog_box_lo"), fog_boxes_, lo.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_fog_box_hi"), fog_boxes_, hi.data());
+  }
   p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
 }
 

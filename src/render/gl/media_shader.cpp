@@ -8,20 +8,39 @@
 namespace rescuesim::gl::shaders {
 
 const char* const kFogFunctions = R"(
-uniform vec4 u_fog_edge[MEDIA * MEDIA_SIDES];  // (nx, ny, s): a side n.p <= c of a piece's footprint as s = n.eye - c for this view (m)
-uniform vec4 u_fog_slab[MEDIA];                // bottom - eye z, top - eye z (m)
-uniform vec4 u_fog_sigma[MEDIA];               // extinction (1/m): visible, near infrared, long-wave infrared; scattering albedo
+#if MEDIA_PIECES > 0
+uniform vec4 u_fog_edge[MEDIA_PIECES * MEDIA_SIDES];  // (nx, ny, s): a side n.p <= c of a piece's footprint as s = n.eye - c for this view (m)
+uniform vec4 u_fog_slab[MEDIA_PIECES];                // bottom - eye z, top - eye z (m)
+uniform vec4 u_fog_sigma[MEDIA_PIECES];               // extinction (1/m): visible, near infrared, long-wave infrared; scattering albedo
+#endif
+#if MEDIA_BOXES > 0
+uniform vec4 u_fog_box_lo[MEDIA_BOXES];               // an axis-aligned box's low corner - eye (m)
+uniform vec4 u_fog_box_hi[MEDIA_BOXES];               // its high corner - eye (m)
+uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
+#endif
 
-// Optical depths of the segment from the camera (the eye of u_fog_edge and u_fog_slab) to
-// eye + d: visible, near infrared, long-wave infrared, and in w the visible depth weighted by
-// each medium's scattering albedo. Each piece clips the segment against its floor-to-top slab
-// and its footprint's sides (Cyrus-Beck). Every piece has MEDIA_SIDES sides (padded with ones
-// that hold everything), so both loops have constant bounds and constant uniform indices.
+// Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d:
+// visible, near infrared, long-wave infrared, and in w the visible depth weighted by each
+// medium's scattering albedo. An axis-aligned box clips the segment with the inverse of d (three
+// slabs, no division of its own); any other piece against its floor-to-top slab and its sides
+// (Cyrus-Beck, a division per side). Every piece has MEDIA_SIDES sides (padded with ones that
+// hold everything), so the loops have constant bounds and constant uniform indices.
 vec4 fog_depth(vec3 d) {
   float len = length(d);
-  float inv_dz = abs(d.z) > 1e-9 ? 1.0 / d.z : 1e9;
   vec4 sum = vec4(0.0);
-  for (int i = 0; i < MEDIA; ++i) {
+#if MEDIA_BOXES > 0
+  vec3 inv = 1.0 / vec3(abs(d.x) > 1e-9 ? d.x : 1e-9, abs(d.y) > 1e-9 ? d.y : 1e-9, abs(d.z) > 1e-9 ? d.z : 1e-9);
+  for (int i = 0; i < MEDIA_BOXES; ++i) {
+    vec3 a = u_fog_box_lo[i].xyz * inv, b = u_fog_box_hi[i].xyz * inv;
+    vec3 near = min(a, b), far = max(a, b);
+    float t0 = max(max(near.x, near.y), max(near.z, 0.0)), t1 = min(min(far.x, far.y), min(far.z, 1.0));
+    vec4 s = u_fog_box_sigma[i];
+    sum += vec4(s.xyz, s.x * s.w) * (max(t1 - t0, 0.0) * len);
+  }
+#endif
+#if MEDIA_PIECES > 0
+  float inv_dz = abs(d.z) > 1e-9 ? 1.0 / d.z : 1e9;
+  for (int i = 0; i < MEDIA_PIECES; ++i) {
     vec2 slab = u_fog_slab[i].xy * inv_dz;
     float t0 = max(0.0, min(slab.x, slab.y)), t1 = min(1.0, max(slab.x, slab.y));
     for (int e = 0; e < MEDIA_SIDES; ++e) {
@@ -35,6 +54,7 @@ vec4 fog_depth(vec3 d) {
     vec4 s = u_fog_sigma[i];
     sum += vec4(s.xyz, s.x * s.w) * (max(t1 - t0, 0.0) * len);
   }
+#endif
   return sum;
 }
 )";
@@ -58,7 +78,7 @@ void main() {
 }
 )";
 
-// No #version: "#version 450 core", MEDIA, MEDIA_SIDES, kFogFunctions, then this.
+// No #version: "#version 450 core", MEDIA, MEDIA_PIECES, MEDIA_SIDES, MEDIA_BOXES, kFogFunctions, then this.
 const char* const kFogSkyFragment = R"(
 uniform mat4 u_inv_view_proj;  // clip -> world of the camera
 uniform vec2 u_size;           // px

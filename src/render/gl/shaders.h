@@ -34,9 +34,9 @@ extern const char* const kFxaaFragment;
 extern const char* const kSsaoFragment;
 /// Smoke and dust (media_shader.cpp). kFogFunctions declares the media's uniforms and
 /// fog_depth(d), the optical depths of the segment from the camera to camera + d; compose
-/// "#version 450 core", "#define MEDIA n" (pieces, ≥ 1) and "#define MEDIA_SLABS m" (slabs of
-/// each, ≥ 2), it, then a stage. The colour
-/// fragment fogs itself when MEDIA > 0; kFogSkyFragment fogs the sky (a full-screen pass where
+/// "#version 450 core", "#define MEDIA 1", MEDIA_PIECES (general convex pieces), MEDIA_SIDES
+/// (sides of each, ≥ 1) and MEDIA_BOXES (axis-aligned boxes), it, then a stage. The colour
+/// fragment fogs itself when MEDIA is 1; kFogSkyFragment fogs the sky (a full-screen pass where
 /// the depth is still the clear value); kDepthFogFragment and kThermalFogFragment follow
 /// kFogVertex for the depth and thermal cameras.
 extern const char* const kFogFunctions;
