@@ -186,6 +186,31 @@ TEST(Fog, ThermalSeesTheVictimThroughSmokeThatHidesItFromColour) {
   EXPECT_NEAR(tau_lw, 0.15, 0.01);
   EXPECT_NEAR(block_smoke, 293.0 + 17.0 * std::exp(-tau_lw), 0.05);
   EXPECT_GT(thermal_smoke / thermal_clear, 0.8);
+  // a lamp switched on recompiles the colour programs: the smoke stays in every camera
+  RenderScene scene = build_render_scene(smoky_world(0.9, media));
+  RenderLamp lamp;
+  lamp.robot = 0;
+  lamp.link = 0;
+  lamp.light.directional = false;
+  lamp.light.spot = true;
+  lamp.light.cone = 0.4;
+  lamp.light.inner_cone = 0.3;
+  lamp.light.color = {4, 4, 4};
+  scene.lamps.push_back(lamp);
+  renderer->load(scene);
+  const double colour_before = render_test::grey(renderer->color(kView), 20, 36);
+  State s;
+  s.robots.resize(1);
+  s.robots[0].X_WL = {Pose3::from_rpy({0.5, 0, 1}, 0, 0, 0)};
+  s.robots[0].lights_on = true;
+  update_render_scene(scene, s);
+  ASSERT_EQ(scene.lights.size(), scene.world_lights + 1);
+  renderer->update(scene);
+  EXPECT_NEAR(renderer->thermal(kView, 0.0).kelvin[at(96, 48, 36)], block_smoke, 1e-3);
+  // the lamp lights the wall through the smoke a little, and the smoke still hides it mostly
+  const double colour_lit = render_test::grey(renderer->color(kView), 20, 36);
+  EXPECT_GE(colour_lit, colour_before);
+  EXPECT_LT(std::abs(colour_lit - colour_before), 0.5 * colour_clear);
   EXPECT_GT(colour_clear, 40.0);                  // grey levels
   EXPECT_LT(colour_smoke / colour_clear, 0.15);   // e^-3 in linear light; a little more in sRGB
 }

@@ -164,6 +164,7 @@ class GlRenderer final : public Renderer {
   int fog_boxes_ = 0;                   ///< and axis-aligned boxes
   std::vector<FogPiece> fog_;           ///< the general pieces now, fog_pieces_ of them (clear air after the real ones)
   std::vector<Eigen::AlignedBox3d> fog_box_;  ///< the boxes now, fog_boxes_ of them
+  std::vector<FogPiece> fog_now_;       ///< every piece as last uploaded (the programs compiled again take them)
   Program fog_sky_, depth_fog_, thermal_fog_;
   GLint depth_fog_model_ = -1, thermal_fog_model_ = -1;
   Eigen::Vector3f fog_light_ = Eigen::Vector3f::Zero();  ///< linear light on the media
@@ -419,7 +420,7 @@ void GlRenderer::set_lights(const RenderScene& scene, bool rebuild) {
   if (rebuild || count != light_count_ || spots != spot_lights_) {
     build_color_programs(count, spots);
     upload_materials();
-    if (fog()) upload_fog(fog_, fog_time_);
+    if (fog()) upload_fog(fog_now_, fog_time_);
     shadow_dirty_ = true;
   }
   // the fill light comes from the side the sun shines towards, a little above the horizon
@@ -476,6 +477,7 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
 }
 
 void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
+  if (&pieces != &fog_now_) fog_now_ = pieces;
   fog_.assign(static_cast<std::size_t>(fog_pieces_), FogPiece{});
   fog_box_.assign(static_cast<std::size_t>(fog_boxes_), Eigen::AlignedBox3d(Vec3::Zero(), Vec3::Zero()));
   std::vector<float> sigma(4 * static_cast<std::size_t>(fog_pieces_), 0.0f), box_sigma(4 * static_cast<std::size_t>(fog_boxes_), 0.0f);
