@@ -118,6 +118,14 @@ TEST(Simulation, ImuSeesTheTurnRate) {
   EXPECT_NEAR(wz / n, 0.8, 0.04);
 }
 
+/// A drive with turns: straight, an arc, a turn on the spot, straight (19 s).
+void drive_with_turns(Simulation& sim) {
+  drive(sim, 0.5, 0.0, 6.0);
+  drive(sim, 0.4, 0.3, 6.0);
+  drive(sim, 0.0, -0.6, 3.0);
+  drive(sim, 0.5, 0.0, 4.0);
+}
+
 /// Pose of the robot relative to its start, by ground truth.
 Pose2 truth_from_start(const Simulation& sim) {
   const Pose2 X_W0 = sim.world().robots[0].X_W_start.to_pose2();
@@ -126,10 +134,7 @@ Pose2 truth_from_start(const Simulation& sim) {
 
 TEST(Simulation, OdometryMatchesGroundTruthOnFlatFloor) {
   Simulation sim = make_sim(room_spec(30.0));
-  drive(sim, 0.5, 0.0, 6.0);
-  drive(sim, 0.4, 0.3, 6.0);
-  drive(sim, 0.0, -0.6, 3.0);
-  drive(sim, 0.5, 0.0, 4.0);
+  drive_with_turns(sim);
   const Pose2 truth = truth_from_start(sim), odom = sim.state().robots[0].odom;
   const double travelled = sim.state().robots[0].distance;
   // wheels roll without slipping on flat floor: well under 2 % of the distance
@@ -147,10 +152,7 @@ TEST(Simulation, TrackOdometrySlipsInTurnsMoreThanWheelOdometry) {
     WorldSpec w = room_spec(30.0);
     w.robots[0].model = model;
     Simulation sim = make_sim(w);
-    drive(sim, 0.5, 0.0, 6.0);
-    drive(sim, 0.4, 0.3, 6.0);
-    drive(sim, 0.0, -0.6, 3.0);
-    drive(sim, 0.5, 0.0, 4.0);
+    drive_with_turns(sim);
     const Pose2 truth = truth_from_start(sim), odom = sim.state().robots[0].odom;
     const double travelled = sim.state().robots[0].distance;
     error[k] = (truth.position() - odom.position()).norm() / travelled;
