@@ -152,9 +152,15 @@ int run_batch(const BatchCommand& c) {
     // fails now (exit 2) rather than in every trial: a world that does not load, a lane it lacks
     const WorldSpec world = build_world(bs.scenario);
     validate(world).throw_if_errors();
-    bool found = false;
-    for (const auto& t : world.terrain) found = found || t.name == c.terrain.lane || c.terrain.lane == TerrainSpec::kind_name(t.kind);
-    if (!found) throw Error({c.terrain_world, 0, "--lane"}, "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
+    const TerrainSpec* lane = nullptr;
+    for (const auto& t : world.terrain) {
+      if (!lane && t.name == c.terrain.lane) lane = &t;
+    }
+    for (const auto& t : world.terrain) {
+      if (!lane && c.terrain.lane == TerrainSpec::kind_name(t.kind)) lane = &t;
+    }
+    if (!lane) throw Error({c.terrain_world, 0, "--lane"}, "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
+    check_terrain_pattern(*lane, to.terrain->pattern);
     if (!models.count(c.terrain.robot)) throw Error("batch: unknown robot '" + c.terrain.robot + "' (expected tracked_robot or rescue_robot)");
   }
   const std::string fingerprint = batch_fingerprint(bs.text, to);
@@ -195,7 +201,7 @@ int run_batch(const BatchCommand& c) {
               c.shard.empty() ? "" : (", shard " + c.shard + " (" + std::to_string(mine.size()) + " trials)").c_str());
   if (terrain) {
     std::printf("  terrain trials: lane '%s', %s, %d %s at %.2f m/s\n", c.terrain.lane.c_str(), c.terrain.robot.c_str(), c.terrain.laps,
-                to.terrain->pattern == TerrainPattern::laps ? "laps" : "crossings back and forth", c.terrain.speed);
+                terrain_pattern_reps(to.terrain->pattern), c.terrain.speed);
   }
   std::printf("  %zu already recorded in %s, %zu to run, %d at a time in %s%s\n", mine.size() - todo.size(), results.path().string().c_str(),
               todo.size(), jobs, c.threads ? "threads" : "child processes", c.cameras ? ", cameras on" : ", no cameras");
@@ -294,13 +300,14 @@ void add_batch_command(CLI::App& app, Action& action) {
   cmd->add_option("--lane", c->terrain.lane, "terrain trials: the element's name (its SVG id), or a kind: the first element of that kind")
       ->needs(terrain);
   cmd->add_option("--robot", c->terrain.robot, "terrain trials: built-in model, tracked_robot or rescue_robot")->capture_default_str()->needs(terrain);
-  cmd->add_option("--laps", c->terrain.laps, "terrain trials: laps (or crossings back and forth) per trial")
+  cmd->add_option("--laps", c->terrain.laps, "terrain trials: laps (crossings back and forth, figure-eights) per trial")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000))
       ->needs(terrain);
-  cmd->add_option("--pattern", c->pattern, "terrain trials: laps (each from the start line) or back-and-forth (end to end without a reset)")
+  cmd->add_option("--pattern", c->pattern,
+                  "terrain trials: laps (each from the start line), back-and-forth (end to end without a reset) or figure-eight (around two pylons, stepfields and crossing ramps)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"laps", "back-and-forth"}))
+      ->check(CLI::IsMember({"laps", "back-and-forth", "figure-eight"}))
       ->needs(terrain);
   cmd->add_option("--speed", c->terrain.speed, "terrain trials: m/s")->capture_default_str()->check(CLI::Range(0.05, 2.0))->needs(terrain);
   cmd->add_option("--time-limit", c->terrain.time_limit, "terrain trials: s per lap (per crossing)")

@@ -28,10 +28,10 @@ int run_trial(TrialCommand c) {
   validate(loaded.world).throw_if_errors();
   const auto models = builtin_models();
   std::printf("trial: %s, lane '%s', %s, %d %s at %.2f m/s\n", c.world.c_str(), c.trial.lane.c_str(), c.trial.robot.c_str(), c.trial.laps,
-              c.trial.pattern == TerrainPattern::laps ? "laps" : "crossings back and forth", c.trial.speed);
-  const TerrainTrialResult r = run_terrain_trial(loaded.world, models, c.trial, [](const TerrainLap& l) {
+              terrain_pattern_reps(c.trial.pattern), c.trial.speed);
+  const TerrainTrialResult r = run_terrain_trial(loaded.world, models, c.trial, [&c](const TerrainLap& l) {
     std::printf("  lap %2d  %-7s %-9s %6.1f s  %5.2f m along  pitch up to %3.0f deg  roll up to %3.0f deg\n", l.lap,
-                l.reverse ? "back" : "forward", l.outcome.c_str(), l.time, l.progress, l.max_pitch, l.max_roll);
+                l.reverse ? "back" : c.trial.pattern == TerrainPattern::figure_eight ? "eight" : "forward", l.outcome.c_str(), l.time, l.progress, l.max_pitch, l.max_roll);
     std::fflush(stdout);
   });
   const fs::path dir = c.out;
@@ -62,22 +62,30 @@ void add_trial_terrain_command(CLI::App& app, Action& action) {
       "count them: from the start line forward to the end line, then backwards (reversing, facing\n"
       "the same way) to the start line, and so on; each crossing is one repetition and one entry of\n"
       "--laps. The first crossing that fails (fell, stuck, out of time) ends the trial.\n\n"
+      "--pattern figure-eight (stepfields and crossing ramps, the test methods' figure-8 terrains):\n"
+      "figure-eights without a reset around two pylons on the element's centre line, a quarter of\n"
+      "its length in from each end, in loops of half its width less 0.25 m (at least 0.2 m). The\n"
+      "robot drives in from the start line to the element's centre, then each figure-eight, back to\n"
+      "the centre, is one repetition and one entry of --laps; the first that fails ends the trial.\n"
+      "The driver turns in place towards each waypoint more than 35 degrees off, else steers onto it.\n\n"
       "Writes DIR/trial.json (repetitions, falls, stuck, mean time, each lap) and DIR/trial.png\n"
       "(the lane from above with every lap's path: green completed, red fell, orange stuck).\n\n"
       "Examples:\n"
       "  rescuesim arena --lanes stepfield,stairs,curb --out arena.svg\n"
       "  rescuesim trial-terrain arena.svg --lane stairs --robot tracked_robot --laps 10 --out stairs\n"
       "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --robot rescue_robot --laps 3\n"
-      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --pattern back-and-forth --laps 4\n\n"
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane curb --pattern back-and-forth --laps 4\n"
+      "  rescuesim trial-terrain worlds/terrain_lanes.svg --lane stepfield --pattern figure-eight --laps 3\n\n"
       "Many trials with their own seeds, resumable and summarised: rescuesim batch --trial-terrain\n"
       "(docs/batch.md).");
   cmd->add_option("world", c->world, "the arena (an SVG world with terrain elements, e.g. from rescuesim arena)")->required();
   cmd->add_option("--lane", c->trial.lane, "the element's name (its SVG id), or a kind: the first element of that kind")->required();
   cmd->add_option("--robot", c->trial.robot, "built-in model: tracked_robot or rescue_robot")->capture_default_str();
-  cmd->add_option("--laps", c->trial.laps, "attempts (laps), or crossings wanted (back-and-forth)")->capture_default_str()->check(CLI::Range(1, 10000));
-  cmd->add_option("--pattern", c->pattern, "laps: each from the start line; back-and-forth: end to end and back without a reset")
+  cmd->add_option("--laps", c->trial.laps, "attempts (laps), or crossings (back-and-forth) or figure-eights wanted")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_option("--pattern", c->pattern,
+                  "laps: each from the start line; back-and-forth: end to end and back without a reset; figure-eight: around two pylons without a reset")
       ->capture_default_str()
-      ->check(CLI::IsMember({"laps", "back-and-forth"}));
+      ->check(CLI::IsMember({"laps", "back-and-forth", "figure-eight"}));
   cmd->add_option("--seed", c->trial.seed, "seed of the laps' start offsets")->capture_default_str();
   cmd->add_option("--speed", c->trial.speed, "m/s")->capture_default_str()->check(CLI::Range(0.05, 2.0));
   cmd->add_option("--approach", c->trial.approach, "m of floor between the element and the start and end lines")

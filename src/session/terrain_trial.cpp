@@ -120,16 +120,20 @@ Simulation start_on_lane(const WorldSpec& base, const std::map<std::string, Robo
   return Simulation(compile_world(spec, models), so);
 }
 
-/// One crossing of the lane from where the robot is: forward to the end line, or (reverse)
-/// backwards to the start line. Progress is measured in the direction of travel from where the
-/// crossing began (forward: from the start line); time from the crossing's start. `floor_z` is
-/// the base's height when standing on the floor.
-TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lane, const TerrainTrialOptions& o, int lap, bool reverse,
-                     double floor_z) {
+/// What one leg of a trial (a crossing, a figure-eight) asks of the loop that drives it: the
+/// twist now, the progress made (m, in the leg's own measure), and whether it is done.
+struct Leg {
+  std::function<msg::Twist(const Pose3&)> twist;
+  std::function<double(const Pose3&)> progress;
+  std::function<bool(const Pose3&)> done;
+};
+
+/// Drives one leg from where the robot is, watching for falls (pitch or roll beyond the
+/// limits), being stuck (no 5 cm of progress in stuck_time) and time-outs, with the flippers
+/// worked by `driver`. `floor_z` is the base's height when standing on the floor.
+TerrainLap drive_leg(Simulation& sim, LaneDriver& driver, const TerrainTrialOptions& o, int lap, bool reverse, double floor_z, const Leg& leg) {
   const RobotSpec& robot = sim.world().robots[0].spec;
-  const double goal = lane_goal(lane, o);
   const double t0 = sim.time().seconds();
-  const double from = driver.along(sim.state().robots[0].base.X_WB);
   TerrainLap out;
   out.lap = lap;
   out.reverse = reverse;
@@ -144,12 +148,11 @@ TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lan
     out.max_roll = std::max(out.max_roll, std::abs(roll) / kDeg);
     out.max_height = std::max(out.max_height, X.p.z() - floor_z);
     if (i % std::max<long>(1, std::lround(0.1 / sim.dt())) == 0) out.path.push_back(X.p.head<2>());
-    const double along = driver.along(X);
-    const double gone = reverse ? from - along : along;
+    const double gone = leg.progress(X);
     if (gone > best + 0.05) best = gone, best_at = t;
     out.progress = std::max(out.progress, gone);
     out.time = t;
-    if (reverse ? along <= 0 : along >= goal) {
+    if (leg.done(X)) {
       out.outcome = "completed";
       break;
     }
@@ -165,7 +168,7 @@ TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lan
       out.outcome = "timeout";
       break;
     }
-    sim.command_velocity(0, driver.twist(X, reverse));
+    sim.command_velocity(0, leg.twist(X));
     if (const std::vector<double> f = driver.flippers(pitch); !f.empty()) {
       msg::JointState js;
       js.name = robot.flipper_joints;
@@ -176,6 +179,130 @@ TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lan
   }
   out.path.push_back(sim.state().robots[0].base.X_WB.p.head<2>());
   return out;
+}
+
+/// One crossing of the lane from where the robot is: forward to the end line, or (reverse)
+/// backwards to the start line. Progress is measured in the direction of travel from where the
+/// crossing began (forward: from the start line); time from the crossing's start.
+TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lane, const TerrainTrialOptions& o, int lap, bool reverse,
+                     double floor_z) {
+  const double goal = lane_goal(lane, o);
+  const double from = driver.along(sim.state().robots[0].base.X_WB);
+  Leg leg;
+  leg.twist = [&](const Pose3& X) { return driver.twist(X, reverse); };
+  leg.progress = [&](const Pose3& X) { return reverse ? from - driver.along(X) : driver.along(X); };
+  leg.done = [&](const Pose3& X) { return reverse ? driver.along(X) <= 0 : driver.along(X) >= goal; };
+  return drive_leg(sim, driver, o, lap, reverse, floor_z, leg);
+}
+
+/// The figure-eight on an element (docs/terrain.md, "Figure-eights"): two pylons on its centre
+/// line, a quarter of its length in from each end, and a loop of radius r around each, clockwise
+/// around the far pylon and anticlockwise around the near one, the two joined by diagonals that
+/// cross at the element's centre. r is half the element's width less 0.7 m (room for a robot
+/// with its flippers raised, 1.2 m long, to turn onto the loop without its nose in the wall), at
+/// least 0.3 m and at most a quarter of the length: 0.45 m on the test methods' 2.4 m wide
+/// figure-8 apparatus; in a 1.2 m lane the loops are tighter than a robot can follow. Points are in the lane's frame (x along the lane from the element's centre, y to
+/// the left).
+struct EightGeometry {
+  double a = 0, r = 0;          ///< pylons at x = -a and +a; loop radius
+  std::vector<Vec2> eight;      ///< one figure-eight from the centre back to it
+
+  explicit EightGeometry(const TerrainSpec& lane) {
+    a = 0.25 * lane.length;
+    r = std::clamp(0.5 * lane.width - 0.7, 0.3, a);
+    const auto loop = [&](double cx, double from_deg, double to_deg) {
+      for (int k = 0; k <= 4; ++k) {
+        const double t = (from_deg + (to_deg - from_deg) * k / 4.0) * kDeg;
+        eight.push_back({cx + r * std::cos(t), r * std::sin(t)});
+      }
+    };
+    loop(+a, 90, -90);   // around the far pylon, clockwise: left side, far end, right side
+    eight.push_back({0, 0});
+    loop(-a, 90, 270);   // around the near pylon, anticlockwise: left side, near end, right side
+    eight.push_back({0, 0});
+  }
+
+  /// The figure-eight's path length from the centre back to it (m).
+  double length() const {
+    double l = 0;
+    Vec2 at(0, 0);
+    for (const Vec2& p : eight) l += (p - at).norm(), at = p;
+    return l;
+  }
+};
+
+/// Follows waypoints (in the world) in order: each is reached within 0.15 m; the robot turns in
+/// place towards the next one when it is more than 35 degrees off, else drives at the trial's
+/// speed (slowed by the cosine of the error) and steers onto it. When it has made no 5 cm of
+/// progress for 3 s (a track against a post), it backs up for 1.5 s, straight, and tries again,
+/// as an operator would. Progress is the path length of the waypoints reached plus the part of
+/// the current segment covered.
+class WaypointFollower {
+ public:
+  WaypointFollower(std::vector<Vec2> points, Vec2 from, double speed, double dt)
+      : points_(std::move(points)), from_(from), speed_(speed), dt_(dt) {}
+
+  /// The twist for the next step (called once per step).
+  msg::Twist twist(const Pose3& X) {
+    advance(X);
+    msg::Twist t;
+    if (finished()) return t;
+    now_ += dt_;
+    const double p = progress(X);
+    if (p > best_ + 0.05) best_ = p, best_at_ = now_;
+    if (now_ >= backing_until_ && now_ - best_at_ > kRetryAfter) backing_until_ = now_ + kBackUp, best_at_ = now_ + kBackUp;
+    if (now_ < backing_until_) {
+      t.linear.x() = -speed_;
+      return t;
+    }
+    const Vec2 d = points_[next_] - X.p.head<2>();
+    const double e = std::remainder(std::atan2(d.y(), d.x()) - X.yaw(), 2 * M_PI);
+    t.linear.x() = std::abs(e) > 0.6 ? 0.0 : speed_ * std::cos(e);
+    t.angular.z() = std::clamp(2.5 * e, -0.8, 0.8);
+    return t;
+  }
+  double progress(const Pose3& X) {
+    advance(X);
+    if (finished()) return done_;
+    const Vec2 a = next_ == 0 ? from_ : points_[next_ - 1];
+    const double seg = (points_[next_] - a).norm();
+    return done_ + std::max(0.0, seg - (points_[next_] - X.p.head<2>()).norm());
+  }
+  bool finished() const { return next_ >= points_.size(); }
+  bool done(const Pose3& X) {
+    advance(X);
+    return finished();
+  }
+
+ private:
+  static constexpr double kRetryAfter = 3.0, kBackUp = 1.5;  // s
+
+  void advance(const Pose3& X) {
+    while (!finished() && (points_[next_] - X.p.head<2>()).norm() < 0.15) {
+      done_ += (points_[next_] - (next_ == 0 ? from_ : points_[next_ - 1])).norm();
+      ++next_;
+    }
+  }
+  std::vector<Vec2> points_;
+  Vec2 from_;
+  double speed_, dt_;
+  std::size_t next_ = 0;
+  double done_ = 0;
+  double now_ = 0, best_ = 0, best_at_ = 0, backing_until_ = -1;
+};
+
+/// Follows lane-frame points as one leg.
+TerrainLap drive_points(Simulation& sim, LaneDriver& driver, const TerrainSpec& lane, const TerrainTrialOptions& o, int lap, double floor_z,
+                        const std::vector<Vec2>& in_lane) {
+  const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
+  std::vector<Vec2> world;
+  for (const Vec2& p : in_lane) world.emplace_back(lane.pose.x + c * p.x() - s * p.y(), lane.pose.y + s * p.x() + c * p.y());
+  WaypointFollower follow(world, sim.state().robots[0].base.X_WB.p.head<2>(), o.speed, sim.dt());
+  Leg leg;
+  leg.twist = [&](const Pose3& X) { return follow.twist(X); };
+  leg.progress = [&](const Pose3& X) { return follow.progress(X); };
+  leg.done = [&](const Pose3& X) { return follow.done(X); };
+  return drive_leg(sim, driver, o, lap, false, floor_z, leg);
 }
 
 /// One lap of the `laps` pattern: a fresh simulation, from the start line to the end line.
@@ -203,6 +330,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   }
   TerrainTrialResult result;
   result.element = find_lane(world, options.lane);
+  check_terrain_pattern(result.element, options.pattern);
   result.robot = options.robot;
   result.options = options;
   Rng rng(options.seed, "terrain_trial");
@@ -217,6 +345,35 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   };
   if (options.pattern == TerrainPattern::laps) {
     for (int lap = 1; lap <= options.laps; ++lap) count(run_lap(world, models, result.element, options, lap, rng, result.sim_time));
+  } else if (options.pattern == TerrainPattern::figure_eight) {
+    // in from the start line to the element's centre (not a repetition; a failure there is lap
+    // 1's), then figure-eights without a reset until the repetitions asked for or the first that fails
+    const TerrainSpec& lane = result.element;
+    const EightGeometry g(lane);
+    const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
+    for (double x : {-g.a, g.a}) result.pylons.emplace_back(lane.pose.x + c * x, lane.pose.y + s * x);
+    result.loop_radius = g.r;
+    result.eight_length = g.length();
+    Simulation sim = start_on_lane(world, models, lane, options, options.seed + 1, rng);
+    LaneDriver driver(lane, sim.world().robots[0].spec, options);
+    const double floor_z = sim.state().robots[0].base.X_WB.p.z();
+    // the entry is driven as a lap is, along the centre line to the element's centre
+    Leg in;
+    in.twist = [&](const Pose3& X) { return driver.twist(X); };
+    in.progress = [&](const Pose3& X) { return driver.along(X); };
+    in.done = [&](const Pose3& X) { return driver.along(X) >= options.approach + 0.5 * lane.length; };
+    TerrainLap entry = drive_leg(sim, driver, options, 1, false, floor_z, in);
+    if (entry.outcome != "completed") {
+      count(std::move(entry));
+    } else {
+      for (int lap = 1; lap <= options.laps; ++lap) {
+        TerrainLap l = drive_points(sim, driver, lane, options, lap, floor_z, g.eight);
+        if (lap == 1) l.path.insert(l.path.begin(), entry.path.begin(), entry.path.end());
+        count(std::move(l));
+        if (result.laps.back().outcome != "completed") break;
+      }
+    }
+    result.sim_time = sim.time().seconds();
   } else {
     // back and forth without a reset: odd crossings forward to the end line, even ones backwards
     // to the start line, until the repetitions asked for or the first that fails
@@ -233,13 +390,36 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   return result;
 }
 
-const char* terrain_pattern_name(TerrainPattern p) { return p == TerrainPattern::laps ? "laps" : "back-and-forth"; }
+const char* terrain_pattern_name(TerrainPattern p) {
+  switch (p) {
+    case TerrainPattern::laps: return "laps";
+    case TerrainPattern::back_and_forth: return "back-and-forth";
+    case TerrainPattern::figure_eight: return "figure-eight";
+  }
+  return "laps";
+}
+
+const char* terrain_pattern_reps(TerrainPattern p) {
+  switch (p) {
+    case TerrainPattern::laps: return "laps";
+    case TerrainPattern::back_and_forth: return "crossings back and forth";
+    case TerrainPattern::figure_eight: return "figure-eights";
+  }
+  return "laps";
+}
+
+void check_terrain_pattern(const TerrainSpec& lane, TerrainPattern p) {
+  if (p == TerrainPattern::figure_eight && lane.kind != TerrainSpec::Kind::stepfield && lane.kind != TerrainSpec::Kind::crossing_ramps) {
+    throw Error(std::string("figure-eights are driven on stepfields and crossing ramps (the test methods' figure-8 terrains); lane '") +
+                lane.name + "' is " + TerrainSpec::kind_name(lane.kind) + ": use --pattern laps or back-and-forth");
+  }
+}
 
 TerrainPattern parse_terrain_pattern(const std::string& name) {
-  for (TerrainPattern p : {TerrainPattern::laps, TerrainPattern::back_and_forth}) {
+  for (TerrainPattern p : {TerrainPattern::laps, TerrainPattern::back_and_forth, TerrainPattern::figure_eight}) {
     if (name == terrain_pattern_name(p)) return p;
   }
-  throw Error("unknown pattern '" + name + "'; expected laps or back-and-forth");
+  throw Error("unknown pattern '" + name + "'; expected laps, back-and-forth or figure-eight");
 }
 
 std::string terrain_trial_json(const TerrainTrialResult& r) {
@@ -258,10 +438,16 @@ std::string terrain_trial_json(const TerrainTrialResult& r) {
   j["lane_length_m"] = lane_goal(r.element, r.options);
   j["speed_m_s"] = r.options.speed;
   j["sim_time_s"] = r.sim_time;
+  if (r.options.pattern == TerrainPattern::figure_eight) {
+    j["loop_radius_m"] = r.loop_radius;
+    j["figure_eight_length_m"] = r.eight_length;
+    j["pylons"] = nlohmann::ordered_json::array();
+    for (const Vec2& p : r.pylons) j["pylons"].push_back({p.x(), p.y()});
+  }
   nlohmann::ordered_json laps = nlohmann::ordered_json::array();
   for (const auto& l : r.laps) {
     laps.push_back({{"lap", l.lap},
-                    {"direction", l.reverse ? "back" : "forward"},
+                    {"direction", r.options.pattern == TerrainPattern::figure_eight ? "figure-eight" : l.reverse ? "back" : "forward"},
                     {"outcome", l.outcome},
                     {"time_s", l.time},
                     {"progress_m", l.progress},
@@ -300,6 +486,10 @@ Canvas terrain_trial_figure(const WorldSpec& world, const TerrainTrialResult& r)
     const Vec2 a(r.element.pose.x + c * u - s * line, r.element.pose.y + s * u + c * line);
     const Vec2 b(r.element.pose.x + c * u + s * line, r.element.pose.y + s * u - c * line);
     canvas.line(frame.to_px(a), frame.to_px(b), {40, 40, 200}, 2.0);
+  }
+  for (const Vec2& p : r.pylons) {  // figure-eight: the pylons and the loops' radius around them
+    canvas.circle(frame.to_px(p), r.loop_radius * frame.px_per_m, {40, 40, 200}, 1.0);
+    canvas.fill_circle(frame.to_px(p), 4, {40, 40, 200});
   }
   for (const auto& l : r.laps) {
     const Rgb8 colour = l.outcome == "completed" ? Rgb8{30, 160, 60} : l.outcome == "fell" ? Rgb8{210, 40, 40} : Rgb8{235, 140, 20};

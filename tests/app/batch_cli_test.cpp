@@ -108,6 +108,15 @@ TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
   EXPECT_NE(lane.err.find("no lane 'stairs'"), std::string::npos) << lane.err;
   const auto both = rescuesim("batch '" + scenario_.string() + "' --trial-terrain '" + arena.string() + "' --lane curb --trials 1");
   EXPECT_EQ(both.exit_code, 2);
+  // figure-eights on a curb: the batch refuses before its first trial, and so does trial-terrain
+  const auto eight = rescuesim("batch --trial-terrain '" + arena.string() + "' --lane curb --pattern figure-eight --trials 1 --out '" +
+                               (dir_ / "eight").string() + "'");
+  EXPECT_EQ(eight.exit_code, 2);
+  EXPECT_NE(eight.err.find("lane 'low' is curb: use --pattern laps or back-and-forth"), std::string::npos) << eight.err;
+  EXPECT_FALSE(fs::exists(dir_ / "eight" / "results.jsonl"));
+  const auto single = rescuesim("trial-terrain '" + arena.string() + "' --lane curb --pattern figure-eight --out '" + (dir_ / "eight1").string() + "'");
+  EXPECT_EQ(single.exit_code, 2);
+  EXPECT_NE(single.err.find("figure-eights are driven on stepfields and crossing ramps"), std::string::npos) << single.err;
 }
 
 TEST_F(BatchCli, JobsDoNotChangeTheResults) {

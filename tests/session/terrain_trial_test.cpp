@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -91,7 +93,7 @@ TEST(TerrainTrial, BackAndForthCountsEveryCrossingAsARepetition) {
   EXPECT_EQ(j["repetitions"], 3);
   EXPECT_EQ(j["laps_detail"][1]["direction"], "back");
   EXPECT_EQ(parse_terrain_pattern("back-and-forth"), TerrainPattern::back_and_forth);
-  EXPECT_THROW(parse_terrain_pattern("figure-eight"), Error);
+  EXPECT_THROW(parse_terrain_pattern("figure-8"), Error);
 }
 
 // A crossing that fails ends a back-and-forth trial: the wheeled robot is stuck at a 15 cm curb
@@ -108,6 +110,81 @@ TEST(TerrainTrial, BackAndForthEndsAtTheFirstFailure) {
   ASSERT_EQ(r.laps.size(), 1u);
   EXPECT_EQ(r.repetitions, 0);
   EXPECT_EQ(r.stuck, 1);
+}
+
+// Figure-eights on crossing ramps of the test methods' figure-8 size (2.3 x 4.8 m, here 5 degree
+// ramps the robot turns on without trouble): pylons a quarter of the length in from each end
+// (1.2 m from the centre), loops of half the width less 0.7 m (0.45 m), and each figure-eight a
+// path of 2 (2 hypot(1.2, 0.45) + 8 (0.45) sin 22.5 deg) = 7.88 m between its waypoints, driven
+// without a reset.
+TEST(TerrainTrial, FigureEightsLoopAroundBothPylonsWithoutAReset) {
+  ArenaOptions ao;
+  ao.lanes = {TerrainSpec::Kind::crossing_ramps};
+  ao.lane_width = 2.4;
+  ao.approach = 2.5;
+  WorldSpec world = test_method_arena(ao);
+  TerrainSpec& ramps = world.terrain.at(0);
+  ramps.length = 4.8;
+  ramps.angle = 5;
+  TerrainTrialOptions o;
+  o.lane = "crossing-ramps";
+  o.pattern = TerrainPattern::figure_eight;
+  o.laps = 2;
+  o.time_limit = 120;
+  const TerrainTrialResult r = run_terrain_trial(world, builtin_models(), o);
+  ASSERT_EQ(r.pylons.size(), 2u);
+  const Vec2 centre(ramps.pose.x, ramps.pose.y);
+  const Vec2 along(std::cos(ramps.pose.yaw), std::sin(ramps.pose.yaw));
+  EXPECT_NEAR((r.pylons[0] - centre).dot(along), -1.2, 1e-9);
+  EXPECT_NEAR((r.pylons[1] - centre).dot(along), 1.2, 1e-9);
+  EXPECT_NEAR(r.loop_radius, 0.45, 1e-9);
+  const double eight = 2 * (2 * std::hypot(1.2, 0.45) + 8 * 0.45 * std::sin(M_PI / 8));
+  EXPECT_NEAR(r.eight_length, eight, 1e-9);
+  ASSERT_EQ(r.laps.size(), 2u);
+  EXPECT_EQ(r.repetitions, 2);
+  for (const auto& l : r.laps) {
+    EXPECT_EQ(l.outcome, "completed");
+    // progress counts waypoint segments from where the lap began (near the centre)
+    EXPECT_NEAR(l.progress, eight, 0.5);
+    // at the speed along at least the figure-eight's path, and not much longer: turns in place
+    EXPECT_GT(l.time, (eight - 0.5) / o.speed);
+    EXPECT_LT(l.time, 2 * eight / o.speed);
+    // around both pylons: the path reaches beyond each pylon's far side, left and right of it
+    double beyond_far = -1e9, beyond_near = 1e9, left = -1e9, right = 1e9;
+    for (const Vec2& p : l.path) {
+      const Vec2 d = p - centre;
+      const double u = d.dot(along), v = along.x() * d.y() - along.y() * d.x();
+      beyond_far = std::max(beyond_far, u), beyond_near = std::min(beyond_near, u);
+      left = std::max(left, v), right = std::min(right, v);
+    }
+    EXPECT_GT(beyond_far, 1.2 + 0.3);
+    EXPECT_LT(beyond_near, -1.2 - 0.3);
+    EXPECT_GT(left, 0.3);
+    EXPECT_LT(right, -0.3);
+  }
+  // the second lap starts where the first ended (no reset): near the centre
+  ASSERT_FALSE(r.laps[1].path.empty());
+  EXPECT_LT((r.laps[1].path.front() - centre).norm(), 0.3);
+  const nlohmann::json j = nlohmann::json::parse(terrain_trial_json(r));
+  EXPECT_EQ(j["pattern"], "figure-eight");
+  EXPECT_EQ(j["laps_detail"][0]["direction"], "figure-eight");
+  EXPECT_NEAR(j["figure_eight_length_m"].get<double>(), eight, 1e-9);
+  EXPECT_EQ(parse_terrain_pattern("figure-eight"), TerrainPattern::figure_eight);
+}
+
+// Figure-eights are driven on the figure-8 terrains only; elsewhere an error says what to use.
+TEST(TerrainTrial, AFigureEightOnStairsIsAnErrorNamingThePatternsThatFit) {
+  const WorldSpec world = arena({TerrainSpec::Kind::stairs});
+  TerrainTrialOptions o;
+  o.lane = "stairs";
+  o.pattern = TerrainPattern::figure_eight;
+  try {
+    run_terrain_trial(world, builtin_models(), o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("figure-eights are driven on stepfields and crossing ramps"), std::string::npos) << e.message();
+    EXPECT_NE(e.message().find("is stairs: use --pattern laps or back-and-forth"), std::string::npos) << e.message();
+  }
 }
 
 TEST(TerrainTrial, TheSameSeedRunsTheSameLaps) {
