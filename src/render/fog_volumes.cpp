@@ -54,6 +54,7 @@ std::vector<FogPiece> fog_pieces(std::span<const MediumSpec> media, double t) {
     for (const Polygon2& c : convex) {
       FogPiece p = base;
       p.half_planes = half_planes_of(c);
+      p.corners = c;
       if (p.half_planes.size() >= 3) out.push_back(std::move(p));
     }
   }

@@ -17,6 +17,7 @@ namespace rescuesim {
 /// One convex prism of a medium.
 struct FogPiece {
   std::vector<Vec3> half_planes;  ///< (nx, ny, d), n a unit vector: the footprint is where nx x + ny y <= d (m)
+  std::vector<Vec2> corners;      ///< the footprint's vertices (m): with bottom and top, the prism's corners
   double bottom = 0, top = 0;     ///< m above the floor
   double sigma_visible = 0;       ///< extinction coefficients (1/m)
   double sigma_near_infrared = 0;

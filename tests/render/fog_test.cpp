@@ -163,6 +163,44 @@ TEST(Fog, ThickSmokeShowsOnlyItsAirlightAndDustIsBrighter) {
   }
 }
 
+// The sky is fogged only where a medium stands in front of it (the pass is cut to the media's
+// projection): a tall slab on the left half of the view veils the sky there and leaves the sky on
+// the right exactly as in clear air; a slab behind the camera changes no pixel.
+TEST(Fog, TheSkyIsFoggedWhereAMediumIsInFrontOfItAndNowhereElse) {
+  RS_RENDERER_OR_SKIP(renderer, Quality::low);
+  const CameraView up = camera({0, 0, 1.0}, 0, -0.25, 96, 72, 1.0);  // the top rows see the sky
+  renderer->load(build_render_scene(smoky_world(0.9, {})));
+  const ColorImage clear = renderer->color(up);
+  MediumSpec left = slab(1.0);
+  left.outline = {{2, 0.5}, {4, 0.5}, {4, 6}, {2, 6}};  // y > 0.5 m: left of the view's centre line
+  left.height = 40.0;
+  renderer->load(build_render_scene(smoky_world(0.9, {left})));
+  const ColorImage veiled = renderer->color(up);
+  render_test::dump("fog_sky_left", veiled);
+  // the sky's top row: left columns through 2 m of smoke at 1 /m differ; right columns are untouched
+  int changed_left = 0, changed_right = 0;
+  // (a sky ray crosses the slab where it is 0.5 m left of the centre line 4 m out: columns left
+  // of 48 - 87.9 px x 0.125 = 37)
+  for (int i = 0; i < 96; ++i) {
+    const bool differs = veiled.rgb[3 * at(96, i, 1)] != clear.rgb[3 * at(96, i, 1)];
+    if (i < 34) changed_left += differs;
+    if (i >= 48) changed_right += differs;
+  }
+  EXPECT_EQ(changed_left, 34);
+  EXPECT_EQ(changed_right, 0);
+  // behind the camera: the sky is the clear sky to the bit; surfaces, drawn by the programs with
+  // the media compiled in, within one level of rounding
+  MediumSpec behind = slab(1.0);
+  behind.outline = {{-4, -2}, {-2, -2}, {-2, 2}, {-4, 2}};
+  renderer->load(build_render_scene(smoky_world(0.9, {behind})));
+  const ColorImage same = renderer->color(up);
+  ASSERT_EQ(same.rgb.size(), clear.rgb.size());
+  int off = 0;
+  for (std::size_t k = 0; k < same.rgb.size(); ++k) off += std::abs(int(same.rgb[k]) - int(clear.rgb[k])) > 1;
+  EXPECT_EQ(off, 0);
+  for (int i = 0; i < 96; ++i) EXPECT_EQ(same.rgb[3 * at(96, i, 1) + 1], clear.rgb[3 * at(96, i, 1) + 1]) << i;
+}
+
 TEST(Fog, ThermalSeesTheVictimThroughSmokeThatHidesItFromColour) {
   RS_RENDERER_OR_SKIP(renderer, Quality::low);
   // visible optical depth 1.5 × 2 = 3: the colour contrast falls to e^−3 = 5 %; long-wave 0.05

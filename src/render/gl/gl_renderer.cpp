@@ -10,11 +10,13 @@
 #include "render/gl/gl_renderer.h"
 #include "render/image_blur.h"
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -147,7 +149,9 @@ class GlRenderer final : public Renderer {
   /// footprint that stopped being simple as it grew), missing ones are clear air.
   void upload_fog(const std::vector<FogPiece>& pieces, double time);
   /// The pieces as seen from `eye` (world, m), into program `p`, before it draws a view.
-  void set_fog_eye(const Program& p, const Vec3& eye) const;
+  void set_fog_eye(const Program& p, const Vec3& eye, const std::array<int, 4>& window) const;
+  /// The window (x, y, width, height) of this view that holds the media's projection.
+  std::array<int, 4> fog_window(const CameraView& view, const Eigen::Matrix4f& view_proj) const;
   /// Draws the sky through the media where the colour pass left the clear value.
   void draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj);
   bool fog() const { return fog_pieces_ + fog_boxes_ > 0; }
@@ -210,7 +214,7 @@ void GlRenderer::build_color_programs(int lights, bool spots) {
     // with shadows; high: and SSAO
     const bool per_pixel = i > 0 || spots;
     const std::string header = fmt::format("#version 450 core\n#define LIGHTS {}\n#define PER_PIXEL {}\n#define SHADOWS {}\n#define AO {}\n"
-                                           "#define MEDIA {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n",
+                                           "#define MEDIA {}\n#define MEDIA_WINDOW 1\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n",
                                            lights, per_pixel ? 1 : 0, i > 0 ? 1 : 0, i > 1 ? 1 : 0, fog_pieces_ + fog_boxes_ > 0 ? 1 : 0,
                                            std::max(fog_sides_, 1), fog_boxes_) + fmt::format("#define MEDIA_PIECES {}\n", fog_pieces_);
     const std::string common = header + shaders::kLightUniforms;
@@ -464,7 +468,7 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
   depth_fog_ = Program();
   thermal_fog_ = Program();
   if (fog()) {
-    const std::string head = fmt::format("#version 450 core\n#define MEDIA 1\n#define MEDIA_PIECES {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n{}",
+    const std::string head = fmt::format("#version 450 core\n#define MEDIA 1\n#define MEDIA_WINDOW 0\n#define MEDIA_PIECES {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n{}",
                                          n, std::max(sides, 1), boxes, shaders::kFogFunctions);
     fog_sky_ = Program("fog sky", shaders::kFullscreenVertex, head + shaders::kFogSkyFragment);
     depth_fog_ = Program("depth through fog", shaders::kFogVertex, head + shaders::kDepthFogFragment);
@@ -510,7 +514,43 @@ void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
   fog_time_ = time;
 }
 
-void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
+namespace {
+
+/// The window rectangle (x, y, width, height in px, GL's origin bottom left) that holds the
+/// projection of every piece's prism: only pixels in it have rays that cross a medium. Pieces
+/// wholly behind the eye's plane are left out; the whole view when one straddles it (the eye in
+/// or beside a medium); empty (width 0) when no piece is in front or every one is off screen.
+std::array<int, 4> media_window(std::span<const FogPiece> pieces, const Eigen::Matrix4f& view_proj, int w, int h) {
+  Eigen::Vector2f lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
+  for (const FogPiece& piece : pieces) {
+    std::vector<Eigen::Vector4f> clip;
+    for (const Vec2& c : piece.corners) {
+      for (double z : {piece.bottom, piece.top}) clip.push_back(view_proj * Eigen::Vector4f(static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(z), 1.0f));
+    }
+    // wholly behind the eye: no ray of the view enters it; partly: it may cover any pixel
+    const auto in_front = std::count_if(clip.begin(), clip.end(), [](const Eigen::Vector4f& q) { return q.w() > 1e-4f; });
+    if (in_front == 0) continue;
+    if (in_front < static_cast<std::ptrdiff_t>(clip.size())) return {0, 0, w, h};
+    for (const Eigen::Vector4f& q : clip) {
+      const Eigen::Vector2f px((q.x() / q.w() + 1.0f) * 0.5f * static_cast<float>(w), (q.y() / q.w() + 1.0f) * 0.5f * static_cast<float>(h));
+      lo = lo.cwiseMin(px), hi = hi.cwiseMax(px);
+    }
+  }
+  if (lo.x() > hi.x()) return {0, 0, 0, 0};
+  const int x0 = std::clamp(static_cast<int>(std::floor(lo.x())) - 1, 0, w), y0 = std::clamp(static_cast<int>(std::floor(lo.y())) - 1, 0, h);
+  const int x1 = std::clamp(static_cast<int>(std::ceil(hi.x())) + 1, 0, w), y1 = std::clamp(static_cast<int>(std::ceil(hi.y())) + 1, 0, h);
+  return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+}  // namespace
+
+std::array<int, 4> GlRenderer::fog_window(const CameraView& view, const Eigen::Matrix4f& view_proj) const {
+  return media_window(fog_now_, view_proj, view.k.width, view.k.height);
+}
+
+void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye, const std::array<int, 4>& window) const {
+  glProgramUniform4f(p.id(), p.uniform("u_fog_window"), static_cast<float>(window[0]), static_cast<float>(window[1]),
+                     static_cast<float>(window[0] + window[2]), static_cast<float>(window[1] + window[3]));
   // a side n·p <= c as (n, n·eye - c): the shader adds n·d; unused sides hold everything
   std::vector<float> edge(4 * static_cast<std::size_t>(fog_pieces_ * fog_sides_), 0.0f), slab(4 * fog_.size(), 0.0f);
   for (std::size_t k = 2; k < edge.size(); k += 4) edge[k] = -1e30f;
@@ -545,8 +585,15 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
   p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
 }
 
+
 void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj) {
   const int w = view.k.width, h = view.k.height;
+  // the sky is fogged only where a medium stands in front of it: the pass is scissored to the
+  // media's projection (a CPU rasteriser then shades only those pixels), and skipped without one
+  const std::array<int, 4> rect = fog_window(view, view_proj);
+  if (rect[2] == 0 || rect[3] == 0) return;
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(rect[0], rect[1], rect[2], rect[3]);
   glViewport(0, 0, w, h);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_EQUAL);  // the full-screen triangle lies at depth 0, the clear value: only where nothing was drawn
@@ -555,12 +602,13 @@ void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& vie
   glUseProgram(fog_sky_.id());
   fog_sky_.set("u_inv_view_proj", Eigen::Matrix4f(view_proj.inverse()));
   fog_sky_.set("u_size", Eigen::Vector2f(static_cast<float>(w), static_cast<float>(h)));
-  set_fog_eye(fog_sky_, view.X_WC.p);
+  set_fog_eye(fog_sky_, view.X_WC.p, rect);
   const auto linear = [](float c) { return static_cast<float>(srgb_to_linear(c)); };
   fog_sky_.set("u_sky", Eigen::Vector3f(linear(sky_.x()), linear(sky_.y()), linear(sky_.z())));
   glBindVertexArray(empty_vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 void GlRenderer::do_update(const RenderScene& scene) {
@@ -719,7 +767,7 @@ void GlRenderer::do_color(const CameraView& view, ColorImage& out) {
   glClearNamedFramebufferfv(t.scene.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
   color().set("u_eye", Eigen::Vector3f(view.X_WC.p.cast<float>()));
-  if (fog()) set_fog_eye(color(), view.X_WC.p);
+  if (fog()) set_fog_eye(color(), view.X_WC.p, fog_window(view, view_proj));
   if (shadows) glBindTextureUnit(1, shadow_map_.id());
   if (ao) glBindTextureUnit(2, t.ao_tex.id());
   glBindTextureUnit(3, patterns_.id());
@@ -753,9 +801,11 @@ void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
   const float zero = 0.0f;
   glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
-  if (fog()) {
-    set_fog_eye(depth_fog_, view.X_WC.p);
-    draw_scene(depth_fog_, depth_fog_model_, view_projection(view), {view.hide_robot, false});
+  const Eigen::Matrix4f view_proj = view_projection(view);
+  // media out of this view: the clear program, which costs nothing extra
+  if (const std::array<int, 4> window = fog() ? fog_window(view, view_proj) : std::array<int, 4>{}; window[2] > 0 && window[3] > 0) {
+    set_fog_eye(depth_fog_, view.X_WC.p, window);
+    draw_scene(depth_fog_, depth_fog_model_, view_proj, {view.hide_robot, false});
   } else {
     draw_scene(depth_, depth_model_, view_projection(view), {view.hide_robot, false});
   }
@@ -781,10 +831,11 @@ void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, Therma
   glClearNamedFramebufferfv(t.fbo.id(), GL_COLOR, 0, background);
   glClearNamedFramebufferfv(t.fbo.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
-  if (fog()) {
-    set_fog_eye(thermal_fog_, view.X_WC.p);
+  const Eigen::Matrix4f view_proj = view_projection(view);
+  if (const std::array<int, 4> window = fog() ? fog_window(view, view_proj) : std::array<int, 4>{}; window[2] > 0 && window[3] > 0) {
+    set_fog_eye(thermal_fog_, view.X_WC.p, window);
     thermal_fog_.set("u_ambient", ambient_temperature_);
-    draw_scene(thermal_fog_, thermal_fog_model_, view_projection(view), {view.hide_robot, false});
+    draw_scene(thermal_fog_, thermal_fog_model_, view_proj, {view.hide_robot, false});
   } else {
     draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
   }

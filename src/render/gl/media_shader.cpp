@@ -19,15 +19,25 @@ uniform vec4 u_fog_box_hi[MEDIA_BOXES];               // its high corner - eye (
 uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 #endif
 
-// Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d:
+// Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d
+// (with MEDIA_WINDOW, zero for a pixel outside the media's window: the colour camera's, whose
+// shading is dear enough for the test to pay; the depth and thermal passes take the clear
+// programs when no medium is in view, and the sky pass is scissored to the window):
 // visible, near infrared, long-wave infrared, and in w the visible depth weighted by each
 // medium's scattering albedo. An axis-aligned box clips the segment with the inverse of d (three
 // slabs, no division of its own); any other piece against its floor-to-top slab and its sides
 // (Cyrus-Beck, a division per side). Every piece has MEDIA_SIDES sides (padded with ones that
 // hold everything), so the loops have constant bounds and constant uniform indices.
+#if MEDIA_WINDOW
+uniform vec4 u_fog_window;  // window px (x0, y0, x1, y1) holding the media's projection: no ray outside it crosses one
+#endif
+
 vec4 fog_depth(vec3 d) {
-  float len = length(d);
   vec4 sum = vec4(0.0);
+#if MEDIA_WINDOW
+  if (any(lessThan(gl_FragCoord.xy, u_fog_window.xy)) || any(greaterThanEqual(gl_FragCoord.xy, u_fog_window.zw))) return sum;
+#endif
+  float len = length(d);
 #if MEDIA_BOXES > 0
   vec3 inv = 1.0 / vec3(abs(d.x) > 1e-9 ? d.x : 1e-9, abs(d.y) > 1e-9 ? d.y : 1e-9, abs(d.z) > 1e-9 ? d.z : 1e-9);
   for (int i = 0; i < MEDIA_BOXES; ++i) {
