@@ -1,6 +1,7 @@
 #include "world/scenario/scenario_robots.h"
 #include "world/sdf/sdf_import.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "world/urdf/urdf_import.h"
@@ -152,6 +153,51 @@ void read_sensor_list(const YamlNode& node, RobotSpec& spec) {
   }
 }
 
+/// `lamps:`: spot lamps on links (docs/robots.md, "Lamps"). An item named as an existing lamp
+/// (the built-in models' `head_lamp`) changes it; any other is added, by default on the base link
+/// shining forwards.
+void read_lamp_list(const YamlNode& node, RobotSpec& spec) {
+  const auto items = node.sequence("lamps");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const YamlNode& item = items[i];
+    const std::string name = item.string("name", spec.lights.empty() ? "lamp" : "lamp_" + std::to_string(spec.lights.size() + 1));
+    auto it = std::find_if(spec.lights.begin(), spec.lights.end(), [&](const RobotLightSpec& l) { return l.name == name; });
+    RobotLightSpec lamp;
+    if (it != spec.lights.end()) lamp = *it;
+    lamp.name = name;
+    lamp.link = item.string("link", it != spec.lights.end() ? lamp.link : spec.links.front().name);
+    if (spec.link_index(lamp.link) < 0) {
+      std::string known;
+      for (const auto& l : spec.links) known += (known.empty() ? "" : ", ") + l.name;
+      throw Error(item.where("link"), "lamp '" + name + "': '" + lamp.link + "' is not a link of the robot (links: " + known + ")");
+    }
+    if (item.has("pose")) {
+      const YamlNode p = item.map("pose");
+      const Vec3 xyz(p.number("x", 0), p.number("y", 0), p.number("z", 0));
+      lamp.X_LF = Pose3::from_rpy(xyz, p.number("roll", 0) * kDeg, p.number("pitch", 0) * kDeg, p.number("yaw", 0) * kDeg);
+      p.finish();
+    }
+    if (item.has("color")) {
+      const auto c = item.numbers("color", {}, 3);
+      for (double v : c) {
+        if (!(v >= 0 && v <= 1)) throw Error(item.where("color"), "lamp '" + name + "': color components are linear RGB in [0, 1]");
+      }
+      lamp.color = {c[0], c[1], c[2]};
+    }
+    lamp.intensity = item.number("intensity", lamp.intensity, 0, 1e6);
+    lamp.range = item.number("range", lamp.range, 1e-3, 1e4);
+    lamp.cone = item.number("cone", lamp.cone / kDeg, 1e-3, 90) * kDeg;
+    lamp.inner_cone = item.number("inner_cone", std::min(lamp.inner_cone, lamp.cone) / kDeg, 0, 90) * kDeg;
+    if (lamp.inner_cone > lamp.cone) {
+      throw Error(item.where("inner_cone"), "lamp '" + name + "': inner_cone " + message_number(lamp.inner_cone / kDeg) +
+                                                 " degrees is wider than its cone, " + message_number(lamp.cone / kDeg));
+    }
+    item.finish();
+    if (it != spec.lights.end()) *it = lamp;
+    else spec.lights.push_back(lamp);
+  }
+}
+
 /// `drive:`: a differential (skid-steer with several wheels a side) drive on named joints.
 void read_drive(const YamlNode& d, RobotSpec& spec) {
   d.choice("type", "diff_drive", {"diff_drive", "skid_steer"});
@@ -232,6 +278,10 @@ RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, 
     add_standard_sensors(c.spec);
   }
   c.controller = node.choice("controller", c.controller, {"explorer", "wall_follower", "none"});
+  if (node.has("lamps")) {
+    if (!node.has_sequence("lamps")) throw Error(node.where("lamps"), "lamps: expected a list of lamps (each with link, pose, cone, ...)");
+    read_lamp_list(node, c.spec);
+  }
   if (node.has("lights")) {
     if (c.spec.lights.empty()) throw Error(node.where("lights"), "robot model '" + c.model + "' has no lamps to switch on");
     c.spec.lights_on = node.boolean("lights", false);

@@ -125,6 +125,38 @@ void read_sensor(const sdf::Sensor& sensor, const std::string& link, const Pose3
   spec.sensors = std::move(scratch.spec.sensors);
 }
 
+/// One <light> on a link: a spot becomes a lamp of the robot (RobotLightSpec, shining along its
+/// frame's x), a point light a lamp that lights every direction; a directional light on a link
+/// means nothing for a lamp and is left out with a warning. SDF gives the whole cone (outer and
+/// inner angle, as Ogre's spotlight range) and the direction in the light's frame (default
+/// down, -z); `X_FL` places the link in its robot frame.
+void read_light(const sdf::Light& light, const std::string& link, const Pose3& X_FL, Reader& r, RobotSpec& spec) {
+  const SourceRef where = r.at(light.Element(), "<link name=\"" + link + "\">");
+  if (light.Type() == sdf::LightType::DIRECTIONAL) {
+    r.diagnostics.warn(where, "directional light '" + light.Name() + "' on a link is left out (a robot's lamps are spot or point lights)");
+    return;
+  }
+  const Pose3 X_LLight = resolve(light.SemanticPose(), "", where);
+  check_pose(X_LLight, r.options.max_extent, where, "the light's pose");
+  Vec3 d = vec_of(light.Direction());
+  d = d.norm() > 1e-12 ? Vec3(d.normalized()) : Vec3(-Vec3::UnitZ());
+  RobotLightSpec lamp;
+  lamp.name = light.Name();
+  lamp.link = link;
+  lamp.X_LF = X_FL * X_LLight * Pose3(Vec3::Zero(), Quat::FromTwoVectors(Vec3::UnitX(), d));
+  lamp.color = color_of(light.Diffuse()).cwiseMax(0.0).cwiseMin(1.0);
+  lamp.intensity = light.Element()->HasElement("intensity") ? std::max(0.0, light.Intensity()) : 1.0;
+  lamp.range = std::isfinite(light.AttenuationRange()) && light.AttenuationRange() > 0 ? light.AttenuationRange() : lamp.range;
+  if (light.Type() == sdf::LightType::SPOT) {
+    lamp.cone = std::clamp(0.5 * light.SpotOuterAngle().Radian(), 1e-3, 0.5 * M_PI);
+    lamp.inner_cone = std::clamp(0.5 * light.SpotInnerAngle().Radian(), 0.0, lamp.cone);
+  } else {
+    lamp.cone = M_PI;  // a point light: every direction
+    lamp.inner_cone = M_PI;
+  }
+  spec.lights.push_back(lamp);
+}
+
 /// The material of a robot's visual: its own colour, else the mesh file's, else robot_body.
 std::string visual_material(const sdf::Visual& v, const std::optional<Vec3>& mesh_color, const std::string& model, const std::string& link,
                             RobotSpec& spec) {
@@ -180,6 +212,9 @@ LinkSpec link_spec(const sdf::Link& link, const Pose3& X_FL, const std::string& 
     ls.inertia = Vec3::Zero();
   }
   for (uint64_t i = 0; i < link.SensorCount(); ++i) read_sensor(*link.SensorByIndex(i), link.Name(), X_FL, r, spec);
+  for (uint64_t i = 0; i < link.LightCount(); ++i) read_light(*link.LightByIndex(i), link.Name(), X_FL, r, spec);
+  // a model's lights are on in Gazebo; /lights switches them
+  if (link.LightCount() > 0) spec.lights_on = true;
   return ls;
 }
 

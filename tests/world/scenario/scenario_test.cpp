@@ -196,3 +196,52 @@ TEST(ScenarioRobots, WrongTypeForASensorSetting) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+// `lamps:` on a robot: an item named as an existing lamp changes it (the rescue robot's
+// head_lamp), any other is added on its link with its pose, cone and range; `lights: true` then
+// switches them all on.
+TEST(ScenarioRobots, LampsAreAddedAndChangedOnAnyLink) {
+  const Scenario s = parse_scenario(
+      "robots:\n  - name: scout\n    lights: true\n    lamps:\n"
+      "      - {name: head_lamp, cone: 20, inner_cone: 10}\n"
+      "      - {name: tail, link: base_link, pose: {x: -0.3, z: 0.2, yaw: 180}, color: [1, 0, 0], intensity: 2, range: 6, cone: 60}\n",
+      "s.yaml", builtin_models());
+  const RobotSpec& spec = s.robots[0].spec;
+  ASSERT_EQ(spec.lights.size(), 2u);
+  EXPECT_TRUE(spec.lights_on);
+  EXPECT_EQ(spec.lights[0].name, "head_lamp");
+  EXPECT_EQ(spec.lights[0].link, "head");  // kept
+  EXPECT_NEAR(spec.lights[0].cone, 20 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(spec.lights[0].inner_cone, 10 * M_PI / 180, 1e-12);
+  const RobotLightSpec& tail = spec.lights[1];
+  EXPECT_EQ(tail.link, "base_link");
+  EXPECT_LT((tail.X_LF.p - Vec3(-0.3, 0, 0.2)).norm(), 1e-12);
+  EXPECT_LT((tail.X_LF.q * Vec3::UnitX() - Vec3(-1, 0, 0)).norm(), 1e-12);  // shines backwards
+  EXPECT_EQ(tail.color, Vec3(1, 0, 0));
+  EXPECT_DOUBLE_EQ(tail.intensity, 2);
+  EXPECT_DOUBLE_EQ(tail.range, 6);
+  EXPECT_NEAR(tail.cone, M_PI / 3, 1e-12);
+  EXPECT_NEAR(tail.inner_cone, 0.3, 1e-12);  // the default core, within the cone
+}
+
+TEST(ScenarioRobots, BadLampsAreNamed) {
+  const std::string link = robot_error("    lamps:\n      - {link: mast_top}\n");
+  EXPECT_NE(link.find("lamp 'lamp_2': 'mast_top' is not a link of the robot (links: base_link"), std::string::npos) << link;
+  const std::string wide = robot_error("    lamps:\n      - {name: head_lamp, cone: 10, inner_cone: 20}\n");
+  EXPECT_NE(wide.find("robots[0].lamps[0].inner_cone"), std::string::npos) << wide;
+  EXPECT_NE(wide.find("inner_cone 20 degrees is wider than its cone, 10"), std::string::npos) << wide;
+  const std::string colour = robot_error("    lamps:\n      - {color: [1, 2, 0]}\n");
+  EXPECT_NE(colour.find("color components are linear RGB in [0, 1]"), std::string::npos) << colour;
+  const std::string cone = robot_error("    lamps:\n      - {cone: 120}\n");
+  EXPECT_NE(cone.find("robots[0].lamps[0].cone"), std::string::npos) << cone;
+  const std::string unknown = robot_error("    lamps:\n      - {colour: [1, 1, 1]}\n");
+  EXPECT_NE(unknown.find("colour"), std::string::npos) << unknown;
+  const std::string map = robot_error("    lamps: {link: base_link}\n");
+  EXPECT_NE(map.find("lamps: expected a list"), std::string::npos) << map;
+}
+
+}  // namespace
+}  // namespace rescuesim

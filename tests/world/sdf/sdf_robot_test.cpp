@@ -123,3 +123,37 @@ TEST(SdfRobot, JointFrameOffsetFromTheChildAndAxisInTheParentModelFrame) {
 
 }  // namespace
 }  // namespace rescuesim
+
+namespace rescuesim {
+namespace {
+
+// Lights on a model's links become the robot's lamps (tests/data/sdf/models/lamp_bot): a spot
+// keeps half SDF's whole cone angles, and its pose's pitch of -90 degrees turns SDF's default
+// direction (down) forwards, where a lamp shines along its frame's x; a point light lights every
+// direction; a directional light is left out with a warning. They are on, as in Gazebo.
+TEST(SdfRobot, LinkLightsBecomeTheRobotsLamps) {
+  const SdfRobot r = load_sdf_robot((sdf_test::models_dir() / "lamp_bot").string(), sdf_test::isolated());
+  const RobotSpec& s = r.spec;
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_TRUE(s.lights_on);
+  const RobotLightSpec& head = s.lights[0];
+  EXPECT_EQ(head.name, "headlight");
+  EXPECT_EQ(head.link, "chassis");
+  EXPECT_LT((head.X_LF.p - Vec3(0.3, 0, 0.05)).norm(), 1e-12);
+  EXPECT_LT((head.X_LF.q * Vec3::UnitX() - Vec3::UnitX()).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(head.cone, 0.5);
+  EXPECT_DOUBLE_EQ(head.inner_cone, 0.3);
+  EXPECT_DOUBLE_EQ(head.range, 15.0);
+  EXPECT_DOUBLE_EQ(head.intensity, 2.0);
+  EXPECT_LT((head.color - Vec3(1, 0.9, 0.8)).norm(), 1e-6);
+  const RobotLightSpec& beacon = s.lights[1];
+  EXPECT_EQ(beacon.name, "beacon");
+  EXPECT_DOUBLE_EQ(beacon.cone, M_PI);
+  EXPECT_DOUBLE_EQ(beacon.range, 5.0);
+  bool warned = false;
+  for (const auto& d : r.diagnostics.items()) warned = warned || d.message.find("directional light 'sun_on_a_stick'") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+}  // namespace
+}  // namespace rescuesim
