@@ -1,6 +1,8 @@
 // summary.png: a batch at a glance. Top left, the share of trials that have found every victim
 // by each moment of sim time (and the mean share of victims found); then histograms of victims
-// found, coverage, collisions and real-time factor.
+// found, coverage, collisions and real-time factor. A batch of terrain trials instead shows
+// histograms of repetitions, falls and stuck events per trial, time per repetition and
+// real-time factor.
 
 #include <algorithm>
 #include <cmath>
@@ -115,9 +117,59 @@ void integer_histogram(Canvas& img, int px, int py, int pw, int ph, const std::s
   histogram(img, px, py, pw, ph, title, xlabel, values, -0.5 * width, (bins - 0.5) * width, bins, ticks);
 }
 
+/// The real-time factors' histogram over their own range.
+void rtf_histogram(Canvas& img, int px, int py, int pw, int ph, const std::vector<double>& rtf) {
+  double lo = rtf.empty() ? 0 : *std::min_element(rtf.begin(), rtf.end());
+  double hi = rtf.empty() ? 1 : *std::max_element(rtf.begin(), rtf.end());
+  lo = std::floor(lo * 0.95);
+  hi = std::ceil(hi * 1.05 + 1e-9);
+  histogram(img, px, py, pw, ph, "real-time factor", "sim s per wall s (whole trial)", rtf, lo, hi, 10);
+}
+
+/// A batch of terrain trials (every record has `terrain`).
+Canvas terrain_figure(const std::map<int, TrialRecord>& records) {
+  const int pw = 400, ph = 330, top = 50;
+  Canvas img(3 * pw, top + 2 * ph);
+  int ok = 0, successes = 0, laps = 0, max_falls = 0, max_stuck = 0;
+  std::vector<double> reps, falls, stuck, mean_time, rtf;
+  const TrialTerrain* any = nullptr;
+  for (const auto& [trial, r] : records) {
+    successes += r.success;
+    if (r.status != "ok" || !r.terrain) continue;
+    ++ok;
+    any = &*r.terrain;
+    laps = std::max(laps, r.terrain->laps);
+    max_falls = std::max(max_falls, r.terrain->falls);
+    max_stuck = std::max(max_stuck, r.terrain->stuck);
+    reps.push_back(r.terrain->repetitions);
+    falls.push_back(r.terrain->falls);
+    stuck.push_back(r.terrain->stuck);
+    if (r.terrain->repetitions > 0) mean_time.push_back(r.terrain->mean_time);
+    rtf.push_back(r.real_time_factor);
+  }
+  const int n = static_cast<int>(records.size());
+  std::string what = "terrain trials";
+  if (any) what += ": " + any->lane + (any->lane == any->kind ? "" : " (" + any->kind + ")") + ", " + any->robot + ", " + any->pattern;
+  char counts[160];
+  std::snprintf(counts, sizeof counts, "%d trials, %d failed, %d completed every repetition (%.0f%%)", n, n - ok, successes,
+                n > 0 ? 100.0 * successes / n : 0.0);
+  img.text((img.width() - text_width(what, 2)) / 2, 8, what, kInk, 2);
+  img.text((img.width() - text_width(counts, 1)) / 2, 32, counts, kInk, 1);
+  integer_histogram(img, 0, top, 2 * pw, ph, "repetitions completed", "repetitions per trial", reps, laps);
+  integer_histogram(img, 2 * pw, top, pw, ph, "falls", "falls per trial", falls, max_falls);
+  integer_histogram(img, 0, top + ph, pw, ph, "stuck", "stuck events per trial", stuck, max_stuck);
+  double t_hi = mean_time.empty() ? 1 : *std::max_element(mean_time.begin(), mean_time.end());
+  histogram(img, pw, top + ph, pw, ph, "time per repetition", "s, mean over a trial's completed ones", mean_time, 0, std::ceil(t_hi * 1.1 + 1e-9), 10);
+  rtf_histogram(img, 2 * pw, top + ph, pw, ph, rtf);
+  return img;
+}
+
 }  // namespace
 
 Canvas batch_figure(const std::map<int, TrialRecord>& records) {
+  const bool terrain = !records.empty() && std::all_of(records.begin(), records.end(), [](const auto& kv) { return kv.second.terrain.has_value() || kv.second.status != "ok"; }) &&
+                       std::any_of(records.begin(), records.end(), [](const auto& kv) { return kv.second.terrain.has_value(); });
+  if (terrain) return terrain_figure(records);
   const int pw = 400, ph = 330, top = 50;
   Canvas img(3 * pw, top + 2 * ph);
   int ok = 0, successes = 0, max_victims = 0, max_collisions = 0;
@@ -173,11 +225,7 @@ Canvas batch_figure(const std::map<int, TrialRecord>& records) {
   integer_histogram(img, 2 * pw, top, pw, ph, "victims found", "victims per trial", found, max_victims);
   histogram(img, 0, top + ph, pw, ph, "coverage", "share of free floor", coverage, 0, 1, 10);
   integer_histogram(img, pw, top + ph, pw, ph, "collisions", "collisions per trial", collisions, max_collisions);
-  double rtf_lo = rtf.empty() ? 0 : *std::min_element(rtf.begin(), rtf.end());
-  double rtf_hi = rtf.empty() ? 1 : *std::max_element(rtf.begin(), rtf.end());
-  rtf_lo = std::floor(rtf_lo * 0.95);
-  rtf_hi = std::ceil(rtf_hi * 1.05 + 1e-9);
-  histogram(img, 2 * pw, top + ph, pw, ph, "real-time factor", "sim s per wall s (whole trial)", rtf, rtf_lo, rtf_hi, 10);
+  rtf_histogram(img, 2 * pw, top + ph, pw, ph, rtf);
   return img;
 }
 

@@ -138,6 +138,9 @@ TrialRecord run_terrain(const Scenario& base, const ModelMap& models, int trial,
     for (std::size_t i = 1; i < l.path.size(); ++i) rec.distance += (l.path[i] - l.path[i - 1]).norm();
   }
   rec.host = host_name();
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
+  rec.state_hash = hash;
   rec.terrain = TrialTerrain{r.element.name, TerrainSpec::kind_name(r.element.kind), r.robot, terrain_pattern_name(o.pattern),
                              static_cast<int>(r.laps.size()), r.repetitions, r.falls, r.stuck, r.timeouts, r.mean_time};
   return rec;

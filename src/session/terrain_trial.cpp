@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -305,13 +306,18 @@ TerrainLap drive_points(Simulation& sim, LaneDriver& driver, const TerrainSpec& 
   return drive_leg(sim, driver, o, lap, false, floor_z, leg);
 }
 
+/// Mixes the final State of one of a trial's simulations into the trial's hash (in the order
+/// they run).
+void mix_state(std::uint64_t& hash, const Simulation& sim) { hash = (hash ^ state_hash(sim.state())) * 0x100000001b3ULL; }
+
 /// One lap of the `laps` pattern: a fresh simulation, from the start line to the end line.
 TerrainLap run_lap(const WorldSpec& base, const std::map<std::string, RobotSpec>& models, const TerrainSpec& lane,
-                   const TerrainTrialOptions& o, int lap, Rng& rng, double& sim_time) {
+                   const TerrainTrialOptions& o, int lap, Rng& rng, TerrainTrialResult& result) {
   Simulation sim = start_on_lane(base, models, lane, o, o.seed + static_cast<std::uint64_t>(lap), rng);
   LaneDriver driver(lane, sim.world().robots[0].spec, o);
   TerrainLap out = drive_lap(sim, driver, lane, o, lap, false, sim.state().robots[0].base.X_WB.p.z());
-  sim_time += sim.time().seconds();
+  result.sim_time += sim.time().seconds();
+  mix_state(result.state_hash, sim);
   return out;
 }
 
@@ -334,6 +340,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   result.robot = options.robot;
   result.options = options;
   Rng rng(options.seed, "terrain_trial");
+  result.state_hash = 0xcbf29ce484222325ULL;
   double total = 0;
   const auto count = [&](TerrainLap l) {
     if (l.outcome == "completed") ++result.repetitions, total += l.time;
@@ -344,7 +351,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
     result.laps.push_back(std::move(l));
   };
   if (options.pattern == TerrainPattern::laps) {
-    for (int lap = 1; lap <= options.laps; ++lap) count(run_lap(world, models, result.element, options, lap, rng, result.sim_time));
+    for (int lap = 1; lap <= options.laps; ++lap) count(run_lap(world, models, result.element, options, lap, rng, result));
   } else if (options.pattern == TerrainPattern::figure_eight) {
     // in from the start line to the element's centre (not a repetition; a failure there is lap
     // 1's), then figure-eights without a reset until the repetitions asked for or the first that fails
@@ -374,6 +381,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
       }
     }
     result.sim_time = sim.time().seconds();
+    mix_state(result.state_hash, sim);
   } else {
     // back and forth without a reset: odd crossings forward to the end line, even ones backwards
     // to the start line, until the repetitions asked for or the first that fails
@@ -385,6 +393,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
       if (result.laps.back().outcome != "completed") break;
     }
     result.sim_time = sim.time().seconds();
+    mix_state(result.state_hash, sim);
   }
   result.mean_time = result.repetitions > 0 ? total / result.repetitions : 0.0;
   return result;
@@ -438,6 +447,9 @@ std::string terrain_trial_json(const TerrainTrialResult& r) {
   j["lane_length_m"] = lane_goal(r.element, r.options);
   j["speed_m_s"] = r.options.speed;
   j["sim_time_s"] = r.sim_time;
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.state_hash));
+  j["state_hash"] = hash;
   if (r.options.pattern == TerrainPattern::figure_eight) {
     j["loop_radius_m"] = r.loop_radius;
     j["figure_eight_length_m"] = r.eight_length;

@@ -76,6 +76,7 @@ struct TerrainTrialResult {
   int repetitions = 0, falls = 0, stuck = 0, timeouts = 0;
   double mean_time = 0;           ///< s per completed repetition (0: none)
   double sim_time = 0;            ///< s simulated, all laps
+  std::uint64_t state_hash = 0;   ///< the final State hash of each simulation of the trial (one per lap, or one), combined
   std::vector<Vec2> pylons;       ///< figure-eight: the two pylons (world, m)
   double loop_radius = 0;         ///< figure-eight: the loops' radius around each pylon (m)
   double eight_length = 0;        ///< figure-eight: one figure-eight's path (m)

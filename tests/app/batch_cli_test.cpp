@@ -97,7 +97,9 @@ TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
     EXPECT_TRUE(t.success);
     EXPECT_GT(t.sim_time, 2.2 / 0.5);
     EXPECT_LT(t.sim_time, 2.2 / 0.5 + 1.5);
+    EXPECT_EQ(t.state_hash.size(), 16u);  // the final State, as a scenario trial's
   }
+  EXPECT_NE(rec.at(0).state_hash, rec.at(1).state_hash);  // two seeds, two starts
   const nlohmann::json summary = nlohmann::json::parse(slurp(dir_ / "curb" / "summary.json"));
   EXPECT_DOUBLE_EQ(summary["success_rate"].get<double>(), 1.0);
   EXPECT_EQ(summary["terrain"]["repetitions"], 2);

@@ -196,6 +196,10 @@ TEST(TerrainTrial, TheSameSeedRunsTheSameLaps) {
   const TerrainTrialResult b = run_terrain_trial(world, builtin_models(), o);
   EXPECT_EQ(a.laps[0].time, b.laps[0].time);
   EXPECT_EQ(a.laps[0].path, b.laps[0].path);
+  // the final states too, to the bit; another seed starts the lap elsewhere and ends elsewhere
+  EXPECT_EQ(a.state_hash, b.state_hash);
+  o.seed = 2;
+  EXPECT_NE(run_terrain_trial(world, builtin_models(), o).state_hash, a.state_hash);
 }
 
 TEST(TerrainTrial, AnUnknownLaneOrRobotIsAnErrorThatSaysWhatThereIs) {
