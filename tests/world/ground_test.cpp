@@ -92,6 +92,30 @@ TEST(Ground, SvgAreasBecomeFloorPatchesAndWriteBackTheSame) {
   }
 }
 
+// A fill pattern named after a ground material makes a ground area without data-kind, as a
+// drawing program paints floor patches: url(#sand) for the four ground materials, url(#ground-NAME)
+// for any material (here from a group's fill). Other patterns keep their fallback colour's
+// meaning; a ground- pattern naming no material is an error at the element.
+TEST(Ground, FillPatternsNamedAfterAMaterialAreGroundAreas) {
+  const auto r = load(R"svg(
+  <defs><pattern id="sand" width="10" height="10" patternUnits="userSpaceOnUse"><circle cx="5" cy="5" r="2" fill="#c2b280"/></pattern>
+        <pattern id="ground-wood" width="10" height="10"/><pattern id="hatch" width="10" height="10"/></defs>
+  <rect id="dune" x="100" y="100" width="200" height="100" fill="url(#sand)"/>
+  <g fill="url(#ground-wood) #a0522d"><rect x="400" y="100" width="100" height="100"/></g>
+  <rect x="600" y="100" width="100" height="100" fill="url(#hatch) #000"/>)svg");
+  ASSERT_EQ(r.world.ground.size(), 2u);
+  EXPECT_EQ(r.world.ground[0].name, "dune");
+  EXPECT_EQ(r.world.ground[0].material, "sand");
+  EXPECT_NEAR(signed_area(r.world.ground[0].outline), 2.0, 1e-9);
+  EXPECT_EQ(r.world.ground[1].material, "wood");
+  EXPECT_NEAR(signed_area(r.world.ground[1].outline), 1.0, 1e-9);
+  // the hatched black rect is a wall block, as its fallback colour says
+  EXPECT_EQ(r.world.blocks.size(), 1u);
+  const std::string e = load_error(R"svg(<rect x="100" y="100" width="200" height="100" fill="url(#ground-lava)"/>)svg");
+  EXPECT_NE(e.find("ground.svg:2: <rect> attribute fill"), std::string::npos) << e;
+  EXPECT_NE(e.find("fill pattern '#ground-lava' names unknown material 'lava'"), std::string::npos) << e;
+}
+
 TEST(Ground, AnUnknownMaterialNamesTheElementAndTheKnownOnes) {
   const std::string e = load_error(R"svg(<rect x="100" y="100" width="200" height="100" data-kind="ground" data-material="lava"/>)svg");
   EXPECT_NE(e.find("ground.svg:2"), std::string::npos) << e;

@@ -401,13 +401,37 @@ void add_medium(const Shape& s, MediumSpec::Kind kind, const SvgLoadOptions& o, 
   }
 }
 
+/// The ground material a fill pattern names (docs/terrain.md, "Ground materials"):
+/// `fill="url(#sand)"` for the four ground materials by name, `url(#ground-NAME)` (or
+/// `ground_NAME`) for any material; nullopt for any other fill. Throws Error for
+/// `ground-NAME` with a material the world does not have.
+std::optional<std::string> ground_pattern(const Shape& s, const WorldSpec& world) {
+  const std::string& id = s.style.fill.url;
+  if (id.empty()) return std::nullopt;
+  for (const char* m : {"concrete", "wood", "sand", "wet_tiles"}) {
+    if (id == m) return id;
+  }
+  if (id.rfind("ground-", 0) != 0 && id.rfind("ground_", 0) != 0) return std::nullopt;
+  const std::string name = id.substr(7);
+  if (!world.find_material(name)) {
+    std::string known;
+    for (const auto& m : world.materials) known += (known.empty() ? "" : ", ") + m.name;
+    SourceRef at = s.source;
+    at.element += " attribute fill";
+    throw Error(at, "fill pattern '#" + id + "' names unknown material '" + name + "' (expected one of: " + known + ")");
+  }
+  return name;
+}
+
 /// A floor patch of another material drawn as its footprint (docs/terrain.md, "Ground
-/// materials"): one ground area per closed outline, its material from data-material (required;
-/// data-temperature applies as for any element), its name from data-name or the id.
-void add_ground(const Shape& s, WorldSpec& world, Diagnostics& diag) {
+/// materials"): one ground area per closed outline, its material from data-material (required
+/// unless its fill pattern names one, `pattern`; data-temperature applies as for any element),
+/// its name from data-name or the id.
+void add_ground(const Shape& s, WorldSpec& world, Diagnostics& diag, const std::optional<std::string>& pattern = std::nullopt) {
   const std::string* named = data(s, "material");
+  if (!named && pattern) named = &*pattern;
   if (!named) {
-    throw Error(s.source, "a ground area needs data-material: the material of its floor, such as concrete, wood, sand or wet_tiles");
+    throw Error(s.source, "a ground area needs data-material (or a fill pattern named after one, fill=\"url(#sand)\"): the material of its floor, such as concrete, wood, sand or wet_tiles");
   }
   if (!world.find_material(*named)) {
     std::string known;
@@ -531,7 +555,11 @@ void build_world(const std::vector<Shape>& shapes, const SvgLoadOptions& o, Worl
       continue;
     }
     if (const std::string* k = data(s, "kind"); k && *k == "ground") {
-      add_ground(s, world, diag);
+      add_ground(s, world, diag, ground_pattern(s, world));
+      continue;
+    }
+    if (const auto pattern = ground_pattern(s, world); pattern && !data(s, "kind")) {
+      add_ground(s, world, diag, pattern);
       continue;
     }
     const Meaning m = meaning_of(s);

@@ -226,9 +226,11 @@ Paint parse_paint(std::string_view s) {
     const std::size_t close = t.find(')');
     if (close == std::string::npos) return invalid();
     const std::string_view fallback = trim(std::string_view(t).substr(close + 1));
-    if (fallback.empty()) return Paint{};
     if (fallback.rfind("url(", 0) == 0) return invalid();
-    return parse_plain(fallback);
+    Paint p = fallback.empty() ? Paint{} : parse_plain(fallback);
+    const std::string_view ref = trim(std::string_view(t).substr(4, close - 4));
+    if (ref.size() > 1 && ref.front() == '#') p.url = std::string(ref.substr(1));
+    return p;
   }
   return parse_plain(t);
 }

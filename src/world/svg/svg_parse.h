@@ -88,12 +88,13 @@ struct Paint {
   enum class Kind { none, color, current_color, inherit, invalid };
   Kind kind = Kind::none;
   Vec3 rgb = Vec3::Zero();  ///< sRGB in [0, 1] when kind == color
+  std::string url;          ///< `url(#id)`: the id (lower case), which may name a ground material; else empty
 };
 
 /// Parses a paint/colour: `none`, `#rgb`, `#rrggbb`, `#rgba`/`#rrggbbaa` (alpha ignored),
 /// `rgb(r,g,b)` with numbers or percentages, `rgba(...)`, `hsl(...)`, the 147 CSS named
 /// colours (case-insensitive), `currentColor`, `inherit`, and `url(#id) fallback` (uses the
-/// fallback, else none). Anything else yields Kind::invalid (the caller warns), never throws.
+/// fallback, else none, and keeps the id). Anything else yields Kind::invalid (the caller warns), never throws.
 Paint parse_paint(std::string_view s);
 
 /// What a colour means in a world drawing (docs/worlds.md).
