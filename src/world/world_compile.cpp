@@ -1,3 +1,4 @@
+#include <cctype>
 #include <algorithm>
 #include <cmath>
 
@@ -108,8 +109,16 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
   w.lights = spec.lights;
   w.ambient_light = spec.ambient_light;
   w.sun = spec.sun;
-  // no sun: the lights the SVG and maze loaders made up (unnamed) go; a model file's own stay
-  if (!spec.sun) std::erase_if(w.lights, [](const LightSpec& l) { return l.name.empty(); });
+  // no sun: the lights the SVG and maze loaders made up (unnamed) go, and a Gazebo world's sun
+  // (a directional light named "sun", as gz-sim's worlds name theirs); a model file's other
+  // lights stay
+  if (!spec.sun) {
+    std::erase_if(w.lights, [](const LightSpec& l) {
+      std::string name = l.name;
+      for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return l.name.empty() || (l.type == LightSpec::Type::directional && name == "sun");
+    });
+  }
   w.media = spec.media;
   w.world_seed = spec.seed;
   // robots need their materials even when a hand-built spec left them out

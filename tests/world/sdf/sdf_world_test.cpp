@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "world/sdf/sdf_test_files.h"
+#include "world/world.h"
 
 namespace rescuesim {
 namespace {
@@ -144,6 +145,18 @@ TEST(SdfWorld, RobotStartModel) {
   EXPECT_NEAR(r.start.yaw, 1, 1e-12);
   EXPECT_NEAR(r.height, 0.05, 1e-12);
   for (const auto& s : spec.solids) EXPECT_THAT(s.name, ::testing::Not(HasSubstr("robot_start")));
+}
+
+// `sun: false` on a Gazebo world drops its directional light named "sun" and keeps its lamps.
+TEST(SdfWorld, NoSunDropsTheWorldsSunAndKeepsItsLamps) {
+  WorldSpec spec = test_world().spec;
+  spec.robots.clear();
+  spec.sun = false;
+  const World w = compile_world(spec, {});
+  ASSERT_EQ(w.lights.size(), 2u);
+  for (const auto& l : w.lights) EXPECT_NE(l.name, "sun");
+  spec.sun = true;
+  EXPECT_EQ(compile_world(spec, {}).lights.size(), 3u);
 }
 
 TEST(SdfWorld, Lights) {
