@@ -143,7 +143,7 @@ void read_light(const sdf::Light& light, const std::string& link, const Pose3& X
   RobotLightSpec lamp;
   lamp.name = light.Name();
   lamp.link = link;
-  lamp.X_LF = X_FL * X_LLight * Pose3(Vec3::Zero(), Quat::FromTwoVectors(Vec3::UnitX(), d));
+  lamp.X_LF = X_FL * X_LLight * Pose3{Vec3::Zero(), Quat::FromTwoVectors(Vec3::UnitX(), d)};
   lamp.color = color_of(light.Diffuse()).cwiseMax(0.0).cwiseMin(1.0);
   lamp.intensity = light.Element()->HasElement("intensity") ? std::max(0.0, light.Intensity()) : 1.0;
   lamp.range = std::isfinite(light.AttenuationRange()) && light.AttenuationRange() > 0 ? light.AttenuationRange() : lamp.range;
