@@ -232,7 +232,9 @@ struct EightGeometry {
   }
 };
 
-/// Follows waypoints (in the world) in order: each is reached within 0.15 m; the robot turns in
+/// Follows waypoints (in the world) in order: each is reached within 0.15 m (0.1 m more after each
+/// back-off on the way to it, up to 0.35 m: an operator settles for near a point the ground will
+/// not let the robot reach); the robot turns in
 /// place towards the next one when it is more than 35 degrees off, else drives at the trial's
 /// speed (slowed by the cosine of the error) and steers onto it. When it has made no 5 cm of
 /// progress for 3 s (a track against a post), it backs up for 1.5 s, straight, and tries again,
@@ -251,7 +253,7 @@ class WaypointFollower {
     now_ += dt_;
     const double p = progress(X);
     if (p > best_ + 0.05) best_ = p, best_at_ = now_;
-    if (now_ >= backing_until_ && now_ - best_at_ > kRetryAfter) backing_until_ = now_ + kBackUp, best_at_ = now_ + kBackUp;
+    if (now_ >= backing_until_ && now_ - best_at_ > kRetryAfter) backing_until_ = now_ + kBackUp, best_at_ = now_ + kBackUp, ++retries_;
     if (now_ < backing_until_) {
       t.linear.x() = -speed_;
       return t;
@@ -276,12 +278,14 @@ class WaypointFollower {
   }
 
  private:
-  static constexpr double kRetryAfter = 3.0, kBackUp = 1.5;  // s
+  static constexpr double kRetryAfter = 3.0, kBackUp = 1.5;                  // s
+  static constexpr double kReach = 0.15, kReachPerRetry = 0.1, kReachMax = 0.35;  // m
 
   void advance(const Pose3& X) {
-    while (!finished() && (points_[next_] - X.p.head<2>()).norm() < 0.15) {
+    while (!finished() && (points_[next_] - X.p.head<2>()).norm() < std::min(kReach + kReachPerRetry * retries_, kReachMax)) {
       done_ += (points_[next_] - (next_ == 0 ? from_ : points_[next_ - 1])).norm();
       ++next_;
+      retries_ = 0;
     }
   }
   std::vector<Vec2> points_;
@@ -290,6 +294,7 @@ class WaypointFollower {
   std::size_t next_ = 0;
   double done_ = 0;
   double now_ = 0, best_ = 0, best_at_ = 0, backing_until_ = -1;
+  int retries_ = 0;  ///< back-offs since the last waypoint reached
 };
 
 /// Follows lane-frame points as one leg.
