@@ -152,13 +152,7 @@ int run_batch(const BatchCommand& c) {
     // fails now (exit 2) rather than in every trial: a world that does not load, a lane it lacks
     const WorldSpec world = build_world(bs.scenario);
     validate(world).throw_if_errors();
-    const TerrainSpec* lane = nullptr;
-    for (const auto& t : world.terrain) {
-      if (!lane && t.name == c.terrain.lane) lane = &t;
-    }
-    for (const auto& t : world.terrain) {
-      if (!lane && c.terrain.lane == TerrainSpec::kind_name(t.kind)) lane = &t;
-    }
+    const TerrainSpec* lane = find_terrain_lane(world, c.terrain.lane);
     if (!lane) throw Error({c.terrain_world, 0, "--lane"}, "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
     check_terrain_pattern(*lane, to.terrain->pattern);
     if (!models.count(c.terrain.robot)) throw Error("batch: unknown robot '" + c.terrain.robot + "' (expected tracked_robot or rescue_robot)");

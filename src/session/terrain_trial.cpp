@@ -18,14 +18,9 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-/// The lane's element: by name, else the first of a kind by that name.
+/// The lane's element (find_terrain_lane), or an Error saying what the world has.
 const TerrainSpec& find_lane(const WorldSpec& world, const std::string& lane) {
-  for (const auto& t : world.terrain) {
-    if (t.name == lane) return t;
-  }
-  for (const auto& t : world.terrain) {
-    if (lane == TerrainSpec::kind_name(t.kind)) return t;
-  }
+  if (const TerrainSpec* t = find_terrain_lane(world, lane)) return *t;
   std::string known;
   for (const auto& t : world.terrain) known += (known.empty() ? "" : ", ") + t.name + " (" + TerrainSpec::kind_name(t.kind) + ")";
   throw Error("no lane '" + lane + "' in world '" + world.name + "'; it has " + (known.empty() ? std::string("no terrain elements") : known));
@@ -201,9 +196,9 @@ TerrainLap drive_lap(Simulation& sim, LaneDriver& driver, const TerrainSpec& lan
 /// around the far pylon and anticlockwise around the near one, the two joined by diagonals that
 /// cross at the element's centre. r is half the element's width less 0.7 m (room for a robot
 /// with its flippers raised, 1.2 m long, to turn onto the loop without its nose in the wall), at
-/// least 0.3 m and at most a quarter of the length: 0.45 m on the test methods' 2.4 m wide
-/// figure-8 apparatus; in a 1.2 m lane the loops are tighter than a robot can follow. Points are in the lane's frame (x along the lane from the element's centre, y to
-/// the left).
+/// least 0.3 m and at most a quarter of the length: 0.5 m on the test methods' 2.4 m wide
+/// figure-8 apparatus; in a 1.2 m lane the loops are tighter than a robot can follow. Points are
+/// in the lane's frame (x along the lane from the element's centre, y to the left).
 struct EightGeometry {
   double a = 0, r = 0;          ///< pylons at x = -a and +a; loop radius
   std::vector<Vec2> eight;      ///< one figure-eight from the centre back to it
@@ -232,14 +227,13 @@ struct EightGeometry {
   }
 };
 
-/// Follows waypoints (in the world) in order: each is reached within 0.15 m (0.1 m more after each
-/// back-off on the way to it, up to 0.35 m: an operator settles for near a point the ground will
-/// not let the robot reach); the robot turns in
-/// place towards the next one when it is more than 35 degrees off, else drives at the trial's
-/// speed (slowed by the cosine of the error) and steers onto it. When it has made no 5 cm of
+/// Follows waypoints (in the world) in order. The robot turns in place towards the next one when
+/// it is more than 35 degrees off, else drives at the trial's speed (slowed by the cosine of the
+/// error) and steers onto it; a waypoint is reached within 0.15 m. When it has made no 5 cm of
 /// progress for 3 s (a track against a post), it backs up for 1.5 s, straight, and tries again,
-/// as an operator would. Progress is the path length of the waypoints reached plus the part of
-/// the current segment covered.
+/// as an operator would, settling for 0.1 m further from the waypoint after each back-off (up to
+/// 0.35 m). Progress is the path length of the waypoints reached plus the part of the current
+/// segment covered.
 class WaypointFollower {
  public:
   WaypointFollower(std::vector<Vec2> points, Vec2 from, double speed, double dt)
@@ -411,6 +405,16 @@ const char* terrain_pattern_name(TerrainPattern p) {
     case TerrainPattern::figure_eight: return "figure-eight";
   }
   return "laps";
+}
+
+const TerrainSpec* find_terrain_lane(const WorldSpec& world, const std::string& lane) {
+  for (const auto& t : world.terrain) {
+    if (t.name == lane) return &t;
+  }
+  for (const auto& t : world.terrain) {
+    if (lane == TerrainSpec::kind_name(t.kind)) return &t;
+  }
+  return nullptr;
 }
 
 const char* terrain_pattern_reps(TerrainPattern p) {

@@ -35,6 +35,8 @@ TerrainPattern parse_terrain_pattern(const std::string& name);
 /// What one repetition is called, plural, for progress lines ("laps", "crossings back and
 /// forth", "figure-eights").
 const char* terrain_pattern_reps(TerrainPattern p);
+/// The lane's element in `world`: by name, else the first of a kind by that name; nullptr when none.
+const TerrainSpec* find_terrain_lane(const WorldSpec& world, const std::string& lane);
 /// Throws Error (exit 2) when `p` cannot be driven on `lane`: figure-eights only on stepfields
 /// and crossing ramps.
 void check_terrain_pattern(const TerrainSpec& lane, TerrainPattern p);

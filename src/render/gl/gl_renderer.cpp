@@ -585,7 +585,6 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye, const std::array
   p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
 }
 
-
 void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj) {
   const int w = view.k.width, h = view.k.height;
   // the sky is fogged only where a medium stands in front of it: the pass is scissored to the
@@ -807,7 +806,7 @@ void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
     set_fog_eye(depth_fog_, view.X_WC.p, window);
     draw_scene(depth_fog_, depth_fog_model_, view_proj, {view.hide_robot, false});
   } else {
-    draw_scene(depth_, depth_model_, view_projection(view), {view.hide_robot, false});
+    draw_scene(depth_, depth_model_, view_proj, {view.hide_robot, false});
   }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(out.z.size() * sizeof(float)), out.z.data());
@@ -832,12 +831,13 @@ void GlRenderer::do_thermal(const CameraView& view, double blur_sigma_px, Therma
   glClearNamedFramebufferfv(t.fbo.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
   const Eigen::Matrix4f view_proj = view_projection(view);
+  // media out of this view: the clear program, which costs nothing extra
   if (const std::array<int, 4> window = fog() ? fog_window(view, view_proj) : std::array<int, 4>{}; window[2] > 0 && window[3] > 0) {
     set_fog_eye(thermal_fog_, view.X_WC.p, window);
     thermal_fog_.set("u_ambient", ambient_temperature_);
     draw_scene(thermal_fog_, thermal_fog_model_, view_proj, {view.hide_robot, false});
   } else {
-    draw_scene(thermal_, thermal_model_, view_projection(view), {view.hide_robot, false});
+    draw_scene(thermal_, thermal_model_, view_proj, {view.hide_robot, false});
   }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo.id());
   glNamedFramebufferReadBuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0);
