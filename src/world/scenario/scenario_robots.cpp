@@ -153,7 +153,7 @@ void read_sensor_list(const YamlNode& node, RobotSpec& spec) {
   }
 }
 
-/// `lamps:`: spot lamps on links (docs/robots.md, "Lamps"). An item named as an existing lamp
+/// `lamps:`: spot lamps on links (docs/environment.md, "Robot lamps"). An item named as an existing lamp
 /// (the built-in models' `head_lamp`) changes it; any other is added, by default on the base link
 /// shining forwards.
 void read_lamp_list(const YamlNode& node, RobotSpec& spec) {

@@ -139,17 +139,20 @@ void read_light(const sdf::Light& light, const std::string& link, const Pose3& X
   const Pose3 X_LLight = resolve(light.SemanticPose(), "", where);
   check_pose(X_LLight, r.options.max_extent, where, "the light's pose");
   Vec3 d = vec_of(light.Direction());
-  d = d.norm() > 1e-12 ? Vec3(d.normalized()) : Vec3(-Vec3::UnitZ());
+  d = d.allFinite() && d.norm() > 1e-12 ? Vec3(d.normalized()) : Vec3(-Vec3::UnitZ());
   RobotLightSpec lamp;
   lamp.name = light.Name();
   lamp.link = link;
   lamp.X_LF = X_FL * X_LLight * Pose3{Vec3::Zero(), Quat::FromTwoVectors(Vec3::UnitX(), d)};
-  lamp.color = color_of(light.Diffuse()).cwiseMax(0.0).cwiseMin(1.0);
-  lamp.intensity = light.Element()->HasElement("intensity") ? std::max(0.0, light.Intensity()) : 1.0;
+  // a value that is not a number keeps the lamp's default rather than reach the shaders
+  const auto finite_or = [](double v, double fallback) { return std::isfinite(v) ? v : fallback; };
+  const Vec3 color = color_of(light.Diffuse());
+  if (color.allFinite()) lamp.color = color.cwiseMax(0.0).cwiseMin(1.0);
+  lamp.intensity = light.Element()->HasElement("intensity") ? std::max(0.0, finite_or(light.Intensity(), 1.0)) : 1.0;
   lamp.range = std::isfinite(light.AttenuationRange()) && light.AttenuationRange() > 0 ? light.AttenuationRange() : lamp.range;
   if (light.Type() == sdf::LightType::SPOT) {
-    lamp.cone = std::clamp(0.5 * light.SpotOuterAngle().Radian(), 1e-3, 0.5 * M_PI);
-    lamp.inner_cone = std::clamp(0.5 * light.SpotInnerAngle().Radian(), 0.0, lamp.cone);
+    lamp.cone = std::clamp(0.5 * finite_or(light.SpotOuterAngle().Radian(), 2 * lamp.cone), 1e-3, 0.5 * M_PI);
+    lamp.inner_cone = std::clamp(0.5 * finite_or(light.SpotInnerAngle().Radian(), 0.0), 0.0, lamp.cone);
   } else {
     lamp.cone = M_PI;  // a point light: every direction
     lamp.inner_cone = M_PI;
@@ -212,9 +215,10 @@ LinkSpec link_spec(const sdf::Link& link, const Pose3& X_FL, const std::string& 
     ls.inertia = Vec3::Zero();
   }
   for (uint64_t i = 0; i < link.SensorCount(); ++i) read_sensor(*link.SensorByIndex(i), link.Name(), X_FL, r, spec);
+  const std::size_t lamps_before = spec.lights.size();
   for (uint64_t i = 0; i < link.LightCount(); ++i) read_light(*link.LightByIndex(i), link.Name(), X_FL, r, spec);
   // a model's lights are on in Gazebo; /lights switches them
-  if (link.LightCount() > 0) spec.lights_on = true;
+  if (spec.lights.size() > lamps_before) spec.lights_on = true;
   return ls;
 }
 
