@@ -18,6 +18,13 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
+/// A point of the lane's frame (u along the direction of travel from the element's centre, v
+/// across it, to the left) in the world.
+Vec2 lane_point(const TerrainSpec& lane, double u, double v) {
+  const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
+  return {lane.pose.x + c * u - s * v, lane.pose.y + s * u + c * v};
+}
+
 /// The lane's element (find_terrain_lane), or an Error saying what the world has.
 const TerrainSpec& find_lane(const WorldSpec& world, const std::string& lane) {
   if (const TerrainSpec* t = find_terrain_lane(world, lane)) return *t;
@@ -103,12 +110,12 @@ Simulation start_on_lane(const WorldSpec& base, const std::map<std::string, Robo
   WorldSpec spec = base;
   const double offset = rng.uniform(-o.start_offset, o.start_offset);
   const double yaw = rng.uniform(-o.start_yaw, o.start_yaw) * kDeg;
-  const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
   const double back = 0.5 * lane.length + o.approach;  // the start line, behind the element's centre
   RobotPlacement r;
   r.name = "robot";
   r.model = o.robot;
-  r.start = {lane.pose.x - c * back - s * offset, lane.pose.y - s * back + c * offset, lane.pose.yaw + yaw};
+  const Vec2 at = lane_point(lane, -back, offset);
+  r.start = {at.x(), at.y(), lane.pose.yaw + yaw};
   spec.robots = {r};
   spec.victims.clear();
   SimOptions so;
@@ -294,9 +301,8 @@ class WaypointFollower {
 /// Follows lane-frame points as one leg.
 TerrainLap drive_points(Simulation& sim, LaneDriver& driver, const TerrainSpec& lane, const TerrainTrialOptions& o, int lap, double floor_z,
                         const std::vector<Vec2>& in_lane) {
-  const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
   std::vector<Vec2> world;
-  for (const Vec2& p : in_lane) world.emplace_back(lane.pose.x + c * p.x() - s * p.y(), lane.pose.y + s * p.x() + c * p.y());
+  for (const Vec2& p : in_lane) world.push_back(lane_point(lane, p.x(), p.y()));
   WaypointFollower follow(world, sim.state().robots[0].base.X_WB.p.head<2>(), o.speed, sim.dt());
   Leg leg;
   leg.twist = [&](const Pose3& X) { return follow.twist(X); };
@@ -356,8 +362,7 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
     // 1's), then figure-eights without a reset until the repetitions asked for or the first that fails
     const TerrainSpec& lane = result.element;
     const EightGeometry g(lane);
-    const double c = std::cos(lane.pose.yaw), s = std::sin(lane.pose.yaw);
-    for (double x : {-g.a, g.a}) result.pylons.emplace_back(lane.pose.x + c * x, lane.pose.y + s * x);
+    for (double x : {-g.a, g.a}) result.pylons.push_back(lane_point(lane, x, 0));
     result.loop_radius = g.r;
     result.eight_length = g.length();
     Simulation sim = start_on_lane(world, models, lane, options, options.seed + 1, rng);
@@ -398,14 +403,30 @@ TerrainTrialResult run_terrain_trial(const WorldSpec& world, const std::map<std:
   return result;
 }
 
-const char* terrain_pattern_name(TerrainPattern p) {
-  switch (p) {
-    case TerrainPattern::laps: return "laps";
-    case TerrainPattern::back_and_forth: return "back-and-forth";
-    case TerrainPattern::figure_eight: return "figure-eight";
+namespace {
+
+/// Each pattern's name in files and options, and what its repetitions are called.
+struct PatternNames {
+  TerrainPattern pattern;
+  const char* name;
+  const char* reps;
+};
+constexpr PatternNames kPatterns[] = {{TerrainPattern::laps, "laps", "laps"},
+                                      {TerrainPattern::back_and_forth, "back-and-forth", "crossings back and forth"},
+                                      {TerrainPattern::figure_eight, "figure-eight", "figure-eights"}};
+
+const PatternNames& names_of(TerrainPattern p) {
+  for (const auto& n : kPatterns) {
+    if (n.pattern == p) return n;
   }
-  return "laps";
+  return kPatterns[0];
 }
+
+}  // namespace
+
+const char* terrain_pattern_name(TerrainPattern p) { return names_of(p).name; }
+
+const char* terrain_pattern_reps(TerrainPattern p) { return names_of(p).reps; }
 
 const TerrainSpec* find_terrain_lane(const WorldSpec& world, const std::string& lane) {
   for (const auto& t : world.terrain) {
@@ -417,15 +438,6 @@ const TerrainSpec* find_terrain_lane(const WorldSpec& world, const std::string& 
   return nullptr;
 }
 
-const char* terrain_pattern_reps(TerrainPattern p) {
-  switch (p) {
-    case TerrainPattern::laps: return "laps";
-    case TerrainPattern::back_and_forth: return "crossings back and forth";
-    case TerrainPattern::figure_eight: return "figure-eights";
-  }
-  return "laps";
-}
-
 void check_terrain_pattern(const TerrainSpec& lane, TerrainPattern p) {
   if (p == TerrainPattern::figure_eight && lane.kind != TerrainSpec::Kind::stepfield && lane.kind != TerrainSpec::Kind::crossing_ramps) {
     throw Error(std::string("figure-eights are driven on stepfields and crossing ramps (the test methods' figure-8 terrains); lane '") +
@@ -434,8 +446,8 @@ void check_terrain_pattern(const TerrainSpec& lane, TerrainPattern p) {
 }
 
 TerrainPattern parse_terrain_pattern(const std::string& name) {
-  for (TerrainPattern p : {TerrainPattern::laps, TerrainPattern::back_and_forth, TerrainPattern::figure_eight}) {
-    if (name == terrain_pattern_name(p)) return p;
+  for (const auto& n : kPatterns) {
+    if (name == n.name) return n.pattern;
   }
   throw Error("unknown pattern '" + name + "'; expected laps, back-and-forth or figure-eight");
 }
@@ -487,12 +499,11 @@ Canvas terrain_trial_figure(const WorldSpec& world, const TerrainTrialResult& r)
              std::to_string(r.laps.size()) + " reps, " + std::to_string(r.falls) + " falls, " + std::to_string(r.stuck) + " stuck";
   // the lane and its start and end lines only
   WorldSpec shown = world;
-  const double c = std::cos(r.element.pose.yaw), s = std::sin(r.element.pose.yaw);
   const double half = 0.5 * r.element.length + r.options.approach + 0.6, across = 0.5 * r.element.width + 1.6;  // wide enough for the title
   Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
   for (double u : {-half, half}) {
     for (double v : {-across, across}) {
-      const Vec2 p(r.element.pose.x + c * u - s * v, r.element.pose.y + s * u + c * v);
+      const Vec2 p = lane_point(r.element, u, v);
       lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     }
   }
@@ -504,9 +515,7 @@ Canvas terrain_trial_figure(const WorldSpec& world, const TerrainTrialResult& r)
   const double start_u = -(0.5 * r.element.length + r.options.approach);
   const double line = 0.5 * r.element.width;
   for (double u : {start_u, start_u + lane_goal(r.element, r.options)}) {
-    const Vec2 a(r.element.pose.x + c * u - s * line, r.element.pose.y + s * u + c * line);
-    const Vec2 b(r.element.pose.x + c * u + s * line, r.element.pose.y + s * u - c * line);
-    canvas.line(frame.to_px(a), frame.to_px(b), {40, 40, 200}, 2.0);
+    canvas.line(frame.to_px(lane_point(r.element, u, line)), frame.to_px(lane_point(r.element, u, -line)), {40, 40, 200}, 2.0);
   }
   for (const Vec2& p : r.pylons) {  // figure-eight: the pylons and the loops' radius around them
     canvas.circle(frame.to_px(p), r.loop_radius * frame.px_per_m, {40, 40, 200}, 1.0);

@@ -153,7 +153,7 @@ class GlRenderer final : public Renderer {
   /// The window (x, y, width, height) of this view that holds the media's projection.
   std::array<int, 4> fog_window(const CameraView& view, const Eigen::Matrix4f& view_proj) const;
   /// Draws the sky through the media where the colour pass left the clear value.
-  void draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj);
+  void draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj, const std::array<int, 4>& window);
   bool fog() const { return fog_pieces_ + fog_boxes_ > 0; }
 
   EglContext context_;  // first member: made first, destroyed last, after every GL object
@@ -522,8 +522,9 @@ namespace {
 /// or beside a medium); empty (width 0) when no piece is in front or every one is off screen.
 std::array<int, 4> media_window(std::span<const FogPiece> pieces, const Eigen::Matrix4f& view_proj, int w, int h) {
   Eigen::Vector2f lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
+  std::vector<Eigen::Vector4f> clip;
   for (const FogPiece& piece : pieces) {
-    std::vector<Eigen::Vector4f> clip;
+    clip.clear();
     for (const Vec2& c : piece.corners) {
       for (double z : {piece.bottom, piece.top}) clip.push_back(view_proj * Eigen::Vector4f(static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(z), 1.0f));
     }
@@ -585,11 +586,10 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye, const std::array
   p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
 }
 
-void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj) {
+void GlRenderer::draw_fog_sky(const CameraView& view, const Eigen::Matrix4f& view_proj, const std::array<int, 4>& rect) {
   const int w = view.k.width, h = view.k.height;
   // the sky is fogged only where a medium stands in front of it: the pass is scissored to the
-  // media's projection (a CPU rasteriser then shades only those pixels), and skipped without one
-  const std::array<int, 4> rect = fog_window(view, view_proj);
+  // media's projection `rect` (a CPU rasteriser then shades only those pixels), and skipped without one
   if (rect[2] == 0 || rect[3] == 0) return;
   glEnable(GL_SCISSOR_TEST);
   glScissor(rect[0], rect[1], rect[2], rect[3]);
@@ -766,12 +766,13 @@ void GlRenderer::do_color(const CameraView& view, ColorImage& out) {
   glClearNamedFramebufferfv(t.scene.id(), GL_DEPTH, 0, &zero);
   camera_pass_state(w, h);
   color().set("u_eye", Eigen::Vector3f(view.X_WC.p.cast<float>()));
-  if (fog()) set_fog_eye(color(), view.X_WC.p, fog_window(view, view_proj));
+  const std::array<int, 4> window = fog() ? fog_window(view, view_proj) : std::array<int, 4>{};
+  if (fog()) set_fog_eye(color(), view.X_WC.p, window);
   if (shadows) glBindTextureUnit(1, shadow_map_.id());
   if (ao) glBindTextureUnit(2, t.ao_tex.id());
   glBindTextureUnit(3, patterns_.id());
   draw_scene(color(), color_model_[static_cast<int>(quality())], view_proj, {view.hide_robot, false});
-  if (fog()) draw_fog_sky(view, view_proj);
+  if (fog()) draw_fog_sky(view, view_proj, window);
 
   // anti-aliasing: FXAA into the output (medium) or the multisample resolve (high)
   if (quality() == Quality::medium) {
