@@ -177,14 +177,37 @@ class WorldReader {
       const auto [added, skipped] = solids_of(*l, name, X_WM, "", "obstacle");
       solids += added;
       floors += skipped;
+      link_lights(*l, name, X_WM, true);
     }
     if (loose.empty()) return solids == 0 && floors > 0 ? "floor" : "static geometry";
     if (moving_joints == 0) {
-      for (const sdf::Link* l : loose) body(*l, name, X_WM);
+      for (const sdf::Link* l : loose) {
+        body(*l, name, X_WM);
+        link_lights(*l, name, X_WM, false);
+      }
       return "rigid body";
     }
     robot(m, name, X_WM, fixed, at);
     return "robot";
+  }
+
+  /// The lights of a world model's link (a robot's are its lamps, sdf_robot.cpp): on a link that
+  /// stands still they are world lights where the link puts them; on a loose body they are left
+  /// out with a warning, as the renderer moves only robots' lamps.
+  void link_lights(const sdf::Link& l, const std::string& name, const Pose3& X_WM, bool still) {
+    if (l.LightCount() == 0) return;
+    const std::string context = "<model name=\"" + name + "\">";
+    const Pose3 X_WL = X_WM * resolve(l.SemanticPose(), "__model__", r_.at(l.Element(), context));
+    for (uint64_t i = 0; i < l.LightCount(); ++i) {
+      const sdf::Light& light_L = *l.LightByIndex(i);
+      const SourceRef at = r_.at(light_L.Element(), context);
+      if (still) {
+        light(light_L, X_WL * resolve(light_L.SemanticPose(), "", at));
+      } else {
+        r_.diagnostics.warn(at, "light '" + light_L.Name() + "' on the loose body '" + name + "::" + l.Name() +
+                                    "' is left out: only robots' lights move with their links");
+      }
+    }
   }
 
   /// Adds the solids of a link's collisions; returns (solids added, floor planes skipped).

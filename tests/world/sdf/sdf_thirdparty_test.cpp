@@ -236,6 +236,24 @@ TEST(SdfThirdPartyShapes, TheSunIsADirectionalLight) {
   EXPECT_DOUBLE_EQ(l.intensity, 1.0);
 }
 
+// --- examples/worlds/lights.sdf ------------------------------------------------------------
+
+// The world's three lights are kept; the point light on the loose sphere's link cannot follow the
+// sphere (only robots' lamps move with their links), so it is left out, loudly, naming it.
+TEST(SdfThirdPartyLights, WorldLightsKeptAndALooseBodysLinkLightNamed) {
+  const SdfWorld w = load_sdf_world(world_file("lights"), thirdparty_options());
+  ASSERT_EQ(w.spec.lights.size(), 3u);
+  EXPECT_EQ(w.spec.lights[2].name, "spot");
+  EXPECT_EQ(w.spec.lights[2].type, LightSpec::Type::spot);
+  EXPECT_DOUBLE_EQ(w.spec.lights[2].spot_angle, 0.25);  // half of <outer_angle>0.5
+  bool named = false;
+  for (const auto& d : w.diagnostics.items()) {
+    named = named || (d.message.find("light 'link_light_point' on the loose body 'sphere::sphere_link' is left out") != std::string::npos &&
+                      d.where.line == 217);
+  }
+  EXPECT_TRUE(named);
+}
+
 // --- examples/worlds/diff_drive.sdf -------------------------------------------------------
 
 TEST(SdfThirdPartyDiffDrive, TwoVehiclesBecomeRobotsWithThePluginsDrive) {

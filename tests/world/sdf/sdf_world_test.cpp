@@ -147,6 +147,26 @@ TEST(SdfWorld, RobotStartModel) {
   for (const auto& s : spec.solids) EXPECT_THAT(s.name, ::testing::Not(HasSubstr("robot_start")));
 }
 
+// A light on the link of a static model is a world light where the link puts it: a lamp post
+// 2 m up at (3, 1), its spot pointing down the post's own -z, turned with the model.
+TEST(SdfWorld, AStaticModelsLinkLightIsAWorldLight) {
+  const SdfWorld w = parse_sdf_world(R"(<?xml version="1.0"?>
+<sdf version="1.9"><world name="w">
+  <model name="post"><static>true</static><pose>3 1 0 0 0 1.5707963267948966</pose>
+    <link name="pole"><pose>0 0 2 0 0 0</pose>
+      <collision name="c"><geometry><box><size>0.1 0.1 0.1</size></box></geometry></collision>
+      <light name="bulb" type="spot"><pose>0.5 0 0 0 0 0</pose><direction>1 0 -1</direction>
+        <spot><inner_angle>0.2</inner_angle><outer_angle>0.6</outer_angle></spot></light>
+    </link></model>
+</world></sdf>)", "post.sdf", isolated());
+  ASSERT_EQ(w.spec.lights.size(), 1u);
+  const LightSpec& l = w.spec.lights[0];
+  EXPECT_EQ(l.name, "bulb");
+  EXPECT_LT((l.position - Vec3(3, 1.5, 2)).norm(), 1e-9);  // 0.5 m along the turned model's x: +y
+  EXPECT_LT((l.direction - Vec3(0, 1, -1).normalized()).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(l.spot_angle, 0.3);
+}
+
 // `sun: false` on a Gazebo world drops its directional light named "sun" and keeps its lamps.
 TEST(SdfWorld, NoSunDropsTheWorldsSunAndKeepsItsLamps) {
   WorldSpec spec = test_world().spec;
