@@ -475,7 +475,8 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
     thermal_fog_ = Program("thermal through fog", shaders::kFogVertex, head + shaders::kThermalFogFragment);
     depth_fog_model_ = depth_fog_.uniform("u_model");
     thermal_fog_model_ = thermal_fog_.uniform("u_model");
-    depth_fog_.set("u_min_return", kDepthMinReturn);
+    const float lost = 0.5f * std::log(1.0f / kDepthMinReturn);
+    depth_fog_.set("u_lost_depth_squared", lost * lost);
   }
   return true;
 }

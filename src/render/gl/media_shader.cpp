@@ -32,12 +32,13 @@ uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 uniform vec4 u_fog_window;  // window px (x0, y0, x1, y1) holding the media's projection: no ray outside it crosses one
 #endif
 
-vec4 fog_depth(vec3 d) {
+// fog_fraction is the same per metre of the segment (the extinctions times the fraction of the
+// segment inside each piece): the depth camera compares its square, which needs no square root.
+vec4 fog_fraction(vec3 d) {
   vec4 sum = vec4(0.0);
 #if MEDIA_WINDOW
   if (any(lessThan(gl_FragCoord.xy, u_fog_window.xy)) || any(greaterThanEqual(gl_FragCoord.xy, u_fog_window.zw))) return sum;
 #endif
-  float len = length(d);
 #if MEDIA_BOXES > 0
   vec3 inv = 1.0 / vec3(abs(d.x) > 1e-9 ? d.x : 1e-9, abs(d.y) > 1e-9 ? d.y : 1e-9, abs(d.z) > 1e-9 ? d.z : 1e-9);
   for (int i = 0; i < MEDIA_BOXES; ++i) {
@@ -45,7 +46,7 @@ vec4 fog_depth(vec3 d) {
     vec3 near = min(a, b), far = max(a, b);
     float t0 = max(max(near.x, near.y), max(near.z, 0.0)), t1 = min(min(far.x, far.y), min(far.z, 1.0));
     vec4 s = u_fog_box_sigma[i];
-    sum += vec4(s.xyz, s.x * s.w) * (max(t1 - t0, 0.0) * len);
+    sum += vec4(s.xyz, s.x * s.w) * max(t1 - t0, 0.0);
   }
 #endif
 #if MEDIA_PIECES > 0
@@ -62,11 +63,13 @@ vec4 fog_depth(vec3 d) {
       t1 = (ds == 0.0 && h.z > 0.0) ? -1.0 : t1;
     }
     vec4 s = u_fog_sigma[i];
-    sum += vec4(s.xyz, s.x * s.w) * (max(t1 - t0, 0.0) * len);
+    sum += vec4(s.xyz, s.x * s.w) * max(t1 - t0, 0.0);
   }
 #endif
   return sum;
 }
+
+vec4 fog_depth(vec3 d) { return fog_fraction(d) * length(d); }
 )";
 
 // the depth and thermal cameras' vertex stage through media: the world position, and the
@@ -114,17 +117,18 @@ void main() {
 )";
 
 // No #version (as above). The depth camera's light goes out and back through the media: a pixel
-// whose two-way transmittance falls below u_min_return has no return, written as a depth just
+// whose two-way transmittance exp(-2 tau) falls below the least return has none, written as a depth just
 // above the far plane's 0 that the read-back turns into NaN. Optical depth only grows along a
 // ray, so nothing behind a lost pixel can be nearer and valid.
 const char* const kDepthFogFragment = R"(
 layout(depth_less) out float gl_FragDepth;  // only ever lowered (reversed Z: farther): early depth tests stay valid
 in vec3 v_world;
 uniform vec3 u_eye;
-uniform float u_min_return;
+uniform float u_lost_depth_squared;  // (ln(1 / the least return) / 2)^2: a one-way optical depth past its root loses the return
 void main() {
-  float tau = fog_depth(v_world - u_eye).y;
-  gl_FragDepth = exp(-2.0 * tau) < u_min_return ? 1e-30 : gl_FragCoord.z;
+  vec3 d = v_world - u_eye;
+  float per_metre = fog_fraction(d).y;
+  gl_FragDepth = per_metre * per_metre * dot(d, d) > u_lost_depth_squared ? 1e-30 : gl_FragCoord.z;
 }
 )";
 
