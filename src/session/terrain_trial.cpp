@@ -214,8 +214,8 @@ struct EightGeometry {
     a = 0.25 * lane.length;
     r = std::clamp(0.5 * lane.width - 0.7, 0.3, a);
     const auto loop = [&](double cx, double from_deg, double to_deg) {
-      for (int k = 0; k <= 4; ++k) {
-        const double t = (from_deg + (to_deg - from_deg) * k / 4.0) * kDeg;
+      for (int k = 0; k <= 36; ++k) {  // every 5 degrees
+        const double t = (from_deg + (to_deg - from_deg) * k / 36.0) * kDeg;
         eight.push_back({cx + r * std::cos(t), r * std::sin(t)});
       }
     };
@@ -225,77 +225,97 @@ struct EightGeometry {
     eight.push_back({0, 0});
   }
 
-  /// The figure-eight's path length from the centre back to it (m).
-  double length() const {
-    double l = 0;
-    Vec2 at(0, 0);
-    for (const Vec2& p : eight) l += (p - at).norm(), at = p;
-    return l;
-  }
+  /// The figure-eight's path length from the centre back to it (m): four diagonals from the
+  /// centre to the loops' sides and two half circles.
+  double length() const { return 2 * (2 * std::hypot(a, r) + M_PI * r); }
 };
 
-/// Follows waypoints (in the world) in order. The robot turns in place towards the next one when
-/// it is more than 35 degrees off, else drives at the trial's speed (slowed by the cosine of the
-/// error) and steers onto it; a waypoint is reached within 0.15 m. When it has made no 5 cm of
+/// Follows a path (the polyline through `corners`, in the world, from where the robot stands)
+/// by pure pursuit: it steers along the arc to the point kLookahead further along the path than
+/// its nearest point, at the trial's speed slowed by the cosine of the heading error and to what
+/// its turn rate allows on that arc (|omega| <= kMaxTurn: 0.4 m/s on a 0.5 m loop), and turns in
+/// place when that point lies more than 90 degrees off. The nearest point is looked for only a
+/// short way ahead of the last one (kSearch), so that where the path crosses itself (a
+/// figure-eight's centre) the robot keeps to the leg it is on. When it has made no 5 cm of
 /// progress for 3 s (a track against a post), it backs up for 1.5 s, straight, and tries again,
-/// as an operator would, settling for 0.1 m further from the waypoint after each back-off (up to
-/// 0.35 m). Progress is the path length of the waypoints reached plus the part of the current
-/// segment covered.
-class WaypointFollower {
+/// as an operator would. Progress is the path length up to the nearest point; the path is done
+/// when that is its end and the robot stands within 0.15 m of it (0.1 m more after each
+/// back-off, up to 0.35 m).
+class PathFollower {
  public:
-  WaypointFollower(std::vector<Vec2> points, Vec2 from, double speed, double dt)
-      : points_(std::move(points)), from_(from), speed_(speed), dt_(dt) {}
+  PathFollower(const std::vector<Vec2>& corners, Vec2 from, double speed, double dt) : speed_(speed), dt_(dt) {
+    path_.push_back(from);
+    arc_.push_back(0);
+    for (const Vec2& c : corners) {
+      const Vec2 a = path_.back();
+      const double l = (c - a).norm();
+      const int n = std::max(1, static_cast<int>(std::ceil(l / kSpacing)));
+      for (int k = 1; k <= n; ++k) {
+        path_.push_back(a + (c - a) * (static_cast<double>(k) / n));
+        arc_.push_back(arc_.back() + l / n);
+      }
+    }
+  }
 
   /// The twist for the next step (called once per step).
   msg::Twist twist(const Pose3& X) {
     advance(X);
     msg::Twist t;
-    if (finished()) return t;
+    if (finished(X)) return t;
     now_ += dt_;
-    const double p = progress(X);
-    if (p > best_ + 0.05) best_ = p, best_at_ = now_;
+    if (arc_[near_] > best_ + 0.05) best_ = arc_[near_], best_at_ = now_;
     if (now_ >= backing_until_ && now_ - best_at_ > kRetryAfter) backing_until_ = now_ + kBackUp, best_at_ = now_ + kBackUp, ++retries_;
     if (now_ < backing_until_) {
       t.linear.x() = -speed_;
       return t;
     }
-    const Vec2 d = points_[next_] - X.p.head<2>();
+    std::size_t aim = near_;
+    while (aim + 1 < path_.size() && arc_[aim] < arc_[near_] + kLookahead) ++aim;
+    const Vec2 d = path_[aim] - X.p.head<2>();
     const double e = std::remainder(std::atan2(d.y(), d.x()) - X.yaw(), 2 * M_PI);
-    t.linear.x() = std::abs(e) > 0.6 ? 0.0 : speed_ * std::cos(e);
-    t.angular.z() = std::clamp(2.5 * e, -0.8, 0.8);
+    if (std::abs(e) > M_PI / 2) {
+      t.angular.z() = std::copysign(kMaxTurn, e);
+      return t;
+    }
+    const double curvature = 2 * std::sin(e) / std::max(d.norm(), 0.05);
+    double v = speed_ * std::cos(e);
+    if (std::abs(v * curvature) > kMaxTurn) v = kMaxTurn / std::abs(curvature);
+    t.linear.x() = v;
+    t.angular.z() = v * curvature;
     return t;
   }
   double progress(const Pose3& X) {
     advance(X);
-    if (finished()) return done_;
-    const Vec2 a = next_ == 0 ? from_ : points_[next_ - 1];
-    const double seg = (points_[next_] - a).norm();
-    return done_ + std::max(0.0, seg - (points_[next_] - X.p.head<2>()).norm());
+    return arc_[near_];
   }
-  bool finished() const { return next_ >= points_.size(); }
   bool done(const Pose3& X) {
     advance(X);
-    return finished();
+    return finished(X);
   }
 
  private:
-  static constexpr double kRetryAfter = 3.0, kBackUp = 1.5;                  // s
+  static constexpr double kSpacing = 0.05, kLookahead = 0.35, kSearch = 0.6;  // m
+  static constexpr double kMaxTurn = 0.8;                                       // rad/s
+  static constexpr double kRetryAfter = 3.0, kBackUp = 1.5;                     // s
   static constexpr double kReach = 0.15, kReachPerRetry = 0.1, kReachMax = 0.35;  // m
 
   void advance(const Pose3& X) {
-    while (!finished() && (points_[next_] - X.p.head<2>()).norm() < std::min(kReach + kReachPerRetry * retries_, kReachMax)) {
-      done_ += (points_[next_] - (next_ == 0 ? from_ : points_[next_ - 1])).norm();
-      ++next_;
-      retries_ = 0;
+    const Vec2 p = X.p.head<2>();
+    std::size_t best = near_;
+    for (std::size_t k = near_; k < path_.size() && arc_[k] <= arc_[near_] + kSearch; ++k) {
+      if ((path_[k] - p).squaredNorm() < (path_[best] - p).squaredNorm()) best = k;
     }
+    near_ = best;
   }
-  std::vector<Vec2> points_;
-  Vec2 from_;
+  bool finished(const Pose3& X) const {
+    return near_ + 1 == path_.size() && (path_.back() - X.p.head<2>()).norm() < std::min(kReach + kReachPerRetry * retries_, kReachMax);
+  }
+  std::vector<Vec2> path_;
+  std::vector<double> arc_;  ///< path length up to each point (m)
   double speed_, dt_;
-  std::size_t next_ = 0;
-  double done_ = 0;
+  std::size_t near_ = 0;
   double now_ = 0, best_ = 0, best_at_ = 0, backing_until_ = -1;
-  int retries_ = 0;  ///< back-offs since the last waypoint reached
+  int retries_ = 0;  ///< back-offs so far
 };
 
 /// Follows lane-frame points as one leg.
@@ -303,7 +323,7 @@ TerrainLap drive_points(Simulation& sim, LaneDriver& driver, const TerrainSpec& 
                         const std::vector<Vec2>& in_lane) {
   std::vector<Vec2> world;
   for (const Vec2& p : in_lane) world.push_back(lane_point(lane, p.x(), p.y()));
-  WaypointFollower follow(world, sim.state().robots[0].base.X_WB.p.head<2>(), o.speed, sim.dt());
+  PathFollower follow(world, sim.state().robots[0].base.X_WB.p.head<2>(), o.speed, sim.dt());
   Leg leg;
   leg.twist = [&](const Pose3& X) { return follow.twist(X); };
   leg.progress = [&](const Pose3& X) { return follow.progress(X); };

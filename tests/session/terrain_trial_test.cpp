@@ -115,7 +115,7 @@ TEST(TerrainTrial, BackAndForthEndsAtTheFirstFailure) {
 // Figure-eights on crossing ramps of the test methods' figure-8 size (2.3 x 4.8 m, here 5 degree
 // ramps the robot turns on without trouble): pylons a quarter of the length in from each end
 // (1.2 m from the centre), loops of half the width less 0.7 m (0.45 m), and each figure-eight a
-// path of 2 (2 hypot(1.2, 0.45) + 8 (0.45) sin 22.5 deg) = 7.88 m between its waypoints, driven
+// path of 2 (2 hypot(1.2, 0.45) + pi 0.45) = 7.95 m (four diagonals, two half circles), driven
 // without a reset.
 TEST(TerrainTrial, FigureEightsLoopAroundBothPylonsWithoutAReset) {
   ArenaOptions ao;
@@ -138,13 +138,13 @@ TEST(TerrainTrial, FigureEightsLoopAroundBothPylonsWithoutAReset) {
   EXPECT_NEAR((r.pylons[0] - centre).dot(along), -1.2, 1e-9);
   EXPECT_NEAR((r.pylons[1] - centre).dot(along), 1.2, 1e-9);
   EXPECT_NEAR(r.loop_radius, 0.45, 1e-9);
-  const double eight = 2 * (2 * std::hypot(1.2, 0.45) + 8 * 0.45 * std::sin(M_PI / 8));
+  const double eight = 2 * (2 * std::hypot(1.2, 0.45) + M_PI * 0.45);
   EXPECT_NEAR(r.eight_length, eight, 1e-9);
   ASSERT_EQ(r.laps.size(), 2u);
   EXPECT_EQ(r.repetitions, 2);
   for (const auto& l : r.laps) {
     EXPECT_EQ(l.outcome, "completed");
-    // progress counts waypoint segments from where the lap began (near the centre)
+    // progress is the path's length from where the lap began (near the centre)
     EXPECT_NEAR(l.progress, eight, 0.5);
     // at the speed along at least the figure-eight's path, and not much longer: turns in place
     EXPECT_GT(l.time, (eight - 0.5) / o.speed);
