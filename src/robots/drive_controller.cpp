@@ -6,6 +6,10 @@
 namespace rescuesim {
 
 namespace {
+/// The most the yaw-rate integral adds: this times the set turn rate, and at least kHoldTurn
+/// (rad/s), which holds a straight line.
+constexpr double kTurnAuthority = 3.0, kHoldTurn = 0.2;
+
 double approach(double current, double target, double max_step) {
   return current + std::clamp(target - current, -max_step, max_step);
 }
@@ -44,7 +48,14 @@ void update_drive(const RobotSpec& spec, RobotState& s, SimTime now, double dt) 
   // yaw-rate feedback: the chassis' measured turn rate (about its own z axis) against the set point
   const double measured_w = (s.base.X_WB.q.conjugate() * s.base.w_WB).z();
   const double error = s.drive_w - measured_w;
-  s.yaw_rate_integral = std::clamp(s.yaw_rate_integral + error * dt, -0.5, 0.5);
+  // anti-windup: the integral may add at most three times the turn rate set now (a skid-steer
+  // base turning in place needs about twice its set rate in wheel speed difference), and
+  // 0.2 rad/s to hold a straight line. A robot that cannot turn (wedged on a post, against a
+  // wall) otherwise winds it up until its tracks or wheels counter-rotate at their limit and stay
+  // there whatever it is told next, backing up straight included (the old bound, 0.5 rad, was
+  // 10 rad/s at ki = 20/s)
+  const double bound = d.yaw_rate_ki > 0 ? std::max(kTurnAuthority * std::abs(s.drive_w), kHoldTurn) / d.yaw_rate_ki : 0.0;
+  s.yaw_rate_integral = std::clamp(s.yaw_rate_integral + error * dt, -bound, bound);
   const double w = s.drive_w + d.yaw_rate_kp * error + d.yaw_rate_ki * s.yaw_rate_integral;
   // differential kinematics with the effective (slip-corrected) track
   const double half_track = 0.5 * d.track_width * d.track_multiplier;

@@ -145,5 +145,48 @@ TEST(RescueRobot, HeadHoldsItsPoseAndFollowsCommands) {
   EXPECT_NEAR(rig.robot().q[static_cast<std::size_t>(spec.joint_index("head_tilt"))], -0.9, 0.02);
 }
 
+// The drive controller alone (no physics): a robot wedged so that its chassis never turns, told
+// to turn at 1 rad/s for 5 s, then to back up straight at 0.5 m/s. The yaw-rate integral may add
+// at most three times the set turn rate while turning and 0.2 rad/s while going straight, so once
+// the set points have ramped (0.2 s at 2.5 m/s^2 and 6 rad/s^2) the wheels turn at
+// (-0.5 -+ 0.2 h) / r, h = half the effective track: both sides backwards. With the integral
+// unbounded by the set rate (0.5 rad before, 10 rad/s of turn) the sides counter-rotated and the
+// robot could not back off whatever it was told.
+TEST(DriveController, AWedgedRobotToldToBackUpDrivesBothSidesBackwards) {
+  const RobotSpec spec = rescue_robot();
+  const DriveSpec& d = spec.drive;
+  RobotState s;
+  s.q.assign(spec.joints.size(), 0.0);
+  s.qd.assign(spec.joints.size(), 0.0);
+  const double dt = 0.005;
+  SimTime now{0};
+  const auto run = [&](double v, double w, double seconds) {
+    for (int i = 0; i < static_cast<int>(std::lround(seconds / dt)); ++i) {
+      s.cmd_linear = Vec3(v, 0, 0);
+      s.cmd_angular = Vec3(0, 0, w);
+      s.cmd_time = now;
+      update_drive(spec, s, now, dt);  // the chassis' angular velocity stays zero: wedged
+      now += SimTime::from_seconds(dt);
+    }
+  };
+  run(0.0, 1.0, 5.0);
+  EXPECT_NEAR(s.yaw_rate_integral, 3.0 * 1.0 / d.yaw_rate_ki, 1e-12);
+  run(-0.5, 0.0, 1.0);
+  EXPECT_NEAR(s.drive_v, -0.5, 1e-12);
+  EXPECT_NEAR(s.drive_w, 0.0, 1e-12);
+  EXPECT_NEAR(s.yaw_rate_integral, 0.2 / d.yaw_rate_ki, 1e-12);
+  const double h = 0.5 * d.track_width * d.track_multiplier;
+  for (std::size_t i = 0; i < d.left_wheels.size(); ++i) {
+    const double target = s.joint_target[static_cast<std::size_t>(spec.joint_index(d.left_wheels[i]))] * wheel_sign(d.left_signs, i);
+    EXPECT_NEAR(target, (-0.5 - 0.2 * h) / d.wheel_radius, 1e-9);
+    EXPECT_LT(target, 0.0);
+  }
+  for (std::size_t i = 0; i < d.right_wheels.size(); ++i) {
+    const double target = s.joint_target[static_cast<std::size_t>(spec.joint_index(d.right_wheels[i]))] * wheel_sign(d.right_signs, i);
+    EXPECT_NEAR(target, (-0.5 + 0.2 * h) / d.wheel_radius, 1e-9);
+    EXPECT_LT(target, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace rescuesim
