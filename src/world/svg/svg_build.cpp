@@ -558,8 +558,10 @@ void build_world(const std::vector<Shape>& shapes, const SvgLoadOptions& o, Worl
       add_ground(s, world, diag, ground_pattern(s, world));
       continue;
     }
-    if (const auto pattern = ground_pattern(s, world); pattern && !data(s, "kind")) {
-      add_ground(s, world, diag, pattern);
+    // a fill pattern makes a ground area only of a shape with no other data-kind (which is not
+    // then looked up, so a wall painted with any pattern stays a wall)
+    if (const auto pattern = data(s, "kind") ? std::nullopt : ground_pattern(s, world)) {
+      add_ground(s, world, diag, *pattern);
       continue;
     }
     const Meaning m = meaning_of(s);

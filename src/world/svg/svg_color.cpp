@@ -193,8 +193,8 @@ Paint parse_function(std::string_view name, std::string_view inner) {
 /// A paint without `url(...)`: keyword, hex, function or named colour (already lower-case).
 Paint parse_plain(std::string_view t) {
   if (t == "none" || t == "transparent") return Paint{};
-  if (t == "currentcolor") return Paint{Paint::Kind::current_color, Vec3::Zero()};
-  if (t == "inherit") return Paint{Paint::Kind::inherit, Vec3::Zero()};
+  if (t == "currentcolor") return Paint{Paint::Kind::current_color, Vec3::Zero(), {}};
+  if (t == "inherit") return Paint{Paint::Kind::inherit, Vec3::Zero(), {}};
   if (t.empty()) return invalid();
   if (t.front() == '#') return parse_hex(t.substr(1));
 

@@ -215,8 +215,10 @@ ComputedStyle compute_style(const tinyxml2::XMLElement& e, const ComputedStyle& 
     for (const auto& d : parse_declarations(st)) apply(s, d.property, d.value, parent);
   }
   // currentColor resolves against the element's own `color`
-  if (s.fill.kind == Paint::Kind::current_color) s.fill = {Paint::Kind::color, s.color};
-  if (s.stroke.kind == Paint::Kind::current_color) s.stroke = {Paint::Kind::color, s.color};
+  // (a fill pattern's id, `url(#sand) currentColor`, stays)
+  for (Paint* p : {&s.fill, &s.stroke}) {
+    if (p->kind == Paint::Kind::current_color) p->kind = Paint::Kind::color, p->rgb = s.color;
+  }
   // data-* settings inherit through groups
   for (const tinyxml2::XMLAttribute* a = e.FirstAttribute(); a; a = a->Next()) {
     const std::string_view n(a->Name());

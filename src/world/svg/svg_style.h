@@ -45,8 +45,8 @@ class StyleSheet {
 
 /// The computed style of an element: inherited properties plus data-* settings.
 struct ComputedStyle {
-  Paint fill{Paint::Kind::color, Vec3::Zero()};  ///< SVG's initial fill is black
-  Paint stroke{Paint::Kind::none, Vec3::Zero()};
+  Paint fill{Paint::Kind::color, Vec3::Zero(), {}};  ///< SVG's initial fill is black
+  Paint stroke{Paint::Kind::none, Vec3::Zero(), {}};
   double stroke_width = 1.0;        ///< user units
   std::string linecap = "butt";
   bool visible = true;              ///< visibility (inherited)
