@@ -19,26 +19,21 @@ uniform vec4 u_fog_box_hi[MEDIA_BOXES];               // its high corner - eye (
 uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 #endif
 
-// Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d
-// (with MEDIA_WINDOW, zero for a pixel outside the media's window: the colour camera's, whose
-// shading is dear enough for the test to pay; the depth and thermal passes take the clear
-// programs when no medium is in view, and the sky pass is scissored to the window):
+// Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d:
 // visible, near infrared, long-wave infrared, and in w the visible depth weighted by each
 // medium's scattering albedo. An axis-aligned box clips the segment with the inverse of d (three
 // slabs, no division of its own); any other piece against its floor-to-top slab and its sides
 // (Cyrus-Beck, a division per side). Every piece has MEDIA_SIDES sides (padded with ones that
 // hold everything), so the loops have constant bounds and constant uniform indices.
-#if MEDIA_WINDOW
-uniform vec4 u_fog_window;  // window px (x0, y0, x1, y1) holding the media's projection: no ray outside it crosses one
-#endif
-
+// Every fragment of a program with media pays for this, so the cameras take their clear
+// programs when no medium is in view, and the sky pass is scissored to the media's window. A
+// window test here (skip pixels outside it) was slower, not faster, on llvmpipe, which runs both
+// sides of a branch that differs across its SIMD lanes: colour through smoke 0.77 -> 0.82 of
+// the clear camera without it.
 // fog_fraction is the same per metre of the segment (the extinctions times the fraction of the
 // segment inside each piece): the depth camera compares its square, which needs no square root.
 vec4 fog_fraction(vec3 d) {
   vec4 sum = vec4(0.0);
-#if MEDIA_WINDOW
-  if (any(lessThan(gl_FragCoord.xy, u_fog_window.xy)) || any(greaterThanEqual(gl_FragCoord.xy, u_fog_window.zw))) return sum;
-#endif
 #if MEDIA_BOXES > 0
   vec3 inv = 1.0 / vec3(abs(d.x) > 1e-9 ? d.x : 1e-9, abs(d.y) > 1e-9 ? d.y : 1e-9, abs(d.z) > 1e-9 ? d.z : 1e-9);
   for (int i = 0; i < MEDIA_BOXES; ++i) {
@@ -117,18 +112,18 @@ void main() {
 )";
 
 // No #version (as above). The depth camera's light goes out and back through the media: a pixel
-// whose two-way transmittance exp(-2 tau) falls below the least return has none, written as a depth just
-// above the far plane's 0 that the read-back turns into NaN. Optical depth only grows along a
-// ray, so nothing behind a lost pixel can be nearer and valid.
+// whose two-way transmittance exp(-2 tau) falls below the least return has none, flagged 1 in the
+// pass's R8 target (the read-back turns it into NaN). The depth itself is left to the fixed
+// function, so the early depth test still skips hidden fragments.
 const char* const kDepthFogFragment = R"(
-layout(depth_less) out float gl_FragDepth;  // only ever lowered (reversed Z: farther): early depth tests stay valid
 in vec3 v_world;
 uniform vec3 u_eye;
 uniform float u_lost_depth_squared;  // (ln(1 / the least return) / 2)^2: a one-way optical depth past its root loses the return
+layout(location = 0) out float o_lost;
 void main() {
   vec3 d = v_world - u_eye;
   float per_metre = fog_fraction(d).y;
-  gl_FragDepth = per_metre * per_metre * dot(d, d) > u_lost_depth_squared ? 1e-30 : gl_FragCoord.z;
+  o_lost = per_metre * per_metre * dot(d, d) > u_lost_depth_squared ? 1.0 : 0.0;
 }
 )";
 

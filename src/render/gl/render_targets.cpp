@@ -60,6 +60,8 @@ std::unique_ptr<DepthTargets> make_depth_targets(int w, int h) {
   t.fbo = Framebuffer::create();
   t.depth_rb = Renderbuffer::create(GL_DEPTH_COMPONENT32F, w, h);
   glNamedFramebufferRenderbuffer(t.fbo.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_rb.id());
+  t.lost_rb = Renderbuffer::create(GL_R8, w, h);
+  glNamedFramebufferRenderbuffer(t.fbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.lost_rb.id());
   glNamedFramebufferDrawBuffer(t.fbo.id(), GL_NONE);
   glNamedFramebufferReadBuffer(t.fbo.id(), GL_NONE);
   t.fbo.check_complete("depth");

@@ -2,7 +2,9 @@
 /// Off-screen targets of one image size, created on first use by each kind of pass and kept
 /// for the next frame of that size (a camera renders the same size over and over).
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "render/gl/gl_objects.h"
 #include "render/renderer.h"
@@ -25,10 +27,14 @@ struct ColorTargets {
   GLuint readback() const { return output ? output.id() : scene.id(); }
 };
 
-/// Depth pass target: a 32-bit float depth buffer only.
+/// Depth pass targets: a 32-bit float depth buffer, and an R8 flag per pixel for the pass through
+/// smoke (1 where the return is lost), drawn to only by that pass: the clear pass has no colour
+/// output at all.
 struct DepthTargets {
   Framebuffer fbo;
   Renderbuffer depth_rb;
+  Renderbuffer lost_rb;
+  std::vector<std::uint8_t> lost;  ///< the flags read back, row by row from the bottom
 };
 
 /// Thermal pass targets: kelvin (R32F) with depth (the blur runs on the CPU after readback).
