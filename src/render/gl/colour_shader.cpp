@@ -161,7 +161,7 @@ invariant gl_Position;
 out float v_height;
 out float v_upright;
 #if MEDIA
-out vec3 v_world;
+out vec3 v_ray;  // from the eye to the vertex (m): the fragment's segment through the media
 #endif
 out vec2 v_uv;
 out vec3 v_ambient;
@@ -171,7 +171,7 @@ void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   vec3 n = normalize(mat3(u_model) * a_normal);
 #if MEDIA
-  v_world = world.xyz;
+  v_ray = world.xyz - u_eye;
 #endif
   v_height = world.z;
   v_upright = 1.0 - abs(n.z);
@@ -204,7 +204,7 @@ in float v_upright;
 in vec3 v_ambient;
 in vec3 v_direct;
 #if MEDIA
-in vec3 v_world;
+in vec3 v_ray;
 #endif
 #endif
 #if MEDIA
@@ -212,8 +212,8 @@ uniform vec3 u_fog_light;                // light on the media, as a white matte
 
 // the surface seen through the media: dimmed by exp(-tau) and veiled by the light they scatter
 // towards the camera (the airlight: their albedo times the light on them)
-vec3 fogged(vec3 color, vec3 p) {
-  vec4 tau = fog_depth(p - u_eye);
+vec3 fogged(vec3 color, vec3 ray) {
+  vec4 tau = fog_depth(ray);
   float t = exp(-tau.x);
   vec3 air = tau.x > 0.0 ? u_fog_light * (tau.w / tau.x) : vec3(0.0);
   return color * t + air * (1.0 - t);
@@ -281,8 +281,10 @@ void main() {
 #else
   vec3 color = albedo * (v_ambient * contact(v_height, v_upright) + v_direct);
 #endif
-#if MEDIA
-  color = fogged(color, v_world);
+#if MEDIA && PER_PIXEL
+  color = fogged(color, v_world - u_eye);
+#elif MEDIA
+  color = fogged(color, v_ray);
 #endif
   vec3 encoded = to_srgb(color);
   o_color = vec4(encoded, dot(encoded, vec3(0.299, 0.587, 0.114)));

@@ -75,12 +75,13 @@ layout(location = 0) in vec3 a_position;
 layout(location = 4) in float a_temperature;
 uniform mat4 u_view_proj;
 uniform mat4 u_model;
+uniform vec3 u_eye;
 invariant gl_Position;
-out vec3 v_world;
+out vec3 v_ray;  // from the eye to the vertex (m): the fragments' segment through the media
 flat out float v_temperature;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
-  v_world = world.xyz;
+  v_ray = world.xyz - u_eye;
   v_temperature = a_temperature;
   gl_Position = u_view_proj * world;
 }
@@ -116,14 +117,12 @@ void main() {
 // pass's R8 target (the read-back turns it into NaN). The depth itself is left to the fixed
 // function, so the early depth test still skips hidden fragments.
 const char* const kDepthFogFragment = R"(
-in vec3 v_world;
-uniform vec3 u_eye;
+in vec3 v_ray;
 uniform float u_lost_depth_squared;  // (ln(1 / the least return) / 2)^2: a one-way optical depth past its root loses the return
 layout(location = 0) out float o_lost;
 void main() {
-  vec3 d = v_world - u_eye;
-  float per_metre = fog_fraction(d).y;
-  o_lost = per_metre * per_metre * dot(d, d) > u_lost_depth_squared ? 1.0 : 0.0;
+  float per_metre = fog_fraction(v_ray).y;
+  o_lost = per_metre * per_metre * dot(v_ray, v_ray) > u_lost_depth_squared ? 1.0 : 0.0;
 }
 )";
 
@@ -131,11 +130,10 @@ void main() {
 // extinction and the media's own emission at the ambient temperature.
 const char* const kThermalFogFragment = R"(
 flat in float v_temperature;
-in vec3 v_world;
-uniform vec3 u_eye;
+in vec3 v_ray;
 uniform float u_ambient;
 layout(location = 0) out float o_kelvin;
-void main() { o_kelvin = mix(u_ambient, v_temperature, exp(-fog_depth(v_world - u_eye).z)); }
+void main() { o_kelvin = mix(u_ambient, v_temperature, exp(-fog_depth(v_ray).z)); }
 )";
 
 }  // namespace rescuesim::gl::shaders
