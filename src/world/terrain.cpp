@@ -205,12 +205,24 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
   }
   if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width)) throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
   if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + message_number(o.approach) + " m is too short to start from (expected at least 1 m)");
+  if (o.figure_eight) {
+    for (TerrainSpec::Kind k : o.lanes) {
+      if (k != TerrainSpec::Kind::stepfield && k != TerrainSpec::Kind::crossing_ramps) {
+        throw Error(std::string("a figure-8 arena holds stepfields and crossing ramps (the test methods' figure-8 terrains), not ") +
+                    TerrainSpec::kind_name(k) + "; drive " + TerrainSpec::kind_name(k) + " in lanes (leave out --figure-eight)");
+      }
+    }
+    if (!(o.lane_width >= kFigureEightWidth + 0.1 - 1e-9)) {
+      throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a figure-8 element " + message_number(kFigureEightWidth) +
+                  " m wide (expected at least " + message_number(kFigureEightWidth + 0.1) + " m)");
+    }
+  }
   WorldSpec w;
   w.name = "arena";
   w.seed = o.seed;
   w.materials = default_materials();
   double longest = 0;
-  for (TerrainSpec::Kind k : o.lanes) longest = std::max(longest, TerrainSpec::defaults(k).length);
+  for (TerrainSpec::Kind k : o.lanes) longest = std::max(longest, o.figure_eight ? kFigureEightLength : TerrainSpec::defaults(k).length);
   const double length = longest + 2 * o.approach, width = o.lane_width * static_cast<double>(o.lanes.size());
   w.floor_min = {0, 0};
   w.floor_max = {width, length};
@@ -227,6 +239,10 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
     e.name = std::string(i < 10 ? "lane_0" : "lane_") + std::to_string(i) + "_" + TerrainSpec::kind_name(o.lanes[i]);
     for (char& c : e.name) c = c == '-' ? '_' : c;
     e.width = o.lane_width - 0.1;
+    if (o.figure_eight) {
+      e.width = kFigureEightWidth;
+      e.length = kFigureEightLength;
+    }
     e.seed = o.seed + i;
     const double x = o.lane_width * (static_cast<double>(i) + 0.5);
     e.pose = {x, 0.5 * length, M_PI / 2};
@@ -236,6 +252,7 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
     w.terrain.push_back(std::move(e));
   }
   w.metadata["lane_width"] = message_number(o.lane_width);
+  if (o.figure_eight) w.metadata["pattern"] = "figure-eight";
   RobotPlacement start;
   start.name = "robot";
   start.start = {o.lane_width * (o.start_lane + 0.5), 0.5 * o.approach, M_PI / 2};

@@ -38,11 +38,20 @@ struct ArenaOptions {
   double wall_height = 1.0;    ///< m
   int start_lane = 0;
   std::uint64_t seed = 1;      ///< the stepfields' seeds are seed, seed + 1, ... in lane order
+  /// Figure-8 apparatus instead of lanes: each element at the test methods' figure-8 size,
+  /// kFigureEightWidth x kFigureEightLength, for figure-eights around two pylons (stepfields and
+  /// crossing ramps only; lanes at least kFigureEightWidth + 0.1 m wide).
+  bool figure_eight = false;
 };
+
+/// The test methods' figure-8 terrain: 2.4 m wide (two 1.2 m panels), 4.8 m long.
+inline constexpr double kFigureEightWidth = 2.4;
+inline constexpr double kFigureEightLength = 4.8;
 
 /// The arena as a WorldSpec (in the SVG convention, ready for world_to_svg). Its metadata records
 /// each lane's kind and its start and end lines (the element's near and far edges). Throws Error
-/// for no lanes, a start lane that does not exist, or a lane too narrow for its element.
+/// for no lanes, a start lane that does not exist, a lane too narrow for its element, or a
+/// figure-8 arena with a kind that is not driven in figure-eights.
 WorldSpec test_method_arena(const ArenaOptions& options);
 
 /// The terrain kind called `name` ("stepfield", "crossing-ramps", ...); throws Error naming the
