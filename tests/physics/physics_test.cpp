@@ -150,7 +150,9 @@ TEST(Physics, ABoxSlidesVSquaredOverTwoMuGOnEachGroundMaterial) {
       std::printf("%s, compound %d: %.4f m (v0^2 / (2 mu g) = %.4f m), %.3f x the floor's (expected %.3f)\n", ground.c_str(), compound, d,
                   expected, d / on_floor, 0.9 / mu);
       EXPECT_NEAR(d, expected, 0.09 * expected) << ground << " compound " << compound;
-      if (!compound) EXPECT_NEAR(d / on_floor, 0.9 / mu, 0.03 * 0.9 / mu) << ground;
+      if (!compound) {
+        EXPECT_NEAR(d / on_floor, 0.9 / mu, 0.03 * 0.9 / mu) << ground;
+      }
     }
   }
 }

@@ -64,7 +64,7 @@ TEST(ScenarioLoad, SdfWorldReplacesTheMazeWithItsModelsAndStep) {
   // model://rescue_ramp and model://crate come from the --resource-path folder
   const std::string worlds = std::string(RESCUESIM_SOURCE_DIR) + "/worlds";
   ScenarioOverrides o;
-  o.world = worlds + "/rescue_yard.sdf";
+  o.world = std::string(worlds).append("/rescue_yard.sdf");  // (not worlds + "...": GCC 12 warns falsely, -Warray-bounds)
   o.resource_paths = {worlds + "/models"};
   const Scenario s = load_scenario_with_overrides("", builtin_models(), o);
   EXPECT_FALSE(s.maze.has_value());

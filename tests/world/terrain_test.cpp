@@ -18,7 +18,7 @@ using Kind = TerrainSpec::Kind;
 
 TerrainSpec element(Kind kind, double length, double width) {
   TerrainSpec t = TerrainSpec::defaults(kind);
-  t.name = "t";
+  t.name = std::string(1, 't');  // (not = "t": GCC 12 warns falsely of an overflow there, -Wstringop-overflow)
   t.length = length;
   t.width = width;
   return t;

@@ -512,7 +512,9 @@ TEST(FoxgloveProbe, TheBenchsClientReportsEveryScanWithItsStamp) {
   EXPECT_LE(stamps.size(), 40u);
   for (std::size_t i = 0; i < stamps.size(); ++i) {
     EXPECT_EQ(stamps[i] % 100'000'000, 0) << stamps[i];
-    if (i > 0) EXPECT_EQ(stamps[i] - stamps[i - 1], 100'000'000) << i;
+    if (i > 0) {
+      EXPECT_EQ(stamps[i] - stamps[i - 1], 100'000'000) << i;
+    }
   }
   // nothing listening: a clear error once its time to connect (here 1 s) has passed
   const auto none = testing::run_command(std::string("'") + RESCUESIM_EXE + "' bench-probe --transport foxglove --port " +

@@ -69,7 +69,9 @@ class Recover : public ::testing::Test {
     const auto messages = testing::all_messages(r);
     ASSERT_EQ(messages.size(), n);
     EXPECT_TRUE(std::equal(messages.begin(), messages.end(), original_.begin()));
-    if (n > 0) EXPECT_EQ(r.statistics()->message_end_time, original_[n - 1].log_time);
+    if (n > 0) {
+      EXPECT_EQ(r.statistics()->message_end_time, original_[n - 1].log_time);
+    }
   }
   std::filesystem::path dir_;
   std::vector<std::uint8_t> whole_;
