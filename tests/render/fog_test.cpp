@@ -102,15 +102,17 @@ TEST(Fog, ColourContrastFallsAsExpOfTheOpticalDepth) {
   // same transmittance T and airlight A, so the difference of the two images is T times the
   // difference without smoke, pixel by pixel
   // once as an axis-aligned box (the shaders' fast path), once turned by 0.4 rad about its
-  // centre (the general convex path)
+  // centre (the same path in the box's own frame), once as a trapezoid (the general convex path)
   MediumSpec turned = slab(0.5);
   for (Vec2& p : turned.outline) p = Vec2(3, 0) + Eigen::Rotation2Dd(0.4) * (p - Vec2(3, 0));
-  // and with a box behind the camera beside the turned slab: both paths in one program
+  MediumSpec trapezoid = slab(0.5);
+  trapezoid.outline[2].x() = 4.6;  // the far side's left corner pushed out: not a rectangle
+  // and with a box behind the camera beside the trapezoid: both paths in one program
   MediumSpec behind = slab(2.0);
   for (Vec2& p : behind.outline) p.x() -= 7;
-  for (const MediumSpec& medium : {slab(0.5), turned}) {
+  for (const MediumSpec& medium : {slab(0.5), turned, trapezoid}) {
     std::vector<MediumSpec> media = {medium};
-    if (medium.outline[0].y() != -2) media.push_back(behind);
+    if (medium.outline[2].x() > 4.5) media.push_back(behind);
     const auto image = [&](double grey, const std::vector<MediumSpec>& m) {
       renderer->load(build_render_scene(smoky_world(grey, m)));
       return renderer->color(kView);
@@ -118,7 +120,7 @@ TEST(Fog, ColourContrastFallsAsExpOfTheOpticalDepth) {
     const ColorImage light_clear = image(0.9, {}), dark_clear = image(0.3, {});
     const ColorImage light = image(0.9, media), dark = image(0.3, media);
     render_test::dump("fog_wall_clear", light_clear);
-    render_test::dump(medium.outline[0].y() == -2 ? "fog_wall_smoke" : "fog_wall_smoke_turned", light);
+    render_test::dump(media.size() > 1 ? "fog_wall_smoke_trapezoid" : medium.outline[0].y() == -2 ? "fog_wall_smoke" : "fog_wall_smoke_turned", light);
     int checked = 0;
     for (int j = 28; j < 44; j += 3) {
       for (int i = 4; i < 92; i += 5) {

@@ -58,23 +58,34 @@ const Eigen::Vector3f kSkyAmbient(0.30f, 0.33f, 0.38f);
 const Eigen::Vector3f kGroundAmbient(0.15f, 0.14f, 0.12f);
 const Eigen::Vector3f kFillColor(0.16f, 0.16f, 0.17f);
 
-/// Whether a fog piece is an axis-aligned box (a rect drawn in an SVG, unrotated), and its
-/// corners: the shaders clip a ray against such a box with three multiplications by the ray's
-/// inverse direction instead of a division per side.
-bool box_of(const FogPiece& p, Vec3& lo, Vec3& hi) {
+/// Whether a fog piece is a box: a rectangular footprint (an SVG rect, turned or not) between its
+/// bottom and top; then its axis u (a unit vector, (1, 0) for a rectangle along the world's axes)
+/// and its corners in the frame (u, u turned 90 degrees, z). The shaders clip a ray against a box
+/// with three multiplications by the ray's inverse direction in that frame instead of a division
+/// per side.
+bool box_of(const FogPiece& p, Vec3& lo, Vec3& hi, Vec2& axis) {
   if (p.half_planes.size() != 4) return false;
-  lo = Vec3(-1e300, -1e300, p.bottom);
-  hi = Vec3(1e300, 1e300, p.top);
-  int seen = 0;
-  for (const Vec3& h : p.half_planes) {
-    for (int axis = 0; axis < 2; ++axis) {
-      const double along = h[axis], across = h[1 - axis];
-      if (std::abs(across) > 1e-12 || std::abs(std::abs(along) - 1) > 1e-12) continue;
-      if (along > 0) hi[axis] = h.z(); else lo[axis] = -h.z();
-      seen |= 1 << (2 * axis + (along > 0 ? 1 : 0));
+  const auto corners_along = [&](const Vec2& u) {
+    const Vec2 v(-u.y(), u.x());
+    lo = Vec3(-1e300, -1e300, p.bottom);
+    hi = Vec3(1e300, 1e300, p.top);
+    int seen = 0;
+    for (const Vec3& h : p.half_planes) {
+      const Vec2 n = h.head<2>();
+      const double along[2] = {n.dot(u), n.dot(v)};
+      for (int k = 0; k < 2; ++k) {
+        if (std::abs(std::abs(along[k]) - 1) > 1e-12) continue;
+        if (along[k] > 0) hi[k] = h.z(); else lo[k] = -h.z();
+        seen |= 1 << (2 * k + (along[k] > 0 ? 1 : 0));
+      }
     }
-  }
-  return seen == 15;
+    return seen == 15;
+  };
+  // along the world's axes first, so such a box keeps exactly the arithmetic it always had
+  axis = Vec2(1, 0);
+  if (corners_along(axis)) return true;
+  axis = p.half_planes[0].head<2>().normalized();
+  return corners_along(axis);
 }
 
 int shadow_map_size(Quality q) { return q == Quality::high ? 2048 : q == Quality::medium ? 1024 : 0; }
@@ -171,7 +182,8 @@ class GlRenderer final : public Renderer {
   int fog_pieces_ = 0, fog_sides_ = 0;  ///< what the fog programs were compiled for: general pieces, sides of each,
   int fog_boxes_ = 0;                   ///< and axis-aligned boxes
   std::vector<FogPiece> fog_;           ///< the general pieces now, fog_pieces_ of them (clear air after the real ones)
-  std::vector<Eigen::AlignedBox3d> fog_box_;  ///< the boxes now, fog_boxes_ of them
+  std::vector<Eigen::AlignedBox3d> fog_box_;  ///< the boxes now, fog_boxes_ of them, in their own frames
+  std::vector<Vec2> fog_box_axis_;            ///< and their axes (box_of)
   std::vector<FogPiece> fog_now_;       ///< every piece as last uploaded (the programs compiled again take them)
   Program fog_sky_, depth_fog_, thermal_fog_;
   GLint depth_fog_model_ = -1, thermal_fog_model_ = -1;
@@ -466,7 +478,8 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
   int sides = 0, n = 0, boxes = 0;
   for (const FogPiece& p : pieces) {
     Vec3 lo, hi;
-    if (box_of(p, lo, hi)) {
+    Vec2 axis;
+    if (box_of(p, lo, hi, axis)) {
       ++boxes;
     } else {
       ++n;
@@ -503,6 +516,7 @@ void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
   if (&pieces != &fog_now_) fog_now_ = pieces;
   fog_.assign(static_cast<std::size_t>(fog_pieces_), FogPiece{});
   fog_box_.assign(static_cast<std::size_t>(fog_boxes_), Eigen::AlignedBox3d(Vec3::Zero(), Vec3::Zero()));
+  fog_box_axis_.assign(static_cast<std::size_t>(fog_boxes_), Vec2(1, 0));
   std::vector<float> sigma(4 * static_cast<std::size_t>(fog_pieces_), 0.0f), box_sigma(4 * static_cast<std::size_t>(fog_boxes_), 0.0f);
   const auto coefficients = [](const FogPiece& p, float* out) {
     out[0] = static_cast<float>(p.sigma_visible);
@@ -513,9 +527,11 @@ void GlRenderer::upload_fog(const std::vector<FogPiece>& pieces, double time) {
   int general = 0, boxes = 0;
   for (const FogPiece& p : pieces) {
     Vec3 lo, hi;
-    if (box_of(p, lo, hi)) {
+    Vec2 axis;
+    if (box_of(p, lo, hi, axis)) {
       if (boxes >= fog_boxes_) continue;  // more than the programs were compiled for: left out
       fog_box_[static_cast<std::size_t>(boxes)] = Eigen::AlignedBox3d(lo, hi);
+      fog_box_axis_[static_cast<std::size_t>(boxes)] = axis;
       coefficients(p, &box_sigma[4 * static_cast<std::size_t>(boxes++)]);
     } else {
       // grown past what the programs were compiled for: left out
@@ -586,13 +602,17 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
     slab[4 * i] = static_cast<float>(f.bottom - eye.z());
     slab[4 * i + 1] = static_cast<float>(f.top - eye.z());
   }
-  // a box's corners as seen from the eye
-  std::vector<float> lo(4 * fog_box_.size(), 0.0f), hi(4 * fog_box_.size(), 0.0f);
+  // a box's corners as seen from the eye, in the box's frame, and its axis
+  std::vector<float> lo(4 * fog_box_.size(), 0.0f), hi(4 * fog_box_.size(), 0.0f), axis(4 * fog_box_.size(), 0.0f);
   for (std::size_t i = 0; i < fog_box_.size(); ++i) {
+    const Vec2 u = fog_box_axis_[i];
+    const Vec3 eye_b(u.dot(eye.head<2>()), Vec2(-u.y(), u.x()).dot(eye.head<2>()), eye.z());
     for (int c = 0; c < 3; ++c) {
-      lo[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::max(fog_box_[i].min()[c] - eye[c], -1e30));
-      hi[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::min(fog_box_[i].max()[c] - eye[c], 1e30));
+      lo[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::max(fog_box_[i].min()[c] - eye_b[c], -1e30));
+      hi[4 * i + static_cast<std::size_t>(c)] = static_cast<float>(std::min(fog_box_[i].max()[c] - eye_b[c], 1e30));
     }
+    axis[4 * i] = static_cast<float>(u.x());
+    axis[4 * i + 1] = static_cast<float>(u.y());
   }
   if (fog_pieces_ > 0) {
     glProgramUniform4fv(p.id(), p.uniform("u_fog_edge"), fog_pieces_ * fog_sides_, edge.data());
@@ -601,6 +621,7 @@ void GlRenderer::set_fog_eye(const Program& p, const Vec3& eye) const {
   if (fog_boxes_ > 0) {
     glProgramUniform4fv(p.id(), p.uniform("u_fog_box_lo"), fog_boxes_, lo.data());
     glProgramUniform4fv(p.id(), p.uniform("u_fog_box_hi"), fog_boxes_, hi.data());
+    glProgramUniform4fv(p.id(), p.uniform("u_fog_box_axis"), fog_boxes_, axis.data());
   }
   p.set("u_eye", Eigen::Vector3f(eye.cast<float>()));
 }

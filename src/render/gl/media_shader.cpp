@@ -14,15 +14,17 @@ uniform vec4 u_fog_slab[MEDIA_PIECES];                // bottom - eye z, top - e
 uniform vec4 u_fog_sigma[MEDIA_PIECES];               // extinction (1/m): visible, near infrared, long-wave infrared; scattering albedo
 #endif
 #if MEDIA_BOXES > 0
-uniform vec4 u_fog_box_lo[MEDIA_BOXES];               // an axis-aligned box's low corner - eye (m)
-uniform vec4 u_fog_box_hi[MEDIA_BOXES];               // its high corner - eye (m)
+uniform vec4 u_fog_box_axis[MEDIA_BOXES];             // a box's axis u (xy, a unit vector): its frame is (u, u turned 90 deg, z)
+uniform vec4 u_fog_box_lo[MEDIA_BOXES];               // its low corner - eye, in its frame (m)
+uniform vec4 u_fog_box_hi[MEDIA_BOXES];               // its high corner - eye, in its frame (m)
 uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 #endif
 
 // Optical depths of the segment from the camera (the eye of the uniforms above) to eye + d:
 // visible, near infrared, long-wave infrared, and in w the visible depth weighted by each
-// medium's scattering albedo. An axis-aligned box clips the segment with the inverse of d (three
-// slabs, no division of its own); any other piece against its floor-to-top slab and its sides
+// medium's scattering albedo. A box (a rectangular footprint, turned or not) clips the segment
+// with the inverse of d in its own frame (three slabs: a rotation of d and no division of its
+// own; for a box along the world's axes the rotation is exact and changes nothing); any other piece against its floor-to-top slab and its sides
 // (Cyrus-Beck, a division per side). Every piece has MEDIA_SIDES sides (padded with ones that
 // hold everything), so the loops have constant bounds and constant uniform indices.
 // Every fragment of a program with media pays for this, so the cameras take their clear
@@ -35,8 +37,10 @@ uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 vec4 fog_fraction(vec3 d) {
   vec4 sum = vec4(0.0);
 #if MEDIA_BOXES > 0
-  vec3 inv = 1.0 / vec3(abs(d.x) > 1e-9 ? d.x : 1e-9, abs(d.y) > 1e-9 ? d.y : 1e-9, abs(d.z) > 1e-9 ? d.z : 1e-9);
   for (int i = 0; i < MEDIA_BOXES; ++i) {
+    vec2 u = u_fog_box_axis[i].xy;
+    vec3 db = vec3(u.x * d.x + u.y * d.y, u.x * d.y - u.y * d.x, d.z);
+    vec3 inv = 1.0 / vec3(abs(db.x) > 1e-9 ? db.x : 1e-9, abs(db.y) > 1e-9 ? db.y : 1e-9, abs(db.z) > 1e-9 ? db.z : 1e-9);
     vec3 a = u_fog_box_lo[i].xyz * inv, b = u_fog_box_hi[i].xyz * inv;
     vec3 near = min(a, b), far = max(a, b);
     float t0 = max(max(near.x, near.y), max(near.z, 0.0)), t1 = min(min(far.x, far.y), min(far.z, 1.0));
