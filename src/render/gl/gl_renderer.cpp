@@ -180,7 +180,7 @@ class GlRenderer final : public Renderer {
   std::vector<MediumSpec> media_;  ///< the scene's smoke and dust
   double fog_time_ = -1;           ///< sim time the fog uniforms were cut at
   int fog_pieces_ = 0, fog_sides_ = 0;  ///< what the fog programs were compiled for: general pieces, sides of each,
-  int fog_boxes_ = 0;                   ///< and axis-aligned boxes
+  int fog_boxes_ = 0;                   ///< and boxes (rectangular footprints, box_of)
   std::vector<FogPiece> fog_;           ///< the general pieces now, fog_pieces_ of them (clear air after the real ones)
   std::vector<Eigen::AlignedBox3d> fog_box_;  ///< the boxes now, fog_boxes_ of them, in their own frames
   std::vector<Vec2> fog_box_axis_;            ///< and their axes (box_of)
