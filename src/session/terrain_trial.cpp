@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "sim/simulation.h"
 #include "viz/world_plot.h"
+#include "world/terrain.h"
 #include "world/world.h"
 
 namespace rescuesim {
@@ -459,7 +460,7 @@ const TerrainSpec* find_terrain_lane(const WorldSpec& world, const std::string& 
 }
 
 void check_terrain_pattern(const TerrainSpec& lane, TerrainPattern p) {
-  if (p == TerrainPattern::figure_eight && lane.kind != TerrainSpec::Kind::stepfield && lane.kind != TerrainSpec::Kind::crossing_ramps) {
+  if (p == TerrainPattern::figure_eight && !is_figure_eight_kind(lane.kind)) {
     throw Error(std::string("figure-eights are driven on stepfields and crossing ramps (the test methods' figure-8 terrains); lane '") +
                 lane.name + "' is " + TerrainSpec::kind_name(lane.kind) + ": use --pattern laps or back-and-forth");
   }

@@ -207,7 +207,7 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
   if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + message_number(o.approach) + " m is too short to start from (expected at least 1 m)");
   if (o.figure_eight) {
     for (TerrainSpec::Kind k : o.lanes) {
-      if (k != TerrainSpec::Kind::stepfield && k != TerrainSpec::Kind::crossing_ramps) {
+      if (!is_figure_eight_kind(k)) {
         throw Error(std::string("a figure-8 arena holds stepfields and crossing ramps (the test methods' figure-8 terrains), not ") +
                     TerrainSpec::kind_name(k) + "; drive " + TerrainSpec::kind_name(k) + " in lanes (leave out --figure-eight)");
       }

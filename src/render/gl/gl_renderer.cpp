@@ -864,7 +864,9 @@ void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
   }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(out.z.size() * sizeof(float)), out.z.data());
-  t.lost.assign(through_media ? out.z.size() : 0, 0);
+  // (no fill: the read-back writes every flag)
+  if (through_media) t.lost.resize(out.z.size());
+  else t.lost.clear();
   if (through_media) {
     glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
     glReadnPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, static_cast<GLsizei>(t.lost.size()), t.lost.data());
