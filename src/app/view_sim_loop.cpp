@@ -3,13 +3,17 @@
 #include <exception>
 
 #include "app/realtime_pacer.h"
+#include "core/thread.h"
 
 namespace rescuesim::app {
 
 using Clock = std::chrono::steady_clock;
 
 ViewSimLoop::ViewSimLoop(Session& session, const ViewControls& controls) : session_(session), controls_(controls) {
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    name_this_thread("sim");
+    run();
+  });
 }
 
 ViewSimLoop::~ViewSimLoop() {

@@ -230,18 +230,33 @@ class Ros1Reader {
 
 }  // namespace
 
-void to_ros1(const Message& m, std::vector<std::uint8_t>& out, std::uint32_t seq) {
+std::size_t ros1_size(const Message& m) {
+  return std::visit(
+      [](const auto& x) {
+        Ros1Writer<false> measure(nullptr, 0);
+        fields::visit_fields(measure, x);
+        return measure.size();
+      },
+      m);
+}
+
+void write_ros1(const Message& m, std::span<std::uint8_t> out, std::uint32_t seq) {
   std::visit(
       [&](const auto& x) {
         Ros1Writer<false> measure(nullptr, seq);
         fields::visit_fields(measure, x);
-        const std::size_t start = out.size();
-        out.resize(start + measure.size());
-        Ros1Writer<true> w(out.data() + start, seq);
+        RS_DEMAND(out.size() == measure.size(), "write_ros1: the buffer does not hold exactly the message");
+        Ros1Writer<true> w(out.data(), seq);
         fields::visit_fields(w, x);
         RS_DEMAND(w.size() == measure.size(), "ROS 1 writer wrote a different size than it measured");
       },
       m);
+}
+
+void to_ros1(const Message& m, std::vector<std::uint8_t>& out, std::uint32_t seq) {
+  const std::size_t start = out.size();
+  out.resize(start + ros1_size(m));
+  write_ros1(m, std::span(out).subspan(start), seq);
 }
 
 Message from_ros1(const TypeSupport& type, std::span<const std::uint8_t> bytes) {

@@ -61,6 +61,12 @@ const std::vector<TypeSupport>& all_types();
 
 /// ROS 1 serialisation (appended to `out`); `seq` fills std_msgs/Header.seq of stamped messages.
 void to_ros1(const Message& m, std::vector<std::uint8_t>& out, std::uint32_t seq = 0);
+/// The number of bytes to_ros1 appends for `m`.
+std::size_t ros1_size(const Message& m);
+/// to_ros1 into a buffer the caller owns, of exactly ros1_size(m) bytes (a transport's own send
+/// buffer: a megabyte image is written once, with no vector to fill with zeros first and copy
+/// from). A buffer of another size is a bug of the caller: it aborts (RS_DEMAND).
+void write_ros1(const Message& m, std::span<std::uint8_t> out, std::uint32_t seq = 0);
 /// CDR (XCDR1, little endian) with the encapsulation header, appended to `out`.
 void to_cdr(const Message& m, std::vector<std::uint8_t>& out);
 /// One JSON object (compact) with ROS field names; stamps as {"sec":..,"nsec":..}; byte arrays

@@ -186,6 +186,18 @@ TEST(Ros1Serialize, Image2x1Rgb8) {
                                                  .hex("06 00 00 00 01 02 03 04 05 06")  // 40 data; 50 bytes
                                                  .bytes();
   EXPECT_EQ(ros1(test::image()), expected);
+
+  // the same bytes written into a buffer of the caller's (the ROS 1 bridge's path: roscpp's own
+  // send buffer), whose 50 bytes ros1_size reports; a buffer of another size is refused
+  ASSERT_EQ(ros1_size(test::image()), 50u);
+  std::vector<std::uint8_t> own(50, 0xee);
+  write_ros1(test::image(), own, 0);
+  EXPECT_EQ(own, expected);
+  std::vector<std::uint8_t> small(49);
+  EXPECT_DEATH(write_ros1(test::image(), small, 0), "does not hold exactly");
+  // seq goes into the header, as to_ros1 writes it
+  write_ros1(test::image(), own, 7);
+  EXPECT_EQ(own[0], 7);
 }
 
 TEST(Ros1Serialize, CameraInfo) {

@@ -14,6 +14,7 @@
 #include "bridges/foxglove/bridge_impl.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread.h"
 #include "msgs/serialize.h"
 #include "bus/bridge_host.h"
 
@@ -99,7 +100,10 @@ void FoxgloveBridge::start(BridgeHost& host) {
   log::info("foxglove: listening on ws://{}:{} ({} channels)", options_.host, server_->port(), channels_.size());
 
   started_ = true;
-  worker_ = std::thread([this] { run(); });
+  worker_ = std::thread([this] {
+    name_this_thread("fox-serialise");
+    run();
+  });
   bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
 }
 

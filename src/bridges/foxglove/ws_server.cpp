@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread.h"
 
 namespace rescuesim::foxglove {
 
@@ -135,6 +136,7 @@ class Server final : public WsServer {
     port_ = acceptor_.local_endpoint().port();
     accept();
     thread_ = std::thread([this] {
+      name_this_thread("fox-io");
       for (;;) {
         try {
           ioc_.run();

@@ -10,6 +10,7 @@
 #include "core/bounded_queue.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread.h"
 #include "core/throttle.h"
 #include "msgs/serialize.h"
 #include "bus/bridge_host.h"
@@ -179,7 +180,10 @@ void McapRecorder::start(BridgeHost& host) {
   for (const auto& a : m.options.attachments) m.writer->write_attachment(a);
   for (const Topic& t : host.bus().topics()) m.channel_for(t);
   m.host = &host;
-  m.thread = std::thread([&m] { m.run(); });
+  m.thread = std::thread([&m] {
+    name_this_thread("mcap-write");
+    m.run();
+  });
   m.handle = host.bus().subscribe_shared("", [&m](const Topic& t, const Bus::SharedMessage& msg) { m.on_message(t, msg); });
 }
 

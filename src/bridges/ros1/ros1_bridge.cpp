@@ -33,6 +33,7 @@
 #include "bridges/ros1/ros1_raw_message.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread.h"
 #include "msgs/serialize.h"
 #include "bus/bridge_host.h"
 
@@ -105,7 +106,7 @@ class Ros1Bridge final : public Bridge {
   void subscribe(std::size_t input);
   bool register_again();
   void publish_loop();
-  void publish(const OutboxItem& item, RawMessage& raw);
+  void publish(const OutboxItem& item);
   void refresh_wanted();
   void spin_loop();
   void watch_master();
@@ -224,8 +225,14 @@ void Ros1Bridge::start(BridgeHost& host) {
       outbox_.skip(t.id);
     }
   });
-  publisher_ = std::thread([this] { publish_loop(); });
-  spinner_ = std::thread([this] { spin_loop(); });
+  publisher_ = std::thread([this] {
+    name_this_thread("ros1-send");
+    publish_loop();
+  });
+  spinner_ = std::thread([this] {
+    name_this_thread("ros1-spin");
+    spin_loop();
+  });
   started_ = true;
   log::info("ROS 1: node {} registered with the master at {}, reachable as {}: {} topics out, {} in", ros::this_node::getName(),
             endpoint_.master_uri, ros::network::getHost(), outputs_.size(), inputs_.size());
@@ -301,7 +308,6 @@ bool Ros1Bridge::register_again() {
 }
 
 void Ros1Bridge::publish_loop() {
-  RawMessage raw;  // its buffer is reused from message to message
   std::vector<OutboxItem> round;
   for (;;) {
     round.clear();
@@ -311,11 +317,11 @@ void Ros1Bridge::publish_loop() {
     }
     // on stop, what is queued goes out up to a short deadline
     if (Clock::now().time_since_epoch().count() > drain_until_.load()) return;
-    for (const OutboxItem& item : round) publish(item, raw);
+    for (const OutboxItem& item : round) publish(item);
   }
 }
 
-void Ros1Bridge::publish(const OutboxItem& item, RawMessage& raw) {
+void Ros1Bridge::publish(const OutboxItem& item) {
   const msg::Message& message = *item.message;
   Output& o = outputs_[static_cast<std::size_t>(item.topic)];
   if (!o.type) return;
@@ -328,11 +334,11 @@ void Ros1Bridge::publish(const OutboxItem& item, RawMessage& raw) {
   if (!o.pub || !ros::ok()) return;
   // nobody listening: nothing to serialise (latched topics keep their last message for latecomers)
   if (!o.latched && o.pub.getNumSubscribers() == 0) return;
-  raw.type = o.type;
-  raw.bytes.clear();
   try {
-    msg::to_ros1(message, raw.bytes, item.seq - 1);  // Header.seq counts from 0
-    o.pub.publish(raw);
+    // serialised by roscpp's call, straight into its send buffer
+    const ros1_wire::OutgoingMessage out{o.type, &message, item.seq - 1,  // Header.seq counts from 0
+                                         static_cast<std::uint32_t>(msg::ros1_size(message))};
+    o.pub.publish(out);
     ++sent_;
   } catch (const std::exception& e) {
     // a bug, not bad input: say it once per topic and keep the other topics going

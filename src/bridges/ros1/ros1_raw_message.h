@@ -25,6 +25,17 @@ struct RawMessage {
   std::vector<std::uint8_t> bytes;
 };
 
+/// A rescuesim message on its way out, serialised by roscpp's own call into roscpp's own send
+/// buffer (msg::write_ros1): one pass over an image's bytes, where a RawMessage costs a buffer
+/// filled with zeros, the serialisation into it and roscpp's copy out of it. Publish only: it
+/// borrows `message`, which must outlive the publish() call.
+struct OutgoingMessage {
+  const msg::TypeSupport* type = nullptr;
+  const msg::Message* message = nullptr;
+  std::uint32_t seq = 0;   ///< std_msgs/Header.seq
+  std::uint32_t size = 0;  ///< msg::ros1_size(*message)
+};
+
 }  // namespace rescuesim::ros1_wire
 
 namespace ros::message_traits {
@@ -47,6 +58,19 @@ struct Definition<rescuesim::ros1_wire::RawMessage> {
   static const char* value(const rescuesim::ros1_wire::RawMessage& m) { return m.type ? m.type->ros1_definition.c_str() : ""; }
 };
 
+template <>
+struct MD5Sum<rescuesim::ros1_wire::OutgoingMessage> {
+  static const char* value(const rescuesim::ros1_wire::OutgoingMessage& m) { return m.type->ros1_md5.c_str(); }
+};
+template <>
+struct DataType<rescuesim::ros1_wire::OutgoingMessage> {
+  static const char* value(const rescuesim::ros1_wire::OutgoingMessage& m) { return m.type->ros1_name.c_str(); }
+};
+template <>
+struct Definition<rescuesim::ros1_wire::OutgoingMessage> {
+  static const char* value(const rescuesim::ros1_wire::OutgoingMessage& m) { return m.type->ros1_definition.c_str(); }
+};
+
 }  // namespace ros::message_traits
 
 namespace ros::serialization {
@@ -65,6 +89,15 @@ struct Serializer<rescuesim::ros1_wire::RawMessage> {
     stream.advance(n);
   }
   static std::uint32_t serializedLength(const rescuesim::ros1_wire::RawMessage& m) { return static_cast<std::uint32_t>(m.bytes.size()); }
+};
+
+template <>
+struct Serializer<rescuesim::ros1_wire::OutgoingMessage> {
+  template <typename Stream>
+  static void write(Stream& stream, const rescuesim::ros1_wire::OutgoingMessage& m) {
+    rescuesim::msg::write_ros1(*m.message, {stream.advance(m.size), m.size}, m.seq);
+  }
+  static std::uint32_t serializedLength(const rescuesim::ros1_wire::OutgoingMessage& m) { return m.size; }
 };
 
 }  // namespace ros::serialization

@@ -25,6 +25,7 @@
 #include "bridges/ros2/ros2_conventions.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread.h"
 #include "core/throttle.h"
 #include "msgs/serialize.h"
 #include "bus/bridge_host.h"
@@ -178,8 +179,14 @@ void Ros2Bridge::start(BridgeHost& host) {
     outbox_.push(topic.id, host_->time(), m, 0);
   });
   receiving_ = true;
-  sender_ = std::thread([this] { send_loop(); });
-  receiver_ = std::thread([this] { receive_loop(); });
+  sender_ = std::thread([this] {
+    name_this_thread("ros2-send");
+    send_loop();
+  });
+  receiver_ = std::thread([this] {
+    name_this_thread("ros2-receive");
+    receive_loop();
+  });
   log::info("ROS 2 bridge: domain {}, node {}{}{}, {} topics out, {} command topics in", domain,
             options_.node_namespace, options_.node_namespace.ends_with('/') ? "" : "/", options_.node_name,
             node.writers.size(), inputs_.size());

@@ -6,6 +6,7 @@
 #include <future>
 
 #include "core/error.h"
+#include "core/thread.h"
 #include "sensors/camera/camera.h"
 
 namespace rescuesim {
@@ -36,6 +37,7 @@ RenderCameraService::RenderCameraService(const World& world, const CameraService
   std::promise<std::string> ready;
   auto started = ready.get_future();
   thread_ = std::thread([this, &ready] {
+    name_this_thread("render");
     std::unique_ptr<Renderer> renderer;
     try {
       renderer = Renderer::create_headless(options_.quality);

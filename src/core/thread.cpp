@@ -1,0 +1,16 @@
+#include "core/thread.h"
+
+#include <pthread.h>
+
+#include <cstring>
+
+namespace rescuesim {
+
+void name_this_thread(const char* name) {
+  char cut[16];
+  std::strncpy(cut, name, sizeof cut - 1);
+  cut[sizeof cut - 1] = '\0';
+  pthread_setname_np(pthread_self(), cut);
+}
+
+}  // namespace rescuesim

@@ -1,0 +1,11 @@
+#pragma once
+/// Names for the process's own threads: what `top -H`, `perf`, gdb and /proc/PID/task show, so a
+/// profile says which bridge or service a thread serves (Linux keeps 15 characters).
+
+namespace rescuesim {
+
+/// Names the calling thread; a longer name is cut to 15 characters. Best effort: a failure
+/// changes nothing else.
+void name_this_thread(const char* name);
+
+}  // namespace rescuesim
