@@ -163,6 +163,19 @@ class Spawned {
   }
   std::string out() const { return slurp(out_); }
   std::string err() const { return slurp(err_); }
+  /// CPU seconds all its threads have run so far (the kernel's per-thread run time in
+  /// /proc/PID/task/TID/schedstat, in ns); 0 once it has ended.
+  double cpu_seconds() const {
+    if (pid_ <= 0) return 0;
+    double ns = 0;
+    std::error_code ec;
+    for (const auto& task : fs::directory_iterator(fs::path("/proc") / std::to_string(pid_) / "task", ec)) {
+      std::ifstream in(task.path() / "schedstat");
+      double run_ns = 0;
+      if (in >> run_ns) ns += run_ns;
+    }
+    return ns * 1e-9;
+  }
 
  private:
   pid_t pid_ = -1;
@@ -319,8 +332,16 @@ json cost_run(const Scenario& s, const ModelMap& models, const BridgeFlags& flag
   }
   std::fprintf(stderr, "bench: ROS: real-time factor with%s%s%s, subscribed to %s, %.0f s lockstep ...\n", flags.ros1 ? " --ros1" : "",
                flags.ros2 ? " --ros2" : "", flags.foxglove ? " --foxglove" : "", scan_only ? "/scan" : "/scan and the image", s.duration);
+  // the subscribers' CPU over the run (their start-up, before it, not counted)
+  const auto probes_cpu = [&probes] {
+    double sum = 0;
+    for (const auto& p : probes) sum += p->cpu_seconds();
+    return sum;
+  };
+  const double cpu0 = probes_cpu();
   json run = run_bridged(s, models, with, 2s);
   std::this_thread::sleep_for(300ms);
+  run["subscribers_cpu_s"] = probes_cpu() - cpu0;
   std::size_t got = 0;
   for (auto& p : probes) {
     p->stop(SIGTERM, 5s);
@@ -333,7 +354,7 @@ json cost_run(const Scenario& s, const ModelMap& models, const BridgeFlags& flag
 /// The cost figure from the rounds' runs without and with bridges: the best real-time factor of
 /// each (other load on the machine only ever slows a run down), and the CPU seconds.
 json cost_figure(const std::vector<json>& without, const std::vector<json>& with, double sim_time) {
-  std::vector<double> rtf_a, rtf_b, cpu_a, cpu_b;
+  std::vector<double> rtf_a, rtf_b, cpu_a, cpu_b, cpu_subscribers;
   std::string error;
   std::size_t best = 0;
   for (const json& r : without) {
@@ -344,6 +365,7 @@ json cost_figure(const std::vector<json>& without, const std::vector<json>& with
   for (std::size_t k = 0; k < with.size(); ++k) {
     rtf_b.push_back(with[k].value("real_time_factor", 0.0));
     cpu_b.push_back(with[k].value("cpu_s", 0.0));
+    cpu_subscribers.push_back(with[k].value("subscribers_cpu_s", 0.0));
     if (with[k].contains("error")) error = "with bridges: " + with[k]["error"].get<std::string>();
     if (rtf_b[k] > rtf_b[best]) best = k;
   }
@@ -365,6 +387,12 @@ json cost_figure(const std::vector<json>& without, const std::vector<json>& with
   // on the machine disturbs far less than wall time; the probes' own CPU is not in it
   const double ca = percentile(cpu_a, 50), cb = percentile(cpu_b, 50);
   f["sim_process_cpu_ratio"] = cb > 0 ? ca / cb : 0.0;
+  // and with the subscriber processes' CPU over the run added: what the machine as a whole
+  // spends on the bridges and on what they deliver, against the run without them
+  f["subscribers_cpu_s"] = cpu_subscribers;
+  const double cs = percentile(cpu_subscribers, 50);
+  f["cpu_ratio_with_subscribers"] = cb + cs > 0 ? ca / (cb + cs) : 0.0;
+  f["extra_cpu_s_per_sim_s"] = sim_time > 0 ? (cb + cs - ca) / sim_time : 0.0;
   if (!with.empty()) {
     f["bridges"] = with[best].value("bridges", json::object());
     f["probe_messages_received"] = with[best].value("probe_messages_received", 0);
@@ -393,7 +421,8 @@ json measure_cost(const Scenario& scenario, const ModelMap& models, const Bridge
   j["bridge_cost"]["note"] =
       "ratio = best real-time factor with the bridges attached (ROS 1, ROS 2, Foxglove) / best without, over the rounds; per "
       "transport a subscriber process on /scan and the colour image (the bridges send only topics somebody subscribes to); the default scenario "
-      "with the colour camera at 640x480 10 Hz, depth and thermal cameras off";
+      "with the colour camera at 640x480 10 Hz, depth and thermal cameras off; subscribers_cpu_s: the subscriber processes' CPU over "
+      "each run with bridges, counted in cpu_ratio_with_subscribers and extra_cpu_s_per_sim_s (CPU medians)";
   j["bridge_cost_scan_only"] = cost_figure(without, scan_only, s.duration);
   j["bridge_cost_scan_only"]["note"] = "as bridge_cost, with subscribers on /scan alone: the images are rendered but not sent";
   return j;

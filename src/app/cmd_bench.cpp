@@ -555,6 +555,10 @@ void add_bench_command(CLI::App& app, Action& action) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--ros-cost-time", o->ros_options.rtf_seconds, "sim seconds of each lockstep run with and without bridges")
       ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--ros-cost-rounds", o->ros_options.rtf_rounds,
+                  "rounds of lockstep runs without bridges, with them and /scan + image subscribers, and with /scan subscribers "
+                  "alone (alternating; the best real-time factor of each kind counts: more rounds, less noise from other load)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--soak", o->soak,
                 "only a soak run: the default scenario for --soak-hours of sim time with cameras and every bridge built "
                 "attached, memory and real-time factor every sim minute, every message checked for NaN; writes soak.csv, "
