@@ -4,8 +4,9 @@
 
 namespace rescuesim {
 
-/// Names the calling thread; a longer name is cut to 15 characters. Best effort: a failure
-/// changes nothing else.
+/// Names the calling thread; a longer name is cut to 15 characters. Threads it starts later
+/// inherit the name unless they set their own (a few of Mesa's helpers started by the render
+/// thread show as "render"). Best effort: a failure changes nothing else.
 void name_this_thread(const char* name);
 
 }  // namespace rescuesim
