@@ -164,7 +164,8 @@ class Spawned {
   std::string out() const { return slurp(out_); }
   std::string err() const { return slurp(err_); }
   /// CPU seconds all its threads have run so far (the kernel's per-thread run time in
-  /// /proc/PID/task/TID/schedstat, in ns); 0 once it has ended.
+  /// /proc/PID/task/TID/schedstat, in ns); 0 once it has ended. Threads that have ended are not
+  /// in it (the probes keep theirs for their whole life).
   double cpu_seconds() const {
     if (pid_ <= 0) return 0;
     double ns = 0;
