@@ -26,7 +26,7 @@ struct ArenaCommand {
 int run_arena(const ArenaCommand& c) {
   namespace fs = std::filesystem;
   ArenaOptions o = c.arena;
-  if (o.figure_eight && !c.lane_width_given) o.lane_width = kFigureEightWidth + 0.1;
+  if (o.figure_eight && !c.lane_width_given) o.lane_width = kFigureEightLaneWidth;
   std::stringstream list(c.lanes);
   std::string name;
   while (std::getline(list, name, ',')) {

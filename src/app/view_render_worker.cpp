@@ -14,10 +14,7 @@ RenderWorker::RenderWorker(const World& world, Quality q) : world_(world) {
   // the renderer is made on the thread that uses it; wait for it to say whether that worked
   std::promise<std::string> started;
   auto result = started.get_future();
-  thread_ = std::thread([this, q, &started] {
-    name_this_thread("view-render");
-    run(q, started);
-  });
+  thread_ = start_named_thread("view-render", [this, q, &started] { run(q, started); });
   const std::string error = result.get();
   if (!error.empty()) {
     thread_.join();

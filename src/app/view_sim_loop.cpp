@@ -10,10 +10,7 @@ namespace rescuesim::app {
 using Clock = std::chrono::steady_clock;
 
 ViewSimLoop::ViewSimLoop(Session& session, const ViewControls& controls) : session_(session), controls_(controls) {
-  thread_ = std::thread([this] {
-    name_this_thread("sim");
-    run();
-  });
+  thread_ = start_named_thread("sim", [this] { run(); });
 }
 
 ViewSimLoop::~ViewSimLoop() {

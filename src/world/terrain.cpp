@@ -212,9 +212,9 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
                     TerrainSpec::kind_name(k) + "; drive " + TerrainSpec::kind_name(k) + " in lanes (leave out --figure-eight)");
       }
     }
-    if (!(o.lane_width >= kFigureEightWidth + 0.1 - 1e-9)) {
+    if (!(o.lane_width >= kFigureEightLaneWidth - 1e-9)) {
       throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a figure-8 element " + message_number(kFigureEightWidth) +
-                  " m wide (expected at least " + message_number(kFigureEightWidth + 0.1) + " m)");
+                  " m wide (expected at least " + message_number(kFigureEightLaneWidth) + " m)");
     }
   }
   WorldSpec w;

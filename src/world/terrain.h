@@ -40,13 +40,16 @@ struct ArenaOptions {
   std::uint64_t seed = 1;      ///< the stepfields' seeds are seed, seed + 1, ... in lane order
   /// Figure-8 apparatus instead of lanes: each element at the test methods' figure-8 size,
   /// kFigureEightWidth x kFigureEightLength, for figure-eights around two pylons (stepfields and
-  /// crossing ramps only; lanes at least kFigureEightWidth + 0.1 m wide).
+  /// crossing ramps only; lanes at least kFigureEightLaneWidth wide).
   bool figure_eight = false;
 };
 
 /// The test methods' figure-8 terrain: 2.4 m wide (two 1.2 m panels), 4.8 m long.
 inline constexpr double kFigureEightWidth = 2.4;
 inline constexpr double kFigureEightLength = 4.8;
+/// The narrowest lane a figure-8 element fits in (the lanes' 0.1 m margin), and the figure-8
+/// arena's default lane width.
+inline constexpr double kFigureEightLaneWidth = kFigureEightWidth + 0.1;
 
 /// Whether the test methods drive figure-eights on this kind (stepfields and crossing ramps).
 inline bool is_figure_eight_kind(TerrainSpec::Kind k) { return k == TerrainSpec::Kind::stepfield || k == TerrainSpec::Kind::crossing_ramps; }

@@ -30,5 +30,16 @@ TEST(ThreadNames, AThreadCarriesItsNameAndALongNameIsCutTo15Characters) {
   EXPECT_EQ(long_name, "fox-serialise-0");
 }
 
+TEST(ThreadNames, AStartedNamedThreadRunsItsWorkUnderItsName) {
+  std::string seen;
+  int ran = 0;
+  start_named_thread("mcap-write", [&] {
+    seen = kernel_name_of_this_thread();
+    ++ran;
+  }).join();
+  EXPECT_EQ(ran, 1);
+  EXPECT_EQ(seen, "mcap-write");
+}
+
 }  // namespace
 }  // namespace rescuesim

@@ -100,10 +100,7 @@ void FoxgloveBridge::start(BridgeHost& host) {
   log::info("foxglove: listening on ws://{}:{} ({} channels)", options_.host, server_->port(), channels_.size());
 
   started_ = true;
-  worker_ = std::thread([this] {
-    name_this_thread("fox-serialise");
-    run();
-  });
+  worker_ = start_named_thread("fox-serialise", [this] { run(); });
   bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
 }
 

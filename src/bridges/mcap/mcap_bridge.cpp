@@ -180,10 +180,7 @@ void McapRecorder::start(BridgeHost& host) {
   for (const auto& a : m.options.attachments) m.writer->write_attachment(a);
   for (const Topic& t : host.bus().topics()) m.channel_for(t);
   m.host = &host;
-  m.thread = std::thread([&m] {
-    name_this_thread("mcap-write");
-    m.run();
-  });
+  m.thread = start_named_thread("mcap-write", [&m] { m.run(); });
   m.handle = host.bus().subscribe_shared("", [&m](const Topic& t, const Bus::SharedMessage& msg) { m.on_message(t, msg); });
 }
 

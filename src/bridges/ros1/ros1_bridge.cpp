@@ -225,14 +225,8 @@ void Ros1Bridge::start(BridgeHost& host) {
       outbox_.skip(t.id);
     }
   });
-  publisher_ = std::thread([this] {
-    name_this_thread("ros1-send");
-    publish_loop();
-  });
-  spinner_ = std::thread([this] {
-    name_this_thread("ros1-spin");
-    spin_loop();
-  });
+  publisher_ = start_named_thread("ros1-send", [this] { publish_loop(); });
+  spinner_ = start_named_thread("ros1-spin", [this] { spin_loop(); });
   started_ = true;
   log::info("ROS 1: node {} registered with the master at {}, reachable as {}: {} topics out, {} in", ros::this_node::getName(),
             endpoint_.master_uri, ros::network::getHost(), outputs_.size(), inputs_.size());

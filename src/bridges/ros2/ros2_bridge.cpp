@@ -179,14 +179,8 @@ void Ros2Bridge::start(BridgeHost& host) {
     outbox_.push(topic.id, host_->time(), m, 0);
   });
   receiving_ = true;
-  sender_ = std::thread([this] {
-    name_this_thread("ros2-send");
-    send_loop();
-  });
-  receiver_ = std::thread([this] {
-    name_this_thread("ros2-receive");
-    receive_loop();
-  });
+  sender_ = start_named_thread("ros2-send", [this] { send_loop(); });
+  receiver_ = start_named_thread("ros2-receive", [this] { receive_loop(); });
   log::info("ROS 2 bridge: domain {}, node {}{}{}, {} topics out, {} command topics in", domain,
             options_.node_namespace, options_.node_namespace.ends_with('/') ? "" : "/", options_.node_name,
             node.writers.size(), inputs_.size());

@@ -864,13 +864,13 @@ void GlRenderer::do_depth(const CameraView& view, DepthImage& out) {
   }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(out.z.size() * sizeof(float)), out.z.data());
-  // (no fill: the read-back writes every flag)
-  if (through_media) t.lost.resize(out.z.size());
-  else t.lost.clear();
   if (through_media) {
+    t.lost.resize(out.z.size());  // no fill: the read-back writes every flag
     glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
     glReadnPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, static_cast<GLsizei>(t.lost.size()), t.lost.data());
     glNamedFramebufferReadBuffer(fbo, GL_NONE);
+  } else {
+    t.lost.clear();
   }
   // reversed Z: 0 is the far plane (and the clear value), so nothing in view reads +inf; a
   // flagged pixel has lost its return in the media (NaN)
