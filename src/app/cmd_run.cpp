@@ -43,6 +43,7 @@ struct RunCommand {
   bool no_cameras = false;
   std::string quality;
   bool no_controllers = false;
+  bool paused = false;         ///< --paused: start PAUSED (a live bridge's client plays or steps it)
   std::optional<double> sync;  ///< --sync[=SECONDS]
   BridgeFlags bridges;
 };
@@ -80,6 +81,11 @@ int run(const RunCommand& c) {
   SessionOptions so;
   so.cameras = !c.no_cameras;
   apply_run_mode(mode, s, so);
+  // a live bridge offers the control surface (reset, pause, step, teleport, parameters; docs/ros.md)
+  so.control = c.bridges.live();
+  so.control_options.start_paused = c.paused;
+  if (const auto data = data_dir()) so.control_options.world_dirs.push_back(*data / "worlds");
+  if (c.paused && !so.control) throw Error("--paused needs a live bridge (--ros1, --ros2 or --foxglove) to play or step the run");
   Session session(s, models, so);
   auto bridges = make_bridges(c.bridges, {&session.scenario(), &session.world_spec(), so.cameras});
   print_diagnostics(session.diagnostics());
@@ -235,6 +241,9 @@ void add_run_command(CLI::App& app, Action& action) {
                   "recordings ignore it so they stay byte-identical per seed)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--paused", c->paused,
+                "with a live bridge: start PAUSED; a client plays it (SetSimulationState, /unpause_physics) or steps it "
+                "(StepSimulation, the SimulateSteps action; docs/ros.md \"Controlling a run\")");
   cmd->add_flag("--no-controllers", c->no_controllers, "switch the scenario's built-in controllers off (robots wait for cmd_vel)");
   cmd->final_callback([c, &action] { action = [c] { return run(*c); }; });
 }

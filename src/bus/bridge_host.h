@@ -17,6 +17,7 @@
 #include "core/sim_time.h"
 #include "msgs/messages.h"
 #include "bus/bus.h"
+#include "bus/sim_control.h"
 #include "world/state.h"
 #include "world/world.h"
 
@@ -91,6 +92,10 @@ class BridgeHost {
     (void)message;
     return CommandOutcome::refused("this host takes no inputs");
   }
+
+  /// The run's control surface (reset, pause, step, entities, parameters: bus/sim_control.h),
+  /// or null when the host cannot be controlled (a replay, a bare Simulation without a Session).
+  virtual control::SimControl* control() { return nullptr; }
 };
 
 }  // namespace rescuesim

@@ -198,11 +198,16 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
     }
   }
   record();
+  if (options_.control) {
+    control_ = std::make_unique<RunControl>(*this, options_.control_options);
+    sim_->set_control(control_.get());
+  }
 }
 
 Session::~Session() {
   // the simulation holds a pointer to the camera service: detach it before either goes
   if (sim_) sim_->set_camera_service(nullptr);
+  if (sim_) sim_->set_control(nullptr);
 }
 
 bool Session::world_has_no_thermal() const {
@@ -721,6 +726,10 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
   // long runs give freed memory back now and then (threads' malloc arenas keep it otherwise)
   const SimTime trim_every = SimTime::from_seconds(options_.return_memory_every > 0 ? options_.return_memory_every : 0);
   SimTime next_trim = sim_->time() + trim_every;
+  // pacing starts afresh whenever the control surface says so (after a pause, a reset, a new rate)
+  auto pace_t0 = t0;
+  SimTime pace_start = start_time;
+  std::uint64_t pace_epoch = control_ ? control_->pacing_epoch() : 0;
   while (sim_->time() < end) {
     if (trim_every.ns > 0 && sim_->time() >= next_trim) {
       return_free_memory();
@@ -730,8 +739,23 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       stop_reason_ = "interrupted";
       break;
     }
+    // the control surface: requests run here, between steps; while paused this waits
+    bool stepping_job = false;
+    if (control_) {
+      if (!control_->before_step(stop)) {
+        stop_reason_ = control_->run_state() == control::RunState::quitting ? "quit by request" : "interrupted";
+        break;
+      }
+      stepping_job = control_->run_state() != control::RunState::playing;
+      if (control_->pacing_epoch() != pace_epoch || stepping_job) {
+        pace_epoch = control_->pacing_epoch();
+        pace_t0 = clock::now();
+        pace_start = sim_->time();
+      }
+    }
     if (sync) wait_for_controller();
     step_once();
+    if (control_) control_->after_step();
     if (sim_->in_trouble()) {
       stop_reason_ = sim_->state().trouble.first;
       log::warn("run stopped: {}", stop_reason_);
@@ -741,10 +765,13 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       stop_reason_ = "all victims found";
       break;
     }
-    // realtime: wait for the wall clock to catch up with sim time / rate
-    if (scenario_.realtime) {
-      const double due = (sim_->time() - start_time).seconds() / scenario_.rate;
-      const double now = std::chrono::duration<double>(clock::now() - t0).count();
+    // realtime: wait for the wall clock to catch up with sim time / rate (steps asked for while
+    // paused are taken at once, as lockstep steps)
+    const bool realtime = control_ ? control_->realtime() : scenario_.realtime;
+    if (realtime && !stepping_job) {
+      const double rate = control_ ? control_->rate() : scenario_.rate;
+      const double due = (sim_->time() - pace_start).seconds() / rate;
+      const double now = std::chrono::duration<double>(clock::now() - pace_t0).count();
       if (due > now) std::this_thread::sleep_for(std::chrono::duration<double>(due - now));
     }
     if (progress && (sim_->state().step & 63) == 0) {
@@ -756,6 +783,7 @@ RunResult Session::run(const std::atomic<bool>* stop, const std::function<void(c
       }
     }
   }
+  if (control_) control_->close();
   for (SubscriptionId h : scan_subscriptions) sim_->bus().unsubscribe(h);
   if (sync_timeouts_ > 1) log::warn("sync: {} scans in all got no cmd_vel in time", sync_timeouts_);
   // frames still being rendered belong to this run

@@ -13,6 +13,7 @@
 
 #include "autonomy/explorer.h"
 #include "mission/mission.h"
+#include "session/run_control.h"
 #include "sim/simulation.h"
 #include "world/scenario/scenario.h"
 
@@ -76,6 +77,10 @@ struct SessionOptions {
   /// at the very next step, however fast or slow the controller is.
   double sync_timeout = 0;
   SimOptions sim;               ///< seed and physics are filled from the scenario
+  /// Offer the control surface (reset, pause, step, teleport, parameters: session/run_control.h)
+  /// to the bridges. It takes a snapshot at the start of run() (the state a reset goes back to).
+  bool control = false;
+  RunControlOptions control_options;
 };
 
 /// Everything Session::restore needs to go back to a moment of a run: the simulation's State
@@ -120,6 +125,9 @@ class Session {
   /// built-in controllers' queued at the snapshot are queued again. The Bus's message counts,
   /// the wall time and the last camera frames (sensors/*.png) are not rewound.
   void restore(const SessionSnapshot& snapshot);
+
+  /// The control surface (SessionOptions::control), or null.
+  RunControl* control() { return control_.get(); }
 
   /// The run's mission (referee and radio), or null when the scenario has none.
   Mission* mission() { return mission_.get(); }
@@ -169,6 +177,7 @@ class Session {
   std::unique_ptr<Controllers> controllers_;
   std::unique_ptr<Mission> mission_;             ///< after sim_ (it refers to it), before the controllers use it
   std::unique_ptr<RenderCameraService> cameras_;  ///< attached to sim_ (not owned there); detached in ~Session
+  std::unique_ptr<RunControl> control_;           ///< attached to sim_ (not owned there); detached in ~Session
   SessionOptions options_;
   std::vector<TrajectoryPoint> trajectory_;
   SimTime next_record_;

@@ -120,6 +120,10 @@ class Simulation : public BridgeHost {
   /// the service must not be used by two simulations. Session owns its RenderCameraService
   /// and detaches it in its destructor.
   void set_camera_service(CameraService* service) { cameras_ = service; }
+  /// The control surface bridges offer (bus/sim_control.h); not owned. Session sets its
+  /// RunControl here; without one, control() is null and bridges offer no services.
+  void set_control(control::SimControl* control) { control_ = control; }
+  control::SimControl* control() override { return control_; }
   /// How victims are found (victim_check_rate); owned. Default, and with nullptr: line of
   /// sight for every robot. Set once at set-up, before the first step (Session does).
   void set_victim_detector(std::unique_ptr<VictimDetector> detector);
@@ -167,6 +171,7 @@ class Simulation : public BridgeHost {
   std::unique_ptr<RayScene> rays_;
   bool rays_current_ = false;          ///< the ray scene shows state_ (a cache: restore clears it)
   std::vector<SensorInstance> sensors_;
+  control::SimControl* control_ = nullptr;  ///< not owned (Session's RunControl)
   CameraService* cameras_ = nullptr;  ///< not owned (set_camera_service says how long it must live)
   std::unique_ptr<VictimDetector> victim_detector_ = std::make_unique<LineOfSightDetector>();
   TopicId clock_topic_ = kNoTopic, tf_topic_ = kNoTopic, tf_static_topic_ = kNoTopic;

@@ -1,0 +1,633 @@
+// RunControl: pause, play, step, reset and teleport a Session's run, list its entities, and
+// answer its parameters, for every front end (see run_control.h).
+
+#include "session/run_control.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <regex>
+#include <set>
+
+#include "core/log.h"
+#include "session/session.h"
+
+namespace rescuesim {
+
+using namespace control;
+
+namespace {
+
+const char* state_name(RunState s) {
+  switch (s) {
+    case RunState::stopped: return "STOPPED";
+    case RunState::playing: return "PLAYING";
+    case RunState::paused: return "PAUSED";
+    case RunState::quitting: return "QUITTING";
+    case RunState::no_world: return "NO_WORLD";
+    case RunState::loading_world: return "LOADING_WORLD";
+  }
+  return "unknown";
+}
+
+/// The pose problem that makes it no pose, or "" (INVALID_POSE's message).
+std::string pose_problem(const Pose3& X) {
+  if (!X.p.allFinite()) return "the position is not finite";
+  const Eigen::Vector4d q(X.q.x(), X.q.y(), X.q.z(), X.q.w());
+  if (!q.allFinite()) return "the orientation is not finite";
+  // ROS tools write quaternions with a few digits; 1e-3 accepts those and refuses real mistakes
+  if (std::abs(q.norm() - 1.0) > 1e-3) {
+    return "the orientation quaternion is not a unit quaternion (norm " + std::to_string(q.norm()) + ")";
+  }
+  return "";
+}
+
+/// Every corner of a shape's bounding box, or its vertices, in the frame `X` puts it in.
+void add_points(const Geometry& g, const Pose3& X, Vec3& lo, Vec3& hi) {
+  const auto take = [&](const Vec3& p) {
+    const Vec3 w = X.p + X.q * p;
+    lo = lo.cwiseMin(w);
+    hi = hi.cwiseMax(w);
+  };
+  if ((g.type == Geometry::Type::convex || g.type == Geometry::Type::mesh) && !g.mesh.vertices.empty()) {
+    for (const Vec3& v : g.mesh.vertices) take(v);
+    return;
+  }
+  const Vec3 h = g.size / 2;
+  for (int i = 0; i < 8; ++i) take(Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z()));
+}
+
+ParameterValue make_bool(bool b) {
+  ParameterValue v;
+  v.type = ParameterValue::kBool;
+  v.bool_value = b;
+  return v;
+}
+ParameterValue make_int(std::int64_t i) {
+  ParameterValue v;
+  v.type = ParameterValue::kInteger;
+  v.integer_value = i;
+  return v;
+}
+ParameterValue make_double(double d) {
+  ParameterValue v;
+  v.type = ParameterValue::kDouble;
+  v.double_value = d;
+  return v;
+}
+ParameterValue make_string(std::string s) {
+  ParameterValue v;
+  v.type = ParameterValue::kString;
+  v.string_value = std::move(s);
+  return v;
+}
+
+const char* type_name(std::uint8_t t) {
+  static const char* names[] = {"not set", "bool", "integer", "double", "string", "byte array", "bool array",
+                                "integer array", "double array", "string array"};
+  return t < 10 ? names[t] : "unknown type";
+}
+
+constexpr double kMaxRate = 1000;  ///< the fastest realtime pace a parameter may ask for
+
+}  // namespace
+
+RunControl::RunControl(Session& session, RunControlOptions options) : session_(session), options_(std::move(options)) {
+  realtime_ = session_.scenario().realtime;
+  rate_ = session_.scenario().rate;
+  state_ = options_.start_paused ? RunState::paused : RunState::playing;
+  const World& w = session_.sim().world();
+  std::set<std::string> taken;
+  const auto add = [&](Entity::Kind kind, std::size_t i, const std::string& name) {
+    // names are the handles of the standard: each is listed once (a later namesake is left out)
+    if (name.empty() || !taken.insert(name).second) return;
+    entities_.push_back({kind, i, name});
+  };
+  for (std::size_t i = 0; i < w.robots.size(); ++i) add(Entity::Kind::robot, i, w.robots[i].name);
+  for (std::size_t i = 0; i < w.victims.size(); ++i) add(Entity::Kind::victim, i, w.victims[i].name);
+  for (std::size_t i = 0; i < w.dynamics.size(); ++i) add(Entity::Kind::rubble, i, w.dynamics[i].name);
+  for (std::size_t i = 0; i < w.statics.size(); ++i) {
+    const StaticObject& s = w.statics[i];
+    if (s.victim >= 0 || s.kind == ObjectKind::floor) continue;  // a victim's parts belong to the victim
+    add(Entity::Kind::fixed, i, s.name);
+  }
+}
+
+RunControl::~RunControl() { close(); }
+
+void RunControl::arm() {
+  if (!start_) start_ = std::make_unique<SessionSnapshot>(session_.snapshot());
+}
+
+bool RunControl::post(std::function<void(SimControl&)> task) {
+  {
+    std::lock_guard lock(mutex_);
+    if (closed_ || tasks_.size() >= kMaxPosted) return false;
+    tasks_.push_back(std::move(task));
+  }
+  posted_.notify_one();
+  return true;
+}
+
+void RunControl::run_tasks() {
+  for (;;) {
+    std::function<void(SimControl&)> task;
+    {
+      std::lock_guard lock(mutex_);
+      if (tasks_.empty()) return;
+      task = std::move(tasks_.front());
+      tasks_.pop_front();
+    }
+    try {
+      task(*this);
+    } catch (const std::exception& e) {
+      // a front end's closure failing must not end the run
+      log::warn("a control request failed: {}", e.what());
+    }
+    ++tasks_run_;
+  }
+}
+
+bool RunControl::before_step(const std::atomic<bool>* stop) {
+  arm();
+  for (;;) {
+    run_tasks();
+    if (state_ == RunState::quitting) return false;
+    if (stop && stop->load(std::memory_order_relaxed)) return false;
+    if (state_ == RunState::playing) return true;
+    if (job_ && job_->completed < job_->job.steps) return true;
+    // paused or stopped with nothing to step: wait for a request (and look at `stop` now and then)
+    std::unique_lock lock(mutex_);
+    posted_.wait_for(lock, std::chrono::milliseconds(50), [&] { return !tasks_.empty(); });
+  }
+}
+
+void RunControl::after_step() {
+  if (!job_) return;
+  Job& j = *job_;
+  ++j.completed;
+  const std::uint64_t remaining = j.job.steps - j.completed;
+  if (j.job.feedback && j.job.feedback_every > 0 && (j.completed % j.job.feedback_every == 0 || remaining == 0)) {
+    j.job.feedback(j.completed, remaining);
+  }
+  if (remaining == 0) end_job(Result::ok());
+}
+
+void RunControl::end_job(const Result& result) {
+  if (!job_) return;
+  Job j = std::move(*job_);
+  job_.reset();
+  ++pacing_epoch_;
+  if (j.job.done) j.job.done(result, j.completed);
+}
+
+void RunControl::close() {
+  end_job(Result::fail(code::kOperationFailed, "the run ended before the steps were taken"));
+  run_tasks();
+  std::lock_guard lock(mutex_);
+  closed_ = true;
+  tasks_.clear();
+}
+
+SimulatorFeatures RunControl::features() const {
+  SimulatorFeatures f;
+  f.features = {feature::kEntityCategories,       feature::kEntityBounds,           feature::kEntityBoundsBox,
+                feature::kEntityStateGetting,     feature::kEntityStateSetting,     feature::kEntityInfoGetting,
+                feature::kNamedPoses,             feature::kSimulationReset,        feature::kSimulationResetTime,
+                feature::kSimulationResetState,   feature::kSimulationStateGetting, feature::kSimulationStateSetting,
+                feature::kSimulationStatePause,   feature::kStepSimulationSingle,   feature::kStepSimulationMultiple,
+                feature::kStepSimulationAction,   feature::kWorldInfoGetting,       feature::kAvailableWorlds};
+  f.spawn_formats = {};  // spawning is not offered yet (docs/ros.md, "Controlling a run")
+  f.custom_info =
+      "rescuesim: resets restore the start snapshot bitwise (the state hash after a reset equals the hash at the "
+      "start); steps from PAUSED are the lockstep steps; entity names are robots, victims (HUMAN), rubble "
+      "(DYNAMIC_OBJECT) and walls/obstacles (STATIC_OBJECT); bounds filters: sphere and box";
+  return f;
+}
+
+Result RunControl::set_run_state(RunState target) {
+  if (target == state_) return Result::fail(code::kAlreadyInTargetState, std::string("the simulation is already ") + state_name(state_));
+  switch (target) {
+    case RunState::playing:
+    case RunState::paused:
+      if (job_) end_job(Result::fail(code::kOperationFailed, std::string("cancelled: the simulation was set ") + state_name(target)));
+      state_ = target;
+      ++pacing_epoch_;
+      return Result::ok();
+    case RunState::stopped: {
+      // STOPPED is PAUSED and reset to the start (the standard's words)
+      if (job_) end_job(Result::fail(code::kOperationFailed, "cancelled: the simulation was stopped"));
+      restore_start();
+      state_ = RunState::stopped;
+      return Result::ok();
+    }
+    case RunState::quitting:
+      if (job_) end_job(Result::fail(code::kOperationFailed, "cancelled: the simulation is quitting"));
+      state_ = RunState::quitting;
+      return Result::ok();
+    case RunState::no_world:
+    case RunState::loading_world:
+      break;
+  }
+  return Result::fail(code::kIncorrectTransition,
+                      std::string(state_name(target)) + " cannot be asked for: worlds are not loaded or unloaded while a run goes on");
+}
+
+Result RunControl::start_steps(StepJob job, bool action) {
+  const std::uint8_t refused = action ? code::kIncorrectState : code::kOperationFailed;
+  if (state_ != RunState::paused && state_ != RunState::stopped) {
+    return Result::fail(refused, std::string("steps are taken only while PAUSED; the simulation is ") + state_name(state_));
+  }
+  if (job_) return Result::fail(refused, "another stepping request is in progress (" + std::to_string(job_->job.steps - job_->completed) + " steps left)");
+  if (job.steps == 0) {
+    if (job.done) job.done(Result::ok(), 0);
+    return Result::ok();
+  }
+  // stepping from STOPPED leaves it: the run is then PAUSED where the steps left it
+  state_ = RunState::paused;
+  job_ = Job{std::move(job), 0};
+  return Result::ok();
+}
+
+bool RunControl::cancel_steps() {
+  if (!job_) return false;
+  end_job(Result::fail(code::kOperationFailed, "cancelled after " + std::to_string(job_->completed) + " of " +
+                                                   std::to_string(job_->job.steps) + " steps"));
+  return true;
+}
+
+void RunControl::restore_start() {
+  arm();
+  session_.restore(*start_);
+  ++pacing_epoch_;
+}
+
+Result RunControl::reset(std::uint8_t scope_bits) {
+  if (job_) end_job(Result::fail(code::kOperationFailed, "cancelled: the simulation was reset"));
+  const bool all = scope_bits == scope::kDefault || scope_bits == scope::kAll;
+  const bool time = all || (scope_bits & scope::kTime);
+  const bool state = all || (scope_bits & scope::kState);
+  if (!time && !state) {
+    // SPAWNED alone: nothing was spawned (spawning is not offered), so nothing goes
+    if ((scope_bits & ~scope::kSpawned) == 0) return Result::ok();
+    return Result::fail(code::kFeatureUnsupported, "unknown reset scope bits " + std::to_string(scope_bits));
+  }
+  arm();
+  if (time && state) {
+    restore_start();
+    if (state_ == RunState::stopped) state_ = RunState::paused;
+    return Result::ok();
+  }
+  Simulation& sim = session_.sim();
+  if (state) {
+    // STATE alone: every body back where it started; the clock, the schedules and the sensors go on
+    State s = sim.state();
+    s.robots = start_->state.robots;
+    s.dynamics = start_->state.dynamics;
+    s.victims = start_->state.victims;
+    sim.restore(s);
+  } else {
+    // TIME alone: the clock and everything timed back to the start, the bodies where they are now
+    const State now = sim.state();
+    session_.restore(*start_);
+    State s = sim.state();
+    s.robots = now.robots;
+    s.dynamics = now.dynamics;
+    sim.restore(s);
+  }
+  ++pacing_epoch_;
+  return Result::ok();
+}
+
+const RunControl::Entity* RunControl::find(const std::string& name) const {
+  for (const Entity& e : entities_) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+Result RunControl::entities(const EntityFilters& filters, std::vector<std::string>& names) const {
+  names.clear();
+  if (!filters.tags.tags.empty()) return Result::fail(code::kFeatureUnsupported, "entities carry no tags in rescuesim: filter by name, category or bounds");
+  std::optional<std::regex> re;
+  if (!filters.filter.empty()) {
+    try {
+      re.emplace(filters.filter, std::regex::extended | std::regex::nosubs);
+    } catch (const std::regex_error& e) {
+      return Result::fail(code::kOperationFailed, "the filter '" + filters.filter + "' is no POSIX extended regular expression: " + e.what());
+    }
+  }
+  const Bounds& b = filters.bounds;
+  if (b.type == Bounds::kSphere && b.points.size() != 2) return Result::fail(code::kOperationFailed, "a SPHERE bounds filter needs 2 points (centre, then radius in x)");
+  if (b.type == Bounds::kBox && b.points.size() != 2) return Result::fail(code::kOperationFailed, "a BOX bounds filter needs 2 points (two corners)");
+  if (b.type == Bounds::kConvexHull) return Result::fail(code::kFeatureUnsupported, "CONVEX_HULL bounds filters are not supported: use a sphere or a box");
+  if (b.type > Bounds::kSphere) return Result::fail(code::kOperationFailed, "unknown bounds type " + std::to_string(b.type));
+  for (const Entity& e : entities_) {
+    if (re && !std::regex_search(e.name, *re)) continue;
+    if (!filters.categories.empty()) {
+      EntityInfo info;
+      entity_info(e.name, info);
+      if (std::find(filters.categories.begin(), filters.categories.end(), info.category) == filters.categories.end()) continue;
+    }
+    if (b.type != Bounds::kEmpty) {
+      EntityState st;
+      entity_state(e.name, st);
+      const Vec3& p = st.pose.p;
+      if (b.type == Bounds::kSphere && (p - b.points[0]).norm() > b.points[1].x()) continue;
+      if (b.type == Bounds::kBox) {
+        const Vec3 lo = b.points[0].cwiseMin(b.points[1]), hi = b.points[0].cwiseMax(b.points[1]);
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+      }
+    }
+    names.push_back(e.name);
+  }
+  return Result::ok();
+}
+
+Result RunControl::entity_state(const std::string& name, EntityState& out) const {
+  const Entity* e = find(name);
+  if (!e) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
+  const Simulation& sim = session_.sim();
+  const State& s = sim.state();
+  out = EntityState{};
+  out.stamp_ns = s.time.ns;
+  switch (e->kind) {
+    case Entity::Kind::robot: {
+      const RobotState& r = s.robots[e->index];
+      out.pose = r.base.X_WB;
+      out.linear = r.base.v_WB;
+      out.angular = r.base.w_WB;
+      // the acceleration of the last step (the robot keeps its base velocity one step back)
+      out.linear_acc = (r.base.v_WB - r.prev_v_WB) / sim.dt();
+      break;
+    }
+    case Entity::Kind::rubble: {
+      const BodyState& b = s.dynamics[e->index];
+      out.pose = b.X_WB;
+      out.linear = b.v_WB;
+      out.angular = b.w_WB;
+      break;
+    }
+    case Entity::Kind::victim: {
+      const Victim& v = sim.world().victims[e->index];
+      out.pose = Pose3::from_pose2(v.pose, 0.0);
+      break;
+    }
+    case Entity::Kind::fixed: out.pose = sim.world().statics[e->index].X_WO; break;
+  }
+  return Result::ok();
+}
+
+Result RunControl::set_entity_state(const std::string& name, const EntityState& target, bool set_pose, bool set_twist,
+                                    bool set_acceleration) {
+  const Entity* e = find(name);
+  if (!e) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
+  if (set_acceleration) return Result::fail(code::kFeatureUnsupported, "accelerations cannot be set: forces make them; set the pose and the twist");
+  if (!target.frame_id.empty() && target.frame_id != "world" && target.frame_id != "map") {
+    return Result::fail(code::kOperationFailed, "frame '" + target.frame_id + "' is not supported: give the state in the world frame (frame_id empty, 'world' or 'map')");
+  }
+  if (set_pose) {
+    if (const std::string why = pose_problem(target.pose); !why.empty()) return Result::fail(code::kInvalidPose, name + ": " + why);
+  }
+  if (set_twist && !(target.linear.allFinite() && target.angular.allFinite())) {
+    return Result::fail(code::kInvalidPose, name + ": the twist is not finite");
+  }
+  if (e->kind == Entity::Kind::victim || e->kind == Entity::Kind::fixed) {
+    return Result::fail(code::kOperationFailed, "'" + name + "' is fixed in the world (" +
+                                                    (e->kind == Entity::Kind::victim ? "a victim" : "a wall or obstacle") + ") and cannot be moved");
+  }
+  Simulation& sim = session_.sim();
+  State s = sim.state();
+  Pose3 X = target.pose;
+  X.q.normalize();
+  if (e->kind == Entity::Kind::robot) {
+    RobotState& r = s.robots[e->index];
+    if (set_pose) {
+      // the whole robot moves rigidly: every link by the base's displacement
+      const Pose3 delta = X * r.base.X_WB.inverse();
+      for (Pose3& L : r.X_WL) L = delta * L;
+      r.base.X_WB = X;
+      if (!set_twist) {  // the velocities turn with the robot
+        r.base.v_WB = delta.q * r.base.v_WB;
+        r.base.w_WB = delta.q * r.base.w_WB;
+      }
+    }
+    if (set_twist) {
+      r.base.v_WB = target.linear;
+      r.base.w_WB = target.angular;
+    }
+    r.prev_v_WB = r.base.v_WB;
+    // wheel odometry does not see a teleport (a kidnapped robot): /odom goes on from where it was,
+    // ground truth jumps
+  } else {
+    BodyState& b = s.dynamics[e->index];
+    if (set_pose) b.X_WB = X;
+    if (set_twist) {
+      b.v_WB = target.linear;
+      b.w_WB = target.angular;
+    }
+    b.sleep = BodyState::Sleep::awake;
+    b.still_time = 0;
+  }
+  sim.restore(s);
+  return Result::ok();
+}
+
+Result RunControl::entity_info(const std::string& name, EntityInfo& out) const {
+  const Entity* e = find(name);
+  if (!e) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
+  const World& w = session_.sim().world();
+  out = EntityInfo{};
+  switch (e->kind) {
+    case Entity::Kind::robot:
+      out.category = category::kRobot;
+      out.description = "robot '" + name + "'" + (w.robots[e->index].spec.model.empty() ? "" : " (model " + w.robots[e->index].spec.model + ")");
+      break;
+    case Entity::Kind::victim: out.category = category::kHuman; out.description = "victim"; break;
+    case Entity::Kind::rubble: out.category = category::kDynamicObject; out.description = "loose body (rubble)"; break;
+    case Entity::Kind::fixed: {
+      out.category = category::kStaticObject;
+      static const char* kinds[] = {"floor", "wall", "obstacle", "raised area", "ramp", "victim", "rubble", "robot"};
+      out.description = kinds[static_cast<int>(w.statics[e->index].kind)];
+      break;
+    }
+  }
+  return Result::ok();
+}
+
+Result RunControl::entity_bounds(const std::string& name, Bounds& out) const {
+  const Entity* e = find(name);
+  if (!e) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
+  const Simulation& sim = session_.sim();
+  const World& w = sim.world();
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  switch (e->kind) {
+    case Entity::Kind::robot: {
+      // every collision shape of every link, in the base frame, as the joints stand now
+      const RobotState& r = sim.state().robots[e->index];
+      const Pose3 X_BW = r.base.X_WB.inverse();
+      const RobotSpec& spec = w.robots[e->index].spec;
+      for (std::size_t l = 0; l < spec.links.size() && l < r.X_WL.size(); ++l) {
+        for (const LinkShape& sh : spec.links[l].shapes) add_points(sh.geometry, X_BW * r.X_WL[l] * sh.X_LG, lo, hi);
+      }
+      break;
+    }
+    case Entity::Kind::rubble: add_points(w.dynamics[e->index].geometry, Pose3{}, lo, hi); break;
+    case Entity::Kind::fixed: add_points(w.statics[e->index].geometry, Pose3{}, lo, hi); break;
+    case Entity::Kind::victim: {
+      const Pose3 X_VW = Pose3::from_pose2(w.victims[e->index].pose, 0.0).inverse();
+      for (int part : w.victims[e->index].parts) {
+        const StaticObject& s = w.statics[static_cast<std::size_t>(part)];
+        add_points(s.geometry, X_VW * s.X_WO, lo, hi);
+      }
+      break;
+    }
+  }
+  out = Bounds{};
+  if (!lo.allFinite()) return Result::ok();  // no shapes: EMPTY
+  out.type = Bounds::kBox;
+  out.points = {lo, hi};
+  return Result::ok();
+}
+
+Result RunControl::named_poses(const TagsFilter& tags, std::vector<NamedPose>& out) const {
+  out.clear();
+  for (const RobotInstance& r : session_.sim().world().robots) {
+    NamedPose p;
+    p.name = r.name + "_start";
+    p.description = "where robot '" + r.name + "' starts";
+    p.tags = {"start", "robot"};
+    p.pose = r.X_W_start;
+    bool keep = true;
+    if (!tags.tags.empty()) {
+      const auto has = [&](const std::string& t) { return std::find(p.tags.begin(), p.tags.end(), t) != p.tags.end(); };
+      const bool any = std::any_of(tags.tags.begin(), tags.tags.end(), has);
+      const bool all = std::all_of(tags.tags.begin(), tags.tags.end(), has);
+      keep = tags.filter_mode == 1 ? all : any;
+    }
+    if (keep) out.push_back(std::move(p));
+  }
+  return Result::ok();
+}
+
+Result RunControl::named_pose_bounds(const std::string& name, Bounds&) const {
+  return Result::fail(code::kFeatureUnsupported, "named poses have no bounds in rescuesim ('" + name + "')");
+}
+
+Result RunControl::spawnables(const std::vector<std::string>&, std::vector<Spawnable>& out) const {
+  out.clear();
+  return Result::fail(code::kFeatureUnsupported, "spawning is not supported yet: robots come from the scenario file (docs/ros.md)");
+}
+
+Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) {
+  entity_name.clear();
+  return Result::fail(code::kFeatureUnsupported, "spawning '" + request.name + "' is not supported yet: add robots in the scenario file (docs/ros.md, \"Controlling a run\")");
+}
+
+Result RunControl::remove(const std::string& name) {
+  if (!find(name)) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
+  return Result::fail(code::kFeatureUnsupported, "deleting '" + name + "' is not supported yet (docs/ros.md, \"Controlling a run\")");
+}
+
+Result RunControl::available_worlds(const std::vector<std::string>& sources, std::vector<WorldResource>& out) const {
+  out.clear();
+  std::vector<std::filesystem::path> dirs = options_.world_dirs;
+  for (const std::string& s : sources) {
+    std::string p = s.starts_with("file://") ? s.substr(7) : s;
+    if (!std::filesystem::is_directory(p)) return Result::fail(code::kOperationFailed, "'" + s + "' is no folder");
+    dirs.emplace_back(p);
+  }
+  for (const auto& d : dirs) {
+    std::error_code ec;
+    std::vector<std::filesystem::path> files;
+    for (const auto& f : std::filesystem::directory_iterator(d, ec)) {
+      if (f.path().extension() == ".yaml") files.push_back(f.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      WorldResource r;
+      r.name = f.stem().string();
+      r.uri = "file://" + std::filesystem::absolute(f).lexically_normal().string();
+      r.description = "scenario " + f.filename().string();
+      r.tags = {"scenario"};
+      out.push_back(std::move(r));
+    }
+  }
+  return Result::ok();
+}
+
+Result RunControl::current_world(WorldResource& out) const {
+  const Scenario& sc = session_.scenario();
+  out = WorldResource{};
+  out.name = sc.name;
+  if (!sc.source_file.empty() && sc.source_file != "<built-in>") {
+    out.uri = "file://" + std::filesystem::absolute(sc.source_file).lexically_normal().string();
+  }
+  out.description = "scenario '" + sc.name + "', world '" + session_.sim().world().name + "', seed " + std::to_string(sc.seed);
+  return Result::ok();
+}
+
+Result RunControl::load_world(const WorldResource& world, WorldResource&) {
+  return Result::fail(code::kFeatureUnsupported, "loading a world while a run goes on is not supported: start `rescuesim run " +
+                                                     (world.uri.empty() ? world.name : world.uri) + "` instead");
+}
+
+Result RunControl::unload_world() {
+  return Result::fail(code::kFeatureUnsupported, "unloading the world is not supported: end the run (SetSimulationState QUITTING)");
+}
+
+std::vector<ParameterDescriptor> RunControl::parameter_descriptors() const {
+  return {
+      {"duration", ParameterValue::kDouble, "sim seconds the run lasts (the scenario's duration)", true, {}},
+      {"real_time_factor", ParameterValue::kDouble, "realtime pace: sim seconds per wall second (with realtime true)", false, std::pair{1e-3, kMaxRate}},
+      {"realtime", ParameterValue::kBool, "paced to the wall clock (true) or as fast as possible, lockstep (false)", false, {}},
+      {"scenario", ParameterValue::kString, "the scenario's name (its output folder runs/<name>)", true, {}},
+      {"scenario_file", ParameterValue::kString, "the scenario file the run was started from", true, {}},
+      {"seed", ParameterValue::kInteger, "the run's seed (noise streams, generated mazes)", true, {}},
+      {"step_size", ParameterValue::kDouble, "the physics step (s)", true, {}},
+      {"use_sim_time", ParameterValue::kBool, "rescuesim is the clock: every stamp is sim time, published on /clock", true, {}},
+      {"world", ParameterValue::kString, "the compiled world's name", true, {}},
+  };
+}
+
+ParameterValue RunControl::parameter(const std::string& name) const {
+  const Scenario& sc = session_.scenario();
+  if (name == "duration") return make_double(sc.duration);
+  if (name == "real_time_factor") return make_double(rate_);
+  if (name == "realtime") return make_bool(realtime_);
+  if (name == "scenario") return make_string(sc.name);
+  if (name == "scenario_file") return make_string(sc.source_file);
+  if (name == "seed") return make_int(static_cast<std::int64_t>(sc.seed));
+  if (name == "step_size") return make_double(session_.sim().dt());
+  if (name == "use_sim_time") return make_bool(true);
+  if (name == "world") return make_string(session_.sim().world().name);
+  return {};
+}
+
+SetParameterResult RunControl::set_parameter(const Parameter& p) {
+  const auto descriptors = parameter_descriptors();
+  const auto d = std::find_if(descriptors.begin(), descriptors.end(), [&](const ParameterDescriptor& x) { return x.name == p.name; });
+  if (d == descriptors.end()) return {false, "parameter '" + p.name + "' is not declared by /rescuesim"};
+  if (d->read_only) return {false, "parameter '" + p.name + "' is read-only: " + d->description};
+  if (p.value.type != d->type) {
+    return {false, "parameter '" + p.name + "' is a " + type_name(d->type) + "; got a " + type_name(p.value.type)};
+  }
+  if (p.name == "realtime") {
+    realtime_ = p.value.bool_value;
+  } else if (p.name == "real_time_factor") {
+    const double r = p.value.double_value;
+    if (!(r >= d->range->first && r <= d->range->second)) {
+      return {false, "parameter 'real_time_factor' must be within [" + std::to_string(d->range->first) + ", " +
+                         std::to_string(d->range->second) + "]; got " + std::to_string(r)};
+    }
+    rate_ = r;
+  }
+  ++pacing_epoch_;
+  return {true, ""};
+}
+
+std::uint64_t RunControl::state_hash() const { return rescuesim::state_hash(session_.sim().state()); }
+std::int64_t RunControl::time_ns() const { return session_.sim().time().ns; }
+std::int64_t RunControl::steps_taken() const { return session_.sim().state().step; }
+
+}  // namespace rescuesim
