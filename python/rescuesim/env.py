@@ -153,6 +153,45 @@ class Env:
         """The referee's score so far (dict), or None when the scenario has no mission."""
         return self._core.mission_score()
 
+    # -- simulation control (the operations ROS 2's Simulation Interfaces offer; docs/python.md) --
+
+    def entities(self, filter="", categories=()):
+        """Names of the entities: robots, victims, rubble, walls and obstacles. ``filter`` is a
+        POSIX extended regular expression on the name; ``categories`` picks simulation_interfaces
+        EntityCategory values (1 robot, 2 human: victims, 4 dynamic: rubble, 5 static)."""
+        return self._core.entities(str(filter), list(categories))
+
+    def entity_state(self, name):
+        """dict(position, orientation (x, y, z, w), linear, angular, linear_acceleration,
+        angular_acceleration, time) of an entity in the world frame."""
+        return self._core.entity_state(str(name))
+
+    def set_entity_state(self, name, position=None, orientation=None, linear=None, angular=None):
+        """Teleports a robot or a piece of rubble: what is given replaces its pose (position
+        (x, y, z), orientation (x, y, z, w), a unit quaternion) and twist (linear, angular, world
+        frame); what is not given stays. A robot moves rigidly, every link with it; its wheel
+        odometry does not notice (a kidnapped robot), its ground truth jumps. rescuesim.Error
+        for an unknown name, a victim or wall, a non-finite pose or a quaternion that is not a
+        unit one."""
+        self._core.set_entity_state(str(name), position, orientation, linear, angular)
+
+    def state_hash(self):
+        """A 64-bit hash of the whole simulation state (equal hashes: identical states)."""
+        return self._core.state_hash()
+
+    def simulator_features(self):
+        """dict(features, spawn_formats, custom_info) as GetSimulatorFeatures answers it."""
+        return self._core.simulator_features()
+
+    def spawn(self, name, uri):
+        """Spawns a robot or object from a file (not supported yet: raises rescuesim.Error
+        saying so; docs/ros.md "Controlling a run")."""
+        return self._core.spawn(str(name), str(uri))
+
+    def delete(self, name):
+        """Deletes an entity (not supported yet: raises rescuesim.Error saying so)."""
+        self._core.delete(str(name))
+
     def close(self):
         """Frees the simulation (the observation views stay valid but stop changing)."""
         self._core = None

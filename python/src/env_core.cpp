@@ -143,6 +143,7 @@ void EnvCore::build(std::uint64_t seed) {
   if (!std::isfinite(max_time_)) throw Error({s.source_file, 0, "duration"}, "rescuesim.Env: give max_time (the scenario runs forever)");
   SessionOptions so;
   so.cameras = options_.cameras;
+  so.control = true;  // entities, teleports (bind_control.cpp); Python steps the run itself, so it never pauses
   session_.reset();  // the old simulation goes first: its camera service may hold the GL context
   session_ = std::make_unique<Session>(s, models_, so);
   start_ = std::make_unique<SessionSnapshot>(session_->snapshot());

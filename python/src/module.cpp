@@ -119,6 +119,7 @@ void bind_environments(py::module_& m) {
           },
           py::arg("n"), py::arg("linear"), py::arg("angular"), "n steps looped in C++; returns the wall seconds they took");
   add_mission_methods(env);
+  add_control_methods(env);
 
   py::class_<VecEnvCore>(m, "VecEnvCore", "K independent simulations stepped together (use rescuesim.VectorEnv).")
       .def(py::init([](const BatchScenario& s, const EnvOptions& o, int count, int threads) {
