@@ -1,4 +1,4 @@
-// Writes the generated seed corpora (cdr, ros1, mcap_reader, foxglove_client, batch_record) into fuzz/corpus:
+// Writes the generated seed corpora (cdr, ros1, mcap_reader, foxglove_client, batch_record, control_cdr) into fuzz/corpus:
 // one small, valid input per message type and encoding, and MCAP files in each compression.
 // Run once after a message type is added: build-fuzz/bin/fuzz_make_seeds fuzz/corpus
 
@@ -15,6 +15,7 @@
 #include "batch/batch_record.h"
 #include "bridges/mcap/byte_sink.h"
 #include "bridges/mcap/mcap_writer.h"
+#include "control_cdr_seeds.h"
 #include "msgs/serialize.h"
 
 namespace {
@@ -142,6 +143,23 @@ int main(int argc, char** argv) {
   // a mission's inputs (a report, a map) as a publish panel writes them: some fields left out
   binary("report_json", json_bytes(R"({"header":{"stamp":{"sec":3,"nanosec":5},"frame_id":"map"},"pose":{"position":{"x":1.5,"y":-2}}})"));
   binary("map_json", json_bytes(R"({"info":{"resolution":0.1,"width":2,"height":1,"origin":{"position":{"x":0}}},"data":[-1,100]})"));
+  // service call requests (0x02 | u32 service | u32 call | u32 encoding length | "json" | request),
+  // one per Simulation Interfaces service as the Service Call panel sends them, and a frame
+  // whose encoding length runs past its end
+  auto call = [&](const char* name, std::uint32_t service, const std::string& request) {
+    std::vector<std::uint8_t> b{1, 0x02, static_cast<std::uint8_t>(service), 0, 0, 0, 1, 0, 0, 0, 4, 0, 0, 0, 'j', 's', 'o', 'n'};
+    b.insert(b.end(), request.begin(), request.end());
+    write_file(corpus / "foxglove_client" / name, b);
+  };
+  call("service_reset", 1, R"({"scope":0})");
+  call("service_get_state", 2, "{}");
+  call("service_set_state", 3, R"({"state":{"state":2}})");
+  call("service_step", 4, R"({"steps":5})");
+  call("service_entities", 5, R"({"filters":{"filter":"rob.*","categories":[{"category":1}],"tags":{"tags":["a"],"filter_mode":1},"bounds":{"type":3,"points":[{"x":0,"y":0,"z":0},{"x":2}]}}})");
+  call("service_get_entity", 6, R"({"entity":"robot"})");
+  call("service_set_entity", 7, R"({"entity":"robot","state":{"header":{"stamp":{"sec":1,"nanosec":5},"frame_id":""},"pose":{"position":{"x":1,"y":2,"z":0},"orientation":{"z":0.6,"w":0.8}},"twist":{"linear":{"x":0.3},"angular":{"z":null}}},"set_pose":true,"set_twist":true})");
+  call("service_features", 8, "{}");
+  write_file(corpus / "foxglove_client" / "service_bad_length", {1, 0x02, 1, 0, 0, 0, 1, 0, 0, 0, 0xff, 0xff, 0xff, 0xff, '{', '}'});
   binary("image_json", json_bytes(R"({"height":1,"width":2,"encoding":"rgb8","step":6,"data":"AQIDBAUG"})"));
 
   // results.jsonl lines: a success, a failure
@@ -172,5 +190,8 @@ int main(int argc, char** argv) {
     const std::string line = to_json_line(record);
     write_file(corpus / "batch_record" / name, std::vector<std::uint8_t>(line.begin(), line.end()));
   }
+
+  // the control interfaces' CDR bodies (control_cdr_seeds.h)
+  fuzz::write_control_cdr_seeds(corpus);
   return 0;
 }

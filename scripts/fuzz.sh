@@ -16,12 +16,14 @@
 #   foxglove_client  Foxglove WebSocket client frames (JSON requests, binary messages)
 #   batch_record     one line of a batch's results.jsonl (parse_trial_line), with a round trip
 #   datagram_request a comms/send request (parse_send_request), with a round trip
+#   control_cdr      the control services' CDR bodies (Simulation Interfaces, SimulateSteps,
+#                    parameters), with a round trip
 # New inputs go to build-fuzz/corpus/<target>; crashes to build-fuzz/crashes/<target>/. The seed
 # corpus in fuzz/corpus/<target> is only read. Inputs that once crashed a target are kept in
 # fuzz/crashes/<target>/ and replayed before it runs. Exit code 2 for bad arguments.
 set -euo pipefail
 
-targets=(svg_path svg_world urdf sdf_world scenario cdr ros1 mcap_reader foxglove_client batch_record datagram_request)
+targets=(svg_path svg_world urdf sdf_world scenario cdr ros1 mcap_reader foxglove_client batch_record datagram_request control_cdr)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$root/build-fuzz
 jobs=${FUZZ_BUILD_JOBS:-$(nproc 2>/dev/null || echo 2)}
@@ -30,7 +32,7 @@ mode=one
 case "${1:-}" in
   --smoke) mode=smoke; shift ;;
   --list) printf '%s\n' "${targets[@]}"; exit 0 ;;
-  -h | --help) sed -n '2,20p' "$0"; exit 0 ;;
+  -h | --help) sed -n '2,22p' "$0"; exit 0 ;;
 esac
 seconds=${1:-$([ "$mode" = smoke ] && echo 20 || echo 60)}
 shift || true

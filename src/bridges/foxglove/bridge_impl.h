@@ -1,8 +1,10 @@
 #pragma once
 /// Internal to the Foxglove bridge: its class and the state shared by its three threads, split
 /// over foxglove_bridge.cpp (start and stop, what the simulation thread hands over, the
-/// serialiser thread that encodes and fans messages out) and client_requests.cpp (what clients
-/// ask for on the I/O thread: subscriptions, client channels, commands).
+/// serialiser thread that encodes and fans messages out), client_requests.cpp (what clients
+/// ask for on the I/O thread: subscriptions, client channels, commands) and service_calls.cpp
+/// (the Simulation Interfaces services: calls handed to the simulation thread through
+/// SimControl::post, answers handed back to the I/O thread through WsServer::post).
 ///
 /// Simulation thread -> serialiser thread: Bus messages go through the Outbox the ROS 1 and ROS 2
 /// bridges use (bridges/common/outbox.h: a bounded queue per topic, so a burst on one topic never
@@ -11,12 +13,14 @@
 ///
 /// Locking: `mutex_` guards channels and clients; it may be held while queueing frames on the
 /// server (whose own locks are inner), never the other way round. `scene_mutex_` and the
-/// outbox's lock are leaves.
+/// outbox's lock are leaves. A ServiceLink's mutex is held while posting a task to the server
+/// (whose locks are inner), and never with `mutex_`.
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,6 +37,7 @@
 #include "bridges/foxglove/foxglove_bridge.h"
 #include "bridges/foxglove/protocol.h"
 #include "bridges/foxglove/scene.h"
+#include "bridges/foxglove/sim_services.h"
 #include "bridges/foxglove/ws_server.h"
 #include "core/throttle.h"
 #include "bus/bridge_host.h"
@@ -77,10 +82,32 @@ struct CommandTarget {
   ClientChannel channel;
 };
 
+/// The answer to a service call, on its way back to the I/O thread.
+struct CallAnswer {
+  ClientId client = 0;
+  std::uint32_t service = 0, call = 0;
+  std::optional<SimResponse> response;  ///< the response, or none: a serviceCallFailure
+  std::string failure;                  ///< why, when there is no response
+};
+
+/// Shared between the bridge and the service calls SimControl holds (which may run, or be
+/// destroyed unrun, after the bridge stopped): while the bridge runs, its server and the
+/// function that sends an answer (on the I/O thread); both empty once it stopped, so a late
+/// answer reaches nobody.
+struct ServiceLink {
+  std::mutex mutex;
+  WsServer* server = nullptr;
+  std::function<void(CallAnswer)> finish;
+};
+
+/// Service calls one client may have waiting on the simulation at once; more are refused.
+constexpr std::size_t kMaxCallsInFlight = 32;
+
 /// One connected client.
 struct ClientState {
   std::map<std::uint32_t, std::uint32_t> subscriptions;  ///< subscription id -> channel id
   std::map<std::uint32_t, CommandTarget> publishers;     ///< client channel id -> target
+  std::size_t calls_in_flight = 0;                       ///< service calls handed to the simulation, not answered yet
   std::uint64_t dropped = 0;
   std::unique_ptr<Throttle> drop_warning = std::make_unique<Throttle>(std::chrono::seconds(2));
 };
@@ -135,6 +162,12 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::string accepted_topics(std::size_t robot) const;
   /// Every topic a client may publish on, with its type.
   std::string accepted_topics() const;
+  // I/O thread: service calls (service_calls.cpp)
+  void service_call(ClientId client, const ServiceCallRequest& request);
+  /// Answers a call with a serviceCallFailure naming the problem, and counts it as rejected.
+  void fail_call(ClientId client, std::uint32_t service, std::uint32_t call, const std::string& message);
+  /// Sends an answer that came back from the simulation, if its client is still connected.
+  void finish_call(CallAnswer answer);
 
   FoxgloveOptions options_;
   BridgeHost* host_ = nullptr;
@@ -143,6 +176,10 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   TopicId clock_topic_ = kNoTopic;
   std::unique_ptr<WsServer> server_;
   std::string server_info_;
+  std::vector<std::string> capabilities_;  ///< as in server_info_
+  control::SimControl* control_ = nullptr;  ///< the host's; null: no services
+  std::string services_advertisement_;      ///< advertiseServices, sent on connect when control_ is set
+  std::shared_ptr<ServiceLink> link_ = std::make_shared<ServiceLink>();
 
   // simulation thread
   std::size_t known_topics_ = 0;

@@ -2,7 +2,8 @@
 // message of a channel sent at once), client channels for /cmd_vel, /head/command and
 // /joint_command and for the host's inputs (a mission's reports, datagrams, relay drops and
 // map), and their messages, checked and passed to the simulation. Anything malformed or refused
-// is answered with a status error to that client only.
+// is answered with a status error to that client only. Service calls (binary 0x02) go on to
+// service_calls.cpp.
 
 #include <cmath>
 #include <optional>
@@ -61,6 +62,7 @@ void FoxgloveBridge::on_open(ClientId client, const std::string&) {
   for (const auto& [id, c] : channels_) all.push_back(c.channel);
   server_->send_control(client, server_info_);
   server_->send_control(client, advertise(all));
+  if (!services_advertisement_.empty()) server_->send_control(client, services_advertisement_);
 }
 
 void FoxgloveBridge::on_close(ClientId client) {
@@ -107,7 +109,9 @@ void FoxgloveBridge::on_text(ClientId client, std::string_view text) {
         } else if constexpr (std::is_same_v<T, ClientUnadvertise>) {
           client_unadvertise(client, r);
         } else {
-          reply(client, StatusLevel::error, "op '" + r.op + "' is not supported by rescuesim (capabilities: clientPublish, time)");
+          std::string caps;
+          for (const std::string& c : capabilities_) caps += (caps.empty() ? "" : ", ") + c;
+          reply(client, StatusLevel::error, "op '" + r.op + "' is not supported by rescuesim (capabilities: " + caps + ")");
         }
       },
       request);
@@ -249,13 +253,17 @@ void FoxgloveBridge::client_unadvertise(ClientId client, const ClientUnadvertise
 }
 
 void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> bytes) {
-  ClientMessage m;
+  ClientBinary frame;
   try {
-    m = parse_client_binary(bytes);
+    frame = parse_client_binary(bytes);
+  } catch (const ServiceCallError& e) {
+    return fail_call(client, e.service, e.call, e.message());
   } catch (const Error& e) {
     reject(client, e.message());
     return;
   }
+  if (const auto* call = std::get_if<ServiceCallRequest>(&frame)) return service_call(client, *call);
+  const ClientMessage& m = std::get<ClientMessage>(frame);
   std::optional<CommandTarget> target;
   {
     std::lock_guard lock(mutex_);

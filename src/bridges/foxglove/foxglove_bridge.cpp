@@ -35,6 +35,7 @@ std::string mib(std::size_t bytes) {
 void FoxgloveBridge::start(BridgeHost& host) {
   if (started_) return;
   host_ = &host;
+  control_ = host.control();
   gate_ = std::make_unique<CommandGate>(host, "foxglove");
   const World& world = host.world();
   const Bus& bus = host.bus();
@@ -84,10 +85,17 @@ void FoxgloveBridge::start(BridgeHost& host) {
   // and what the host takes beyond them (a mission's reports, datagrams, relay drops, map)
   host_inputs_ = host.inputs();
 
+  // the Simulation Interfaces as services, when the run can be controlled (a replay cannot)
+  capabilities_ = {"clientPublish", "time"};
+  if (control_) {
+    capabilities_.push_back("services");
+    services_advertisement_ = advertise_services(sim_services());
+  }
+
   std::string robots;
   for (const auto& r : world.robots) robots += (robots.empty() ? "" : ", ") + r.name;
   server_info_ = server_info(
-      "rescuesim", {"clientPublish", "time"}, {"cdr", "json"},
+      "rescuesim", capabilities_, {"cdr", "json"},
       {{"world", world.name}, {"seed", std::to_string(host.seed())}, {"robots", robots}, {"scene_topic", options_.scene_topic}},
       std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch()).count()));
 
@@ -97,7 +105,13 @@ void FoxgloveBridge::start(BridgeHost& host) {
   limits.queue_bytes = options_.client_queue_bytes;
   limits.queue_messages = options_.client_queue_messages;
   server_ = WsServer::start(options_.host, options_.port, kSubprotocol, limits, *this);
-  log::info("foxglove: listening on ws://{}:{} ({} channels)", options_.host, server_->port(), channels_.size());
+  {
+    std::lock_guard lock(link_->mutex);
+    link_->server = server_.get();
+    link_->finish = [this](CallAnswer answer) { finish_call(std::move(answer)); };
+  }
+  log::info("foxglove: listening on ws://{}:{} ({} channels, {} services)", options_.host, server_->port(), channels_.size(),
+            control_ ? sim_services().size() : 0);
 
   started_ = true;
   worker_ = start_named_thread("fox-serialise", [this] { run(); });
@@ -112,6 +126,12 @@ void FoxgloveBridge::stop() {
   resume_serialiser();
   outbox_.close();
   if (worker_.joinable()) worker_.join();
+  // service calls still held by SimControl answer nobody from now on
+  {
+    std::lock_guard lock(link_->mutex);
+    link_->server = nullptr;
+    link_->finish = nullptr;
+  }
   server_->shutdown(std::chrono::milliseconds(500));
 }
 

@@ -110,6 +110,36 @@ std::string status(StatusLevel level, const std::string& message) {
                                                                                              json::error_handler_t::replace);
 }
 
+std::string advertise_services(const std::vector<Service>& services) {
+  const auto message = [](const ServiceMessage& m) {
+    return json{{"encoding", m.encoding}, {"schemaName", m.schema_name}, {"schemaEncoding", m.schema_encoding}, {"schema", m.schema}};
+  };
+  json list = json::array();
+  for (const Service& s : services) {
+    list.push_back({{"id", s.id}, {"name", s.name}, {"type", s.type}, {"request", message(s.request)}, {"response", message(s.response)}});
+  }
+  return json{{"op", "advertiseServices"}, {"services", list}}.dump();
+}
+
+std::string service_call_failure(std::uint32_t service, std::uint32_t call, const std::string& message) {
+  // the message may quote a client's bytes (an encoding name): invalid UTF-8 is replaced
+  return json{{"op", "serviceCallFailure"}, {"serviceId", service}, {"callId", call}, {"message", message}}.dump(
+      -1, ' ', false, json::error_handler_t::replace);
+}
+
+std::vector<std::uint8_t> service_call_response(std::uint32_t service, std::uint32_t call, std::string_view encoding,
+                                                std::string_view payload) {
+  std::vector<std::uint8_t> f;
+  f.reserve(13 + encoding.size() + payload.size());
+  f.push_back(0x03);
+  put_u32(f, service);
+  put_u32(f, call);
+  put_u32(f, static_cast<std::uint32_t>(encoding.size()));
+  f.insert(f.end(), encoding.begin(), encoding.end());
+  f.insert(f.end(), payload.begin(), payload.end());
+  return f;
+}
+
 std::vector<std::uint8_t> message_data_header(std::uint32_t subscription, std::uint64_t timestamp_ns) {
   std::vector<std::uint8_t> h;
   h.reserve(13);
@@ -173,19 +203,39 @@ ClientRequest parse_client_text(std::string_view text) {
   throw Error("unknown op '" + shown + "' (this server understands subscribe, unsubscribe, advertise, unadvertise)");
 }
 
-ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes) {
+ClientBinary parse_client_binary(std::span<const std::uint8_t> bytes) {
   if (bytes.empty()) throw Error("empty binary message");
   const std::uint8_t opcode = bytes[0];
-  if (opcode == 0x02) throw Error("service call requests are not supported (no services are advertised)");
-  if (opcode != 0x01) {
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "0x%02x", opcode);
-    throw Error(std::string("unknown binary opcode ") + hex + " (only 0x01, client message data, is accepted)");
+  if (opcode == 0x01) {
+    if (bytes.size() < 5) {
+      throw Error("client message data needs at least 5 bytes (opcode and channel id), got " + std::to_string(bytes.size()));
+    }
+    return ClientMessage{get_u32(bytes.subspan(1, 4)), bytes.subspan(5)};
   }
-  if (bytes.size() < 5) {
-    throw Error("client message data needs at least 5 bytes (opcode and channel id), got " + std::to_string(bytes.size()));
+  if (opcode == 0x02) {
+    // opcode, service id, call id, encoding length: 13 bytes; without the ids there is nobody to answer
+    constexpr std::size_t kHeader = 13;
+    const std::string need = "a service call request needs at least 13 bytes (opcode, service id, call id, encoding length), got " +
+                             std::to_string(bytes.size());
+    if (bytes.size() < 9) throw Error(need);
+    ServiceCallRequest r;
+    r.service = get_u32(bytes.subspan(1, 4));
+    r.call = get_u32(bytes.subspan(5, 4));
+    if (bytes.size() < kHeader) throw ServiceCallError(r.service, r.call, need);
+    const std::uint32_t length = get_u32(bytes.subspan(9, 4));
+    const std::size_t left = bytes.size() - kHeader;
+    if (length > left) {
+      throw ServiceCallError(r.service, r.call, "service call request: encoding length " + std::to_string(length) + " runs past the end (" +
+                                                    std::to_string(left) + " bytes left)");
+    }
+    r.encoding.assign(reinterpret_cast<const char*>(bytes.data() + kHeader), length);
+    r.payload = bytes.subspan(kHeader + length);
+    return r;
   }
-  return {get_u32(bytes.subspan(1, 4)), bytes.subspan(5)};
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02x", opcode);
+  throw Error(std::string("unknown binary opcode ") + hex +
+              " (accepted: 0x01 client message data, 0x02 service call request)");
 }
 
 msg::Message decode_message(std::string_view encoding, const msg::TypeSupport& type, std::span<const std::uint8_t> payload) {

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/error.h"
 #include "msgs/messages.h"
 #include "msgs/serialize.h"
 
@@ -41,6 +42,34 @@ std::string advertise(const std::vector<Channel>& channels);
 /// {"op":"status","level":..,"message":..}.
 std::string status(StatusLevel level, const std::string& message);
 
+/// How a service's request or its response is encoded, with its schema (advertiseServices).
+struct ServiceMessage {
+  std::string encoding;         ///< "json"
+  std::string schema_name;      ///< "simulation_interfaces/srv/ResetSimulation_Request"
+  std::string schema_encoding;  ///< "jsonschema"
+  std::string schema;
+};
+
+/// A service the server offers (capability `services`).
+struct Service {
+  std::uint32_t id = 0;
+  std::string name;  ///< "/reset_simulation"
+  std::string type;  ///< "simulation_interfaces/srv/ResetSimulation"
+  ServiceMessage request, response;
+};
+
+/// {"op":"advertiseServices","services":[{id,name,type,request:{encoding,schemaName,
+/// schemaEncoding,schema},response:{...}}]}: the current form only. The older
+/// requestSchema/responseSchema strings are left out on purpose: a client reads them in the
+/// first of the server's supportedEncodings it knows ("cdr" here), not in the service's own.
+std::string advertise_services(const std::vector<Service>& services);
+/// {"op":"serviceCallFailure","serviceId":..,"callId":..,"message":..}.
+std::string service_call_failure(std::uint32_t service, std::uint32_t call, const std::string& message);
+/// Binary service call response: 0x03 | u32 service id | u32 call id | u32 encoding length |
+/// encoding | payload.
+std::vector<std::uint8_t> service_call_response(std::uint32_t service, std::uint32_t call, std::string_view encoding,
+                                                std::string_view payload);
+
 /// Binary message data header: 0x01 | u32 subscription id | u64 timestamp (ns).
 std::vector<std::uint8_t> message_data_header(std::uint32_t subscription, std::uint64_t timestamp_ns);
 /// Binary time: 0x02 | u64 timestamp (ns).
@@ -67,7 +96,7 @@ struct ClientAdvertise {
 struct ClientUnadvertise {
   std::vector<std::uint32_t> channel_ids;
 };
-/// An op this server knows but does not offer (parameters, services, ...).
+/// An op this server knows but does not offer (parameters, connection graph, assets).
 struct Unsupported {
   std::string op;
 };
@@ -82,9 +111,27 @@ struct ClientMessage {
   std::uint32_t channel = 0;
   std::span<const std::uint8_t> payload;
 };
-/// Parses a client binary frame; throws Error for an empty frame, an unknown opcode or a
-/// frame too short for its header.
-ClientMessage parse_client_binary(std::span<const std::uint8_t> bytes);
+/// A client binary frame 0x02 | u32 service id | u32 call id | u32 encoding length | encoding |
+/// payload: a service call request.
+struct ServiceCallRequest {
+  std::uint32_t service = 0;
+  std::uint32_t call = 0;
+  std::string encoding;  ///< "json"
+  std::span<const std::uint8_t> payload;
+};
+/// A malformed service call request whose service and call ids could be read, so that it can be
+/// answered with a serviceCallFailure.
+class ServiceCallError : public Error {
+ public:
+  ServiceCallError(std::uint32_t service_id, std::uint32_t call_id, std::string message)
+      : Error(std::move(message)), service(service_id), call(call_id) {}
+  std::uint32_t service, call;
+};
+using ClientBinary = std::variant<ClientMessage, ServiceCallRequest>;
+/// Parses a client binary frame (opcode 0x01 or 0x02); throws Error for an empty frame, an
+/// unknown opcode or a frame too short for its header, and ServiceCallError for a service call
+/// request whose ids are there but whose encoding length runs past the frame's end.
+ClientBinary parse_client_binary(std::span<const std::uint8_t> bytes);
 
 /// Decodes a message of `type` in `encoding` ("cdr" or "json": msg::from_cdr, msg::from_json);
 /// throws Error when malformed.

@@ -35,10 +35,10 @@ constexpr std::size_t kReadChunk = 64 * 1024;
 
 /// One frame waiting to be written.
 struct OutFrame {
-  enum class Kind { control, status, data, time };
+  enum class Kind { control, status, reply, data, time };
   Kind kind = Kind::control;
   std::string text;                  ///< control and status frames
-  std::vector<std::uint8_t> head;    ///< data and time frames
+  std::vector<std::uint8_t> head;    ///< reply, data and time frames
   Payload body;                      ///< data frames
   std::size_t bytes() const { return text.size() + head.size() + (body ? body->size() : 0); }
 };
@@ -107,10 +107,10 @@ class Connection : public std::enable_shared_from_this<Connection> {
 
   // queues (guarded by mutex_)
   mutable std::mutex mutex_;
-  std::deque<OutFrame> control_;             ///< control and status frames, in order
+  std::deque<OutFrame> control_;             ///< control, status and reply frames, in order
   std::deque<OutFrame> data_;
   std::optional<std::vector<std::uint8_t>> time_;
-  std::size_t data_bytes_ = 0, status_count_ = 0;
+  std::size_t data_bytes_ = 0, status_count_ = 0, reply_count_ = 0;
   bool accepting_ = true;                    ///< false once closed: queueing is ignored
   ClientCounters counters_;
   std::atomic<bool> kick_posted_{false};
@@ -157,6 +157,10 @@ class Server final : public WsServer {
   void send_status(ClientId client, std::string text) override {
     if (auto c = find(client)) c->queue({OutFrame::Kind::status, std::move(text), {}, nullptr}, nullptr);
   }
+  void send_reply(ClientId client, std::vector<std::uint8_t> frame) override {
+    if (auto c = find(client)) c->queue({OutFrame::Kind::reply, {}, std::move(frame), nullptr}, nullptr);
+  }
+  void post(std::function<void()> task) override { net::post(ioc_, std::move(task)); }
   std::size_t send_data(ClientId client, std::vector<std::uint8_t> head, Payload body) override {
     std::size_t dropped = 0;
     if (auto c = find(client)) c->queue({OutFrame::Kind::data, {}, std::move(head), std::move(body)}, &dropped);
@@ -414,6 +418,11 @@ void Connection::queue(OutFrame frame, std::size_t* dropped) {
         ++status_count_;
         control_.push_back(std::move(frame));
         break;
+      case OutFrame::Kind::reply:
+        if (reply_count_ >= server_.limits().reply_messages) return;  // a client that sends requests and reads no answer
+        ++reply_count_;
+        control_.push_back(std::move(frame));
+        break;
       case OutFrame::Kind::data: {
         data_bytes_ += frame.bytes();
         data_.push_back(std::move(frame));
@@ -467,6 +476,7 @@ void Connection::write_next() {
       current_ = std::move(control_.front());
       control_.pop_front();
       if (current_.kind == OutFrame::Kind::status) --status_count_;
+      if (current_.kind == OutFrame::Kind::reply) --reply_count_;
     } else if (time_) {
       current_ = OutFrame{OutFrame::Kind::time, {}, std::move(*time_), nullptr};
       time_.reset();

@@ -2,9 +2,12 @@
 /// A small WebSocket server for the Foxglove bridge (Boost.Beast inside ws_server.cpp; no
 /// Boost type leaves that file). One I/O thread accepts connections, performs the handshake
 /// (refusing any client that does not offer the required subprotocol), reads client messages
-/// and writes queued frames. Any thread may queue frames; each client's queue is bounded:
+/// and writes queued frames. Any thread may queue frames, and hand the I/O thread a task
+/// (post); each client's queue is bounded:
 ///   - control frames (server info, advertisements) are always kept;
 ///   - status frames are kept up to a count, further ones are dropped;
+///   - reply frames (binary answers to a client's requests) are kept up to a count, in order
+///     with the control and status frames;
 ///   - data frames are dropped oldest-first beyond a byte and a count budget;
 ///   - a time frame replaces the previous unsent one (only the latest time matters).
 /// Callbacks run on the I/O thread and must not block for long; the server calls them without
@@ -13,6 +16,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -33,6 +37,7 @@ struct ServerLimits {
   std::size_t queue_bytes = 8 << 20;       ///< data bytes queued per client
   std::size_t queue_messages = 512;        ///< data frames queued per client
   std::size_t status_messages = 64;        ///< status frames queued per client
+  std::size_t reply_messages = 256;        ///< reply frames queued per client
 };
 
 /// What happens on the connections; called on the I/O thread.
@@ -72,6 +77,12 @@ class WsServer {
   virtual void send_control(ClientId client, std::string text) = 0;
   /// Queues a text status frame; dropped when the client already has too many queued.
   virtual void send_status(ClientId client, std::string text) = 0;
+  /// Queues a binary reply frame (a service call response), kept in order with the control and
+  /// status frames; dropped when the client already has too many queued (it reads none).
+  virtual void send_reply(ClientId client, std::vector<std::uint8_t> frame) = 0;
+  /// Runs `task` on the I/O thread (after what it is doing now). A task posted after shutdown()
+  /// began may never run; it is then destroyed with the server.
+  virtual void post(std::function<void()> task) = 0;
   /// Queues a binary data frame `head` + `body`; returns how many older data frames were
   /// dropped to make room (0 normally). Unknown clients are ignored.
   virtual std::size_t send_data(ClientId client, std::vector<std::uint8_t> head, Payload body) = 0;

@@ -100,17 +100,89 @@ TEST(FoxgloveProtocol, MalformedRequestsNameWhatIsWrong) {
 
 TEST(FoxgloveProtocol, ClientBinaryFramesAreCheckedBeforeUse) {
   const std::vector<std::uint8_t> good = {0x01, 0x2a, 0, 0, 0, 9, 8};
-  const ClientMessage m = parse_client_binary(good);
+  const ClientMessage m = std::get<ClientMessage>(parse_client_binary(good));
   EXPECT_EQ(m.channel, 42u);
   ASSERT_EQ(m.payload.size(), 2u);
   EXPECT_EQ(m.payload[0], 9);
   EXPECT_NE(error_of([] { parse_client_binary({}); }).find("empty"), std::string::npos);
   const std::vector<std::uint8_t> short_frame = {0x01, 0x2a, 0};
   EXPECT_NE(error_of([&] { parse_client_binary(short_frame); }).find("at least 5 bytes"), std::string::npos);
-  const std::vector<std::uint8_t> service = {0x02, 0, 0, 0, 0};
-  EXPECT_NE(error_of([&] { parse_client_binary(service); }).find("service"), std::string::npos);
   const std::vector<std::uint8_t> unknown = {0x7f, 0, 0, 0, 0};
-  EXPECT_NE(error_of([&] { parse_client_binary(unknown); }).find("0x7f"), std::string::npos);
+  EXPECT_EQ(error_of([&] { parse_client_binary(unknown); }), "unknown binary opcode 0x7f (accepted: 0x01 client message data, 0x02 service call request)");
+}
+
+TEST(FoxgloveProtocol, ServiceCallRequestIsIdsEncodingAndPayload) {
+  // 0x02 | service 7 | call 0x01020304 | encoding length 4 | "json" | {}
+  const std::vector<std::uint8_t> frame = {0x02, 7, 0, 0, 0, 4, 3, 2, 1, 4, 0, 0, 0, 'j', 's', 'o', 'n', '{', '}'};
+  const ServiceCallRequest r = std::get<ServiceCallRequest>(parse_client_binary(frame));
+  EXPECT_EQ(r.service, 7u);
+  EXPECT_EQ(r.call, 0x01020304u);
+  EXPECT_EQ(r.encoding, "json");
+  EXPECT_EQ(std::string(r.payload.begin(), r.payload.end()), "{}");
+  // an empty encoding and payload are a well-formed frame (the service refuses the encoding)
+  const std::vector<std::uint8_t> bare = {0x02, 1, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0};
+  const ServiceCallRequest b = std::get<ServiceCallRequest>(parse_client_binary(bare));
+  EXPECT_EQ(b.encoding, "");
+  EXPECT_TRUE(b.payload.empty());
+}
+
+TEST(FoxgloveProtocol, MalformedServiceCallsKeepTheirIdsWhenTheyHaveThem) {
+  // no call id: nobody to answer with a serviceCallFailure, a plain Error (a status reply)
+  const std::vector<std::uint8_t> five = {0x02, 1, 0, 0, 0};
+  try {
+    parse_client_binary(five);
+    ADD_FAILURE() << "no error";
+  } catch (const ServiceCallError&) {
+    ADD_FAILURE() << "ids from 5 bytes";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "a service call request needs at least 13 bytes (opcode, service id, call id, encoding length), got 5");
+  }
+  // ids but no encoding length; an encoding length past the end (0xffffffff, 2 bytes left)
+  const std::vector<std::uint8_t> ten = {0x02, 3, 0, 0, 0, 9, 0, 0, 0, 4};
+  const std::vector<std::uint8_t> absurd = {0x02, 3, 0, 0, 0, 9, 0, 0, 0, 0xff, 0xff, 0xff, 0xff, '{', '}'};
+  for (const auto* frame : {&ten, &absurd}) {
+    try {
+      parse_client_binary(*frame);
+      ADD_FAILURE() << "no error";
+    } catch (const ServiceCallError& e) {
+      EXPECT_EQ(e.service, 3u);
+      EXPECT_EQ(e.call, 9u);
+      EXPECT_EQ(e.message(), frame == &ten ? "a service call request needs at least 13 bytes (opcode, service id, call id, encoding length), got 10"
+                                           : "service call request: encoding length 4294967295 runs past the end (2 bytes left)");
+    }
+  }
+}
+
+TEST(FoxgloveProtocol, ServiceFramesAreTheSpecsLayout) {
+  // 0x03 | service 2 | call 0x0a0b0c0d | length 4 | "json" | {"a":1}
+  const std::vector<std::uint8_t> want = {0x03, 2,   0,   0,   0,   0x0d, 0x0c, 0x0b, 0x0a, 4,   0,   0,  0,
+                                          'j',  's', 'o', 'n', '{', '"',  'a',  '"',  ':',  '1', '}'};
+  EXPECT_EQ(service_call_response(2, 0x0a0b0c0d, "json", R"({"a":1})"), want);
+
+  const json failure = json::parse(service_call_failure(4, 11, "unknown service id 4"));
+  EXPECT_EQ(failure, json::parse(R"({"op": "serviceCallFailure", "serviceId": 4, "callId": 11, "message": "unknown service id 4"})"));
+  // a message quoting a client's bytes that are not UTF-8 is still sent (the byte replaced)
+  EXPECT_EQ(json::parse(service_call_failure(4, 11, "encoding '\xff'"))["message"], "encoding '\xef\xbf\xbd'");
+
+  Service s;
+  s.id = 3;
+  s.name = "/set_simulation_state";
+  s.type = "simulation_interfaces/srv/SetSimulationState";
+  s.request = {"json", s.type + "_Request", "jsonschema", R"({"type":"object","properties":{}})"};
+  s.response = {"json", s.type + "_Response", "jsonschema", "{}"};
+  const json adv = json::parse(advertise_services({s}));
+  EXPECT_EQ(adv["op"], "advertiseServices");
+  ASSERT_EQ(adv["services"].size(), 1u);
+  const json& j = adv["services"][0];
+  EXPECT_EQ(j["id"], 3);
+  EXPECT_EQ(j["name"], "/set_simulation_state");
+  EXPECT_EQ(j["type"], "simulation_interfaces/srv/SetSimulationState");
+  EXPECT_EQ(j["request"], json::parse(R"({"encoding": "json", "schemaName": "simulation_interfaces/srv/SetSimulationState_Request",
+      "schemaEncoding": "jsonschema", "schema": "{\"type\":\"object\",\"properties\":{}}"})"));
+  EXPECT_EQ(j["response"]["schemaName"], "simulation_interfaces/srv/SetSimulationState_Response");
+  // the older string form is not sent: clients would read it in the wrong encoding
+  EXPECT_FALSE(j.contains("requestSchema"));
+  EXPECT_FALSE(j.contains("responseSchema"));
 }
 
 TEST(FoxgloveProtocol, DecodesTwistFromCdrAndJson) {
