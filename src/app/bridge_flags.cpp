@@ -21,8 +21,14 @@ void add_bridge_flags(CLI::App* cmd, BridgeFlags& f) {
   cmd->add_flag("--ros1", f.ros1, "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
   cmd->add_flag("--ros2", f.ros2, "be a ROS 2 participant on ROS_DOMAIN_ID (Cyclone DDS, ROS 2 wire conventions; docs/ros.md)");
   cmd->add_flag("--use-sim-time", f.use_sim_time, "ROS 1: set the /use_sim_time parameter so nodes follow /clock");
-  cmd->add_option("--ros2-distro", f.ros2_distro, "ROS 2 discovery info layout: humble (24-byte Gid) or iron (16-byte, Iron and newer)")
-      ->check(CLI::IsMember({"humble", "iron"}));
+  cmd->add_option("--ros2-distro", f.ros2_distro,
+                  "the ROS 2 distribution of the peers (default jazzy): humble (24-byte Gids in ros_discovery_info), iron, "
+                  "jazzy, kilted (16-byte Gids; sensor_msgs/Range with variance), rolling (also the Simulation Interfaces "
+                  "2.x layouts)")
+      ->check(CLI::IsMember({"humble", "iron", "jazzy", "kilted", "rolling"}));
+  cmd->add_option("--sim-services-ns", f.sim_services_ns,
+                  "ROS 2: the namespace of the Simulation Interfaces services and the simulate_steps action (default /: "
+                  "/reset_simulation, as Isaac Sim and O3DE; /gzserver puts them where Gazebo does; docs/ros.md)");
   cmd->add_option("--ros-domain", f.ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
   cmd->add_option("--foxglove", f.foxglove,
                   "serve Foxglove/Lichtblick on ws://HOST:PORT (default port 8765; 0 picks a free one, logged at --log-level info; docs/foxglove.md)")
@@ -54,6 +60,8 @@ std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f, [[maybe_
     Ros2Options o;
     if (f.ros_domain) o.domain_id = *f.ros_domain;
     o.distro = f.ros2_distro == "humble" ? Ros2Distro::humble : Ros2Distro::iron_or_newer;
+    o.sim_interfaces_v2 = f.ros2_distro == "rolling";
+    o.sim_services_ns = f.sim_services_ns;
     bridges.push_back(make_ros2_bridge(o));
 #else
     throw Error("--ros2: this rescuesim was built without the ROS 2 bridge (Cyclone DDS not found at build time; "

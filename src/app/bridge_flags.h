@@ -21,7 +21,8 @@ namespace rescuesim::app {
 struct BridgeFlags {
   bool ros1 = false, ros2 = false;
   bool use_sim_time = false;
-  std::string ros2_distro = "humble";
+  std::string ros2_distro = "jazzy";   ///< humble, iron, jazzy, kilted or rolling
+  std::string sim_services_ns = "/";  ///< --sim-services-ns: where the Simulation Interfaces services live
   std::optional<int> ros_domain;
   bool lockstep = false;          ///< with a ROS or Foxglove bridge: step as fast as possible anyway
   bool keep_controllers = false;  ///< with a ROS or Foxglove bridge: keep the built-in controllers

@@ -1,5 +1,6 @@
 #include "bridges/ros2/command_input.h"
 
+#include "bridges/ros2/cdr_bytes.h"
 #include "core/error.h"
 #include "msgs/serialize.h"
 
@@ -21,6 +22,35 @@ Decoded<T> decode(const char* type_name, std::span<const std::uint8_t> cdr) {
 }  // namespace
 
 Decoded<msg::Twist> decode_twist(std::span<const std::uint8_t> cdr) { return decode<msg::Twist>("geometry_msgs/Twist", cdr); }
+
+Decoded<StampedTwist> decode_twist_stamped(std::span<const std::uint8_t> cdr) {
+  try {
+    cdr::Reader in(cdr, "geometry_msgs/TwistStamped");
+    StampedTwist out;
+    const std::int32_t sec = in.get<std::int32_t>("header.stamp.sec");
+    const std::uint32_t nanosec = in.get<std::uint32_t>("header.stamp.nanosec");
+    if (nanosec >= 1'000'000'000u) in.fail("header.stamp.nanosec", std::to_string(nanosec) + " is not below 1e9");
+    out.stamp = SimTime{std::int64_t{sec} * 1'000'000'000 + nanosec};
+    out.frame_id = in.string("header.frame_id");
+    static const char* const kNames[6] = {"twist.linear.x", "twist.linear.y", "twist.linear.z",
+                                          "twist.angular.x", "twist.angular.y", "twist.angular.z"};
+    for (int i = 0; i < 6; ++i) {
+      const double v = in.get<double>(kNames[i]);
+      (i < 3 ? out.twist.linear : out.twist.angular)[i % 3] = v;
+    }
+    in.finish(3);
+    return {std::move(out), {}};
+  } catch (const Error& e) {
+    return {std::nullopt, "malformed CDR: " + e.message()};
+  }
+}
+
+std::string stamp_problem(SimTime stamp, SimTime now) {
+  if (stamp.ns == 0 || stamp <= now + kFutureStampTolerance) return {};
+  return "header.stamp " + message_number(stamp.seconds()) + " s is " + message_number((stamp - now).seconds()) +
+         " s ahead of sim time " + message_number(now.seconds()) +
+         " s (stamp TwistStamped with sim time, as nodes with use_sim_time do, or leave it 0)";
+}
 
 Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> cdr) {
   auto a = decode<msg::Float64MultiArray>("std_msgs/Float64MultiArray", cdr);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sim_time.h"
 #include "msgs/messages.h"
 
 namespace rescuesim::ros2 {
@@ -23,6 +24,27 @@ struct Decoded {
 
 /// geometry_msgs/Twist bytes.
 Decoded<msg::Twist> decode_twist(std::span<const std::uint8_t> cdr);
+
+/// geometry_msgs/TwistStamped: std_msgs/Header, then the Twist.
+struct StampedTwist {
+  SimTime stamp;         ///< header.stamp; 0 when the publisher left it unset
+  std::string frame_id;  ///< header.frame_id (the drive takes twists in the robot's base frame whatever it says)
+  msg::Twist twist;
+};
+/// geometry_msgs/TwistStamped bytes (XCDR1, either byte order). Up to 3 bytes of padding may
+/// follow the message; a stamp whose nanosec is not below 1e9 is malformed.
+Decoded<StampedTwist> decode_twist_stamped(std::span<const std::uint8_t> cdr);
+
+/// How far ahead of the host's sim time a TwistStamped stamp may be (a publisher on
+/// use_sim_time reads the clock from /clock, a little behind the host's; the margin also
+/// covers /clock's own period).
+inline constexpr SimTime kFutureStampTolerance = SimTime::from_ms(500);
+/// Why a TwistStamped stamped `stamp` may not be applied when the host's sim time is `now`, or
+/// "" when it may: stamps more than kFutureStampTolerance ahead of sim time are refused (ROS
+/// nodes on use_sim_time stamp commands with sim time; a wall-clock stamp from a node that is
+/// not is decades ahead). A zero stamp means "unset" and is taken; stamps in the past are taken.
+std::string stamp_problem(SimTime stamp, SimTime now);
+
 /// std_msgs/Float64MultiArray bytes (head/command): the data array.
 Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> cdr);
 /// sensor_msgs/JointState bytes (joint_command).

@@ -1,5 +1,6 @@
 // Serialised samples through Cyclone DDS 0.10. Topics are created from idlc descriptors (so the
-// DDS type name, the matching and Cyclone's checks follow the hand-written IDL). Cyclone 0.10
+// DDS type name, the matching and Cyclone's checks follow the hand-written IDL), or, for raw
+// endpoints, from a sertype of our own that only carries bytes (dds_raw_type.h). Cyclone 0.10
 // has no public way to get a topic's sertype (dds_get_entity_sertype came later), so a sample
 // is written as a serdata of a minimal "raw bytes" sertype of our own: dds_writecdr sees the
 // type differs from the writer's and converts it with the writer's own from_ser_iov, which
@@ -12,12 +13,14 @@
 #include <dds/ddsi/ddsi_serdata.h>
 #include <dds/ddsi/ddsi_sertype.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <map>
 #include <mutex>
 #include <string_view>
 
+#include "bridges/ros2/dds_raw_type.h"
 #include "core/error.h"
 
 #include "ros2_messages.h"
@@ -164,47 +167,94 @@ dds_entity_t DdsParticipant::make_topic(const std::string& topic, const std::str
   return t;
 }
 
-int DdsParticipant::create_writer(const std::string& topic, const std::string& dds_type, const EndpointQos& qos) {
-  const dds_entity_t t = make_topic(topic, dds_type);
+dds_entity_t DdsParticipant::make_raw_topic(const std::string& topic, const std::string& dds_type) {
+  if (dds_type.empty()) throw Error("ROS 2 bridge: no DDS type name for topic " + topic);
+  // Cyclone takes over the sertype's reference, and may swap in an equal one it already has;
+  // on failure the reference is still ours
+  ddsi_sertype* st = detail::make_raw_sertype(dds_type);
+  const dds_entity_t t = dds_create_topic_sertype(participant_, topic.c_str(), &st, nullptr, nullptr, nullptr);
+  if (t < 0) {
+    ddsi_sertype_unref(st);
+    throw Error("ROS 2 bridge: cannot create DDS topic " + topic + " of type " + dds_type + ": " + why(t));
+  }
+  return t;
+}
+
+int DdsParticipant::add_writer(const std::string& topic, dds_entity_t t, const EndpointQos& qos, const std::string& user_data) {
   Qos q;
   apply(qos, q.q);
+  if (!user_data.empty()) dds_qset_userdata(q.q, user_data.data(), user_data.size());
   const dds_entity_t w = dds_create_writer(participant_, t, q.q, nullptr);
   if (w < 0) throw Error("ROS 2 bridge: cannot create a DDS writer on " + topic + ": " + why(w));
+  std::lock_guard lock(mutex_);
   writers_.push_back({t, w});
   return static_cast<int>(writers_.size()) - 1;
 }
 
-int DdsParticipant::create_discovery_writer(std::size_t gid_bytes) {
-  const dds_entity_t t = make_topic(kDiscoveryTopic, kDiscoveryType, gid_bytes);
-  Qos q;
-  apply(discovery_qos(), q.q);
-  const dds_entity_t w = dds_create_writer(participant_, t, q.q, nullptr);
-  if (w < 0) throw Error(std::string("ROS 2 bridge: cannot create the DDS writer on ") + kDiscoveryTopic + ": " + why(w));
-  writers_.push_back({t, w});
-  return static_cast<int>(writers_.size()) - 1;
-}
-
-int DdsParticipant::create_reader(const std::string& topic, const std::string& dds_type, const EndpointQos& qos) {
-  const dds_entity_t t = make_topic(topic, dds_type);
+int DdsParticipant::add_reader(const std::string& topic, dds_entity_t t, const EndpointQos& qos, const std::string& user_data,
+                               Wake wake) {
   Qos q;
   apply(qos, q.q);
+  if (!user_data.empty()) dds_qset_userdata(q.q, user_data.data(), user_data.size());
   const dds_entity_t r = dds_create_reader(participant_, t, q.q, nullptr);
   if (r < 0) throw Error("ROS 2 bridge: cannot create a DDS reader on " + topic + ": " + why(r));
   const dds_entity_t cond = dds_create_readcondition(r, DDS_ANY_STATE);
-  if (cond < 0 || dds_waitset_attach(waitset_, cond, r) != DDS_RETCODE_OK) {
-    throw Error("ROS 2 bridge: cannot wait for data on " + topic);
+  Endpoint e{t, r};
+  bool attached = false;
+  if (cond >= 0 && wake == Wake::participant) {
+    attached = dds_waitset_attach(waitset_, cond, r) == DDS_RETCODE_OK;
+  } else if (cond >= 0) {
+    // a waitset of the reader's own, so that its data wakes only wait_reader()
+    e.own_waitset = dds_create_waitset(participant_);
+    attached = e.own_waitset >= 0 && dds_waitset_attach(e.own_waitset, cond, r) == DDS_RETCODE_OK;
   }
-  readers_.push_back({t, r});
+  if (!attached) throw Error("ROS 2 bridge: cannot wait for data on " + topic);
+  std::lock_guard lock(mutex_);
+  readers_.push_back(e);
   return static_cast<int>(readers_.size()) - 1;
 }
 
-bool DdsParticipant::write(int writer, std::span<const std::uint8_t> cdr, std::string* error) {
+int DdsParticipant::create_writer(const std::string& topic, const std::string& dds_type, const EndpointQos& qos,
+                                  const std::string& user_data) {
+  return add_writer(topic, make_topic(topic, dds_type), qos, user_data);
+}
+
+int DdsParticipant::create_discovery_writer(std::size_t gid_bytes) {
+  return add_writer(kDiscoveryTopic, make_topic(kDiscoveryTopic, kDiscoveryType, gid_bytes), discovery_qos(), {});
+}
+
+int DdsParticipant::create_reader(const std::string& topic, const std::string& dds_type, const EndpointQos& qos,
+                                  const std::string& user_data) {
+  return add_reader(topic, make_topic(topic, dds_type), qos, user_data, Wake::participant);
+}
+
+int DdsParticipant::create_raw_writer(const std::string& topic, const std::string& dds_type, const EndpointQos& qos,
+                                      const std::string& user_data) {
+  return add_writer(topic, make_raw_topic(topic, dds_type), qos, user_data);
+}
+
+int DdsParticipant::create_raw_reader(const std::string& topic, const std::string& dds_type, const EndpointQos& qos,
+                                      const std::string& user_data, Wake wake) {
+  return add_reader(topic, make_raw_topic(topic, dds_type), qos, user_data, wake);
+}
+
+DdsParticipant::Endpoint DdsParticipant::writer(int index) const {
+  std::lock_guard lock(mutex_);
+  return writers_.at(static_cast<std::size_t>(index));
+}
+
+DdsParticipant::Endpoint DdsParticipant::reader(int index) const {
+  std::lock_guard lock(mutex_);
+  return readers_.at(static_cast<std::size_t>(index));
+}
+
+bool DdsParticipant::write(int writer_index, std::span<const std::uint8_t> cdr, std::string* error) {
   RawSample sample;
   ddsi_serdata_init(&sample.base, &raw_sertype(), SDK_DATA);
   sample.bytes = cdr.data();
   sample.size = static_cast<std::uint32_t>(cdr.size());
   // dds_writecdr consumes the sample's one reference; the writer keeps its own converted copy
-  const dds_return_t rc = dds_writecdr(writers_.at(static_cast<std::size_t>(writer)).entity, &sample.base);
+  const dds_return_t rc = dds_writecdr(writer(writer_index).entity, &sample.base);
   if (rc == DDS_RETCODE_OK) return true;
   if (error) {
     *error = rc == DDS_RETCODE_ERROR ? "Cyclone DDS refused the sample (its bytes do not fit the topic's type)" : why(rc);
@@ -212,8 +262,13 @@ bool DdsParticipant::write(int writer, std::span<const std::uint8_t> cdr, std::s
   return false;
 }
 
-void DdsParticipant::take(int reader, const std::function<void(std::span<const std::uint8_t>)>& f) {
-  const dds_entity_t r = readers_.at(static_cast<std::size_t>(reader)).entity;
+void DdsParticipant::take(int reader_index, const std::function<void(std::span<const std::uint8_t>)>& f) {
+  take_with_info(reader_index, [&](std::span<const std::uint8_t> bytes, const SampleInfo&) { f(bytes); });
+}
+
+void DdsParticipant::take_with_info(int reader_index,
+                                    const std::function<void(std::span<const std::uint8_t>, const SampleInfo&)>& f) {
+  const dds_entity_t r = reader(reader_index).entity;
   constexpr std::uint32_t kBatch = 16;
   std::vector<std::uint8_t> bytes;
   for (;;) {
@@ -221,14 +276,22 @@ void DdsParticipant::take(int reader, const std::function<void(std::span<const s
     std::array<dds_sample_info_t, kBatch> infos{};
     const dds_return_t n = dds_takecdr(r, samples.data(), kBatch, infos.data(), DDS_ANY_STATE);
     if (n <= 0) return;
-    for (dds_return_t i = 0; i < n; ++i) {
-      if (infos[static_cast<std::size_t>(i)].valid_data) {
-        ddsi_serdata* s = samples[static_cast<std::size_t>(i)];
-        bytes.resize(ddsi_serdata_size(s));
-        ddsi_serdata_to_ser(s, 0, bytes.size(), bytes.data());
-        f(bytes);
+    // every taken sample is released, also when `f` throws
+    dds_return_t released = 0;
+    try {
+      for (; released < n; ++released) {
+        const dds_sample_info_t& info = infos[static_cast<std::size_t>(released)];
+        ddsi_serdata* s = samples[static_cast<std::size_t>(released)];
+        if (info.valid_data) {
+          bytes.resize(ddsi_serdata_size(s));
+          ddsi_serdata_to_ser(s, 0, bytes.size(), bytes.data());
+          f(bytes, SampleInfo{info.publication_handle, info.source_timestamp});
+        }
+        ddsi_serdata_unref(s);
       }
-      ddsi_serdata_unref(samples[static_cast<std::size_t>(i)]);
+    } catch (...) {
+      for (dds_return_t i = released; i < n; ++i) ddsi_serdata_unref(samples[static_cast<std::size_t>(i)]);
+      throw;
     }
     if (static_cast<std::uint32_t>(n) < kBatch) return;
   }
@@ -242,20 +305,106 @@ void DdsParticipant::wait(std::chrono::milliseconds timeout) {
 
 void DdsParticipant::wake() { dds_set_guardcondition(guard_, true); }
 
-Guid DdsParticipant::participant_guid() const { return guid_of(participant_); }
-Guid DdsParticipant::writer_guid(int writer) const { return guid_of(writers_.at(static_cast<std::size_t>(writer)).entity); }
-Guid DdsParticipant::reader_guid(int reader) const { return guid_of(readers_.at(static_cast<std::size_t>(reader)).entity); }
+bool DdsParticipant::wait_reader(int reader_index, std::chrono::milliseconds timeout) {
+  const Endpoint e = reader(reader_index);
+  if (e.own_waitset <= 0) throw Error("ROS 2 bridge: wait_reader() on a reader that wakes the participant's wait()");
+  return dds_waitset_wait(e.own_waitset, nullptr, 0, DDS_MSECS(std::max<std::int64_t>(0, timeout.count()))) > 0;
+}
 
-int DdsParticipant::matched_readers(int writer) const {
+Guid DdsParticipant::participant_guid() const { return guid_of(participant_); }
+Guid DdsParticipant::writer_guid(int w) const { return guid_of(writer(w).entity); }
+Guid DdsParticipant::reader_guid(int r) const { return guid_of(reader(r).entity); }
+
+std::uint64_t DdsParticipant::writer_instance_handle(int w) const {
+  dds_instance_handle_t ih = 0;
+  if (dds_get_instance_handle(writer(w).entity, &ih) != DDS_RETCODE_OK) return 0;
+  return ih;
+}
+
+int DdsParticipant::matched_readers(int w) const {
   dds_publication_matched_status_t st{};
-  if (dds_get_publication_matched_status(writers_.at(static_cast<std::size_t>(writer)).entity, &st) != DDS_RETCODE_OK) return 0;
+  if (dds_get_publication_matched_status(writer(w).entity, &st) != DDS_RETCODE_OK) return 0;
   return static_cast<int>(st.current_count);
 }
 
-int DdsParticipant::matched_writers(int reader) const {
+int DdsParticipant::matched_writers(int r) const {
   dds_subscription_matched_status_t st{};
-  if (dds_get_subscription_matched_status(readers_.at(static_cast<std::size_t>(reader)).entity, &st) != DDS_RETCODE_OK) return 0;
+  if (dds_get_subscription_matched_status(reader(r).entity, &st) != DDS_RETCODE_OK) return 0;
   return static_cast<int>(st.current_count);
+}
+
+namespace {
+
+// USER_DATA of a matched endpoint's discovery data, which this frees
+std::optional<std::string> user_data_of(dds_builtintopic_endpoint_t* ep) {
+  if (ep == nullptr) return std::nullopt;
+  std::string out;
+  void* ud = nullptr;
+  size_t size = 0;
+  if (ep->qos != nullptr && dds_qget_userdata(ep->qos, &ud, &size) && ud != nullptr) {
+    out.assign(static_cast<const char*>(ud), size);
+    dds_free(ud);
+  }
+  dds_builtintopic_free_endpoint(ep);
+  return out;
+}
+
+// the instance handles of what `entity` is matched with (dds_get_matched_subscriptions/_publications)
+template <class Get>
+std::vector<dds_instance_handle_t> matched(dds_entity_t entity, Get get) {
+  std::vector<dds_instance_handle_t> handles(8);
+  for (;;) {
+    const dds_return_t n = get(entity, handles.data(), handles.size());
+    if (n < 0) return {};
+    if (static_cast<std::size_t>(n) <= handles.size()) {
+      handles.resize(static_cast<std::size_t>(n));
+      return handles;
+    }
+    handles.resize(static_cast<std::size_t>(n));  // more than fitted: ask again with room for all
+  }
+}
+
+}  // namespace
+
+std::vector<Guid> DdsParticipant::matched_reader_guids(int w) const {
+  const dds_entity_t e = writer(w).entity;
+  std::vector<Guid> out;
+  for (const dds_instance_handle_t h : matched(e, dds_get_matched_subscriptions)) {
+    if (dds_builtintopic_endpoint_t* ep = dds_get_matched_subscription_data(e, h)) {
+      Guid g{};
+      std::memcpy(g.data(), ep->key.v, g.size());
+      out.push_back(g);
+      dds_builtintopic_free_endpoint(ep);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> DdsParticipant::matched_reader_user_data(int w) const {
+  const dds_entity_t e = writer(w).entity;
+  std::vector<std::string> out;
+  for (const dds_instance_handle_t h : matched(e, dds_get_matched_subscriptions)) {
+    if (auto ud = user_data_of(dds_get_matched_subscription_data(e, h))) out.push_back(std::move(*ud));
+  }
+  return out;
+}
+
+std::vector<std::string> DdsParticipant::matched_writer_user_data(int r) const {
+  const dds_entity_t e = reader(r).entity;
+  std::vector<std::string> out;
+  for (const dds_instance_handle_t h : matched(e, dds_get_matched_publications)) {
+    if (auto ud = user_data_of(dds_get_matched_publication_data(e, h))) out.push_back(std::move(*ud));
+  }
+  return out;
+}
+
+std::optional<std::string> DdsParticipant::matched_writer_user_data(int r, std::uint64_t publication_handle) const {
+  return user_data_of(dds_get_matched_publication_data(reader(r).entity, publication_handle));
+}
+
+std::uint32_t DdsParticipant::next_client_service_counter() {
+  std::lock_guard lock(mutex_);
+  return ++client_service_counter_;
 }
 
 }  // namespace rescuesim::ros2

@@ -1,28 +1,34 @@
 // The ROS 2 bridge: every Bus topic becomes a DDS writer on rt/<topic> with ROS 2's type name,
 // carrying msgs/serialize.h's XCDR1 bytes (latched ones, /tf_static and robot_description,
-// transient local); /cmd_vel, /head/command and (for robots with commandable joints)
-// /joint_command of each robot, and the host's own inputs (a mission's reports, datagrams, relay
-// drops), become readers whose samples are decoded, checked and queued into the simulation; the
-// participant announces a node (rescuesim, namespace /) on ros_discovery_info so `ros2 node list`
-// sees it.
+// transient local); /cmd_vel (as geometry_msgs/Twist and, on a second reader of the same topic,
+// TwistStamped), /head/command and (for robots with commandable joints) /joint_command of each
+// robot, and the host's own inputs (a mission's reports, datagrams, relay drops), become readers
+// whose samples are decoded, checked and queued into the simulation; the services and actions
+// that register_control_services() puts on the bridge's ServiceRegistry are served; the
+// participant announces a node (rescuesim, namespace /) with all these endpoints on
+// ros_discovery_info so `ros2 node list`, `ros2 service list` and `ros2 action list` see it.
 //
 // Threads: the Bus callback (simulation thread) only queues the shared message (no copy) in the
 // Outbox (bridges/common/outbox.h: one bounded queue per topic, so a burst of /clock at 200 Hz
-// never pushes out an image or /tf_static); a sender thread serialises and writes, a round of
-// at most one message per topic at a time; a receiver thread waits on the readers and hands
-// what they take to the shared command gate (bridges/common/commands.h).
+// never pushes out an image or /tf_static), and notes the sim time; a sender thread serialises
+// and writes, a round of at most one message per topic at a time; a receiver thread waits on the
+// readers, hands what they take to the shared command gate (bridges/common/commands.h), and
+// polls the services (requests in, replies out: service_registry.h).
 
 #include "bridges/ros2/ros2_bridge.h"
 
 #include <atomic>
+#include <mutex>
 #include <thread>
 
 #include "bridges/common/commands.h"
 #include "bridges/common/outbox.h"
 #include "bridges/common/shared_cdr.h"
 #include "bridges/ros2/command_input.h"
+#include "bridges/ros2/control_services.h"
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/ros2_conventions.h"
+#include "bridges/ros2/service_registry.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/thread.h"
@@ -51,13 +57,17 @@ class Ros2Bridge final : public Bridge {
     s.dropped += outbox_.stats().dropped;
     s.received = gate_ ? gate_->received() : 0;
     s.rejected = gate_ ? gate_->rejected() : 0;
+    // malformed service requests count as refused commands
+    std::lock_guard lock(services_mutex_);
+    s.rejected += services_ ? services_->malformed() : services_malformed_;
     return s;
   }
 
  private:
   /// A command reader: whose commands, of which kind.
   struct Input {
-    enum class Kind { velocity, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
+    /// cmd_vel (Twist), cmd_vel (TwistStamped), head/command, joint_command, flippers/command, BridgeHost::inputs()
+    enum class Kind { velocity, velocity_stamped, head, joints, flippers, host };
     int reader;
     int robot;
     Kind kind;
@@ -71,6 +81,8 @@ class Ros2Bridge final : public Bridge {
   void send(int writer, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer);
   void receive_loop();
   void receive(Input& input, std::span<const std::uint8_t> bytes);
+  /// Writes ros_discovery_info: the node with its topics' endpoints and every service's.
+  bool publish_discovery(std::string* error);
 
   Ros2Options options_;
   BridgeHost* host_ = nullptr;
@@ -87,6 +99,13 @@ class Ros2Bridge final : public Bridge {
   std::atomic<std::uint64_t> sent_{0}, failed_{0};
   std::unique_ptr<CommandGate> gate_;  ///< checks, counts and warns about what the readers take
   Throttle write_warning_;
+  ros2::NodeEntities node_;  ///< the node's topic endpoints (the services' are added when announced)
+  int discovery_writer_ = -1;
+  mutable std::mutex services_mutex_;  ///< guards services_ itself (for stats() during stop())
+  std::unique_ptr<ros2::ServiceRegistry> services_;  ///< polled on the receiver thread
+  std::uint64_t services_malformed_ = 0;             ///< services_->malformed() when it was stopped
+  std::atomic<bool> discovery_dirty_{false};         ///< services were added after start: announce again
+  std::atomic<std::int64_t> sim_time_ns_{0};         ///< the host's sim time, noted on the simulation thread
 };
 
 void Ros2Bridge::start(BridgeHost& host) {
@@ -95,7 +114,8 @@ void Ros2Bridge::start(BridgeHost& host) {
   gate_ = std::make_unique<CommandGate>(host, "ROS 2 bridge");
   const int domain = ros2::resolve_domain(options_.domain_id);
   dds_ = std::make_unique<DdsParticipant>(domain, ros2::participant_user_data());
-  ros2::NodeEntities node;
+  sim_time_ns_ = host.time().ns;
+  ros2::NodeEntities& node = node_;
   node.node_name = options_.node_name;
   node.node_namespace = options_.node_namespace;
 
@@ -124,6 +144,12 @@ void Ros2Bridge::start(BridgeHost& host) {
     const int rv = dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos());
     inputs_.push_back({rv, robot, Input::Kind::velocity, cmd_vel});
     node.readers.push_back(dds_->reader_guid(rv));
+    // TwistStamped on the same topic (Jazzy's diff_drive_controller, Nav2 from Kilted): a type
+    // of its own, so a reader of its own; Cyclone keeps two types on one topic name apart
+    const int rs = dds_->create_raw_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::TwistStamped_",
+                                           ros2::command_reader_qos());
+    inputs_.push_back({rs, robot, Input::Kind::velocity_stamped, cmd_vel});
+    node.readers.push_back(dds_->reader_guid(rs));
     if (!host.world().robots[r].spec.head_joints.empty()) {
       const int rh = dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_",
                                          ros2::command_reader_qos());
@@ -161,16 +187,26 @@ void Ros2Bridge::start(BridgeHost& host) {
     node.readers.push_back(dds_->reader_guid(reader));
   }
 
-  // the node, for `ros2 node list` / `ros2 node info` (transient-local: late joiners get it too)
-  const int discovery = dds_->create_discovery_writer(ros2::gid_size(options_.distro));
-  const auto info = ros2::encode_discovery_info(dds_->participant_guid(), {node}, ros2::gid_size(options_.distro));
+  // the run's services and actions, served on the receiver thread (sim time stamps their goals)
+  services_ = std::make_unique<ros2::ServiceRegistry>(*dds_, [this] { return sim_time_ns_.load(std::memory_order_relaxed); });
+  ros2::register_control_services(*services_, host, options_);
+
+  // the node, for `ros2 node list` / `ros2 node info` (transient-local: late joiners get it too);
+  // services added later are announced again from the receiver thread
+  discovery_writer_ = dds_->create_discovery_writer(ros2::gid_size(options_.distro));
   std::string error;
-  if (!dds_->write(discovery, info, &error)) throw Error("ROS 2 bridge: cannot publish ros_discovery_info: " + error);
+  if (!publish_discovery(&error)) throw Error("ROS 2 bridge: cannot publish ros_discovery_info: " + error);
+  services_->set_on_change([this] {
+    discovery_dirty_ = true;
+    dds_->wake();
+  });
 
   // the simulation thread only queues the shared messages (no copy), and only what someone listens to
   listened_ = std::vector<std::atomic<bool>>(writer_topic_.size());
   refresh_listened();
   subscription_ = host.bus().subscribe_shared("", [this](const Topic& topic, const Bus::SharedMessage& m) {
+    // the receiver thread checks TwistStamped stamps against this
+    sim_time_ns_.store(host_->time().ns, std::memory_order_relaxed);
     const std::size_t id = static_cast<std::size_t>(topic.id);
     // a topic advertised after start has no DDS writer: it is not bridged, so not even queued
     if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;
@@ -181,9 +217,9 @@ void Ros2Bridge::start(BridgeHost& host) {
   receiving_ = true;
   sender_ = start_named_thread("ros2-send", [this] { send_loop(); });
   receiver_ = start_named_thread("ros2-receive", [this] { receive_loop(); });
-  log::info("ROS 2 bridge: domain {}, node {}{}{}, {} topics out, {} command topics in", domain,
+  log::info("ROS 2 bridge: domain {}, node {}{}{}, {} topics out, {} command readers in, {} services and actions", domain,
             options_.node_namespace, options_.node_namespace.ends_with('/') ? "" : "/", options_.node_name,
-            node.writers.size(), inputs_.size());
+            node.writers.size(), inputs_.size(), services_->size());
 }
 
 void Ros2Bridge::stop() {
@@ -198,6 +234,12 @@ void Ros2Bridge::stop() {
   receiving_ = false;
   dds_->wake();
   if (receiver_.joinable()) receiver_.join();
+  {
+    // handles the simulation thread still holds find their services gone
+    std::lock_guard lock(services_mutex_);
+    if (services_) services_malformed_ = services_->malformed();
+    services_.reset();
+  }
   dds_.reset();
 }
 
@@ -260,11 +302,27 @@ void Ros2Bridge::send(int writer, const Bus::SharedMessage& message, std::vector
   }
 }
 
+bool Ros2Bridge::publish_discovery(std::string* error) {
+  ros2::NodeEntities node = node_;
+  if (services_) {
+    for (const ros2::Guid& g : services_->reader_guids()) node.readers.push_back(g);
+    for (const ros2::Guid& g : services_->writer_guids()) node.writers.push_back(g);
+  }
+  const auto info = ros2::encode_discovery_info(dds_->participant_guid(), {node}, ros2::gid_size(options_.distro));
+  return dds_->write(discovery_writer_, info, error);
+}
+
 void Ros2Bridge::receive_loop() {
   while (receiving_.load()) {
-    dds_->wait(std::chrono::milliseconds(200));
+    // sooner than the usual 200 ms when a service reply waits for its client's reader to match
+    dds_->wait(services_->poll_within(std::chrono::milliseconds(200)));
     for (Input& in : inputs_) {
       dds_->take(in.reader, [&](std::span<const std::uint8_t> bytes) { receive(in, bytes); });
+    }
+    services_->poll();
+    if (discovery_dirty_.exchange(false)) {
+      std::string error;
+      if (!publish_discovery(&error)) log::warn("ROS 2 bridge: cannot publish ros_discovery_info: {}", error);
     }
   }
 }
@@ -277,6 +335,14 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
   };
   switch (in.kind) {
     case Input::Kind::velocity: take(ros2::decode_twist(bytes), [&](const msg::Twist& t) { gate_->velocity(in.robot, in.topic, t); }); break;
+    case Input::Kind::velocity_stamped:
+      take(ros2::decode_twist_stamped(bytes), [&](const ros2::StampedTwist& t) {
+        // a stamp from the future is refused like a malformed command; NaN, as for Twist, by the gate
+        const std::string problem = ros2::stamp_problem(t.stamp, SimTime{sim_time_ns_.load(std::memory_order_relaxed)});
+        if (!problem.empty()) return gate_->malformed(in.topic + " (geometry_msgs/TwistStamped)", problem);
+        gate_->velocity(in.robot, in.topic, t.twist);
+      });
+      break;
     case Input::Kind::head:
       take(ros2::decode_head_command(bytes), [&](const std::vector<double>& p) { gate_->head(in.robot, in.topic, p); });
       break;

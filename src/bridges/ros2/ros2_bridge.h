@@ -20,6 +20,12 @@ struct Ros2Options {
   Ros2Distro distro = Ros2Distro::humble;
   std::size_t queue_size = 64;     ///< per topic: most messages buffered before the oldest is dropped
                                    ///< (a topic buffers at most about one second of its messages)
+  /// Where the Simulation Interfaces services and the SimulateSteps action live: "/" (root, as
+  /// Isaac Sim and O3DE serve them) or a namespace ("/gzserver", as Gazebo's ros_gz_sim does).
+  std::string sim_services_ns = "/";
+  /// The Simulation Interfaces wire layout: 1.x (Humble, Jazzy, Kilted) or 2.x (Rolling), which
+  /// differ in SetEntityState's request and in Spawnable.
+  bool sim_interfaces_v2 = false;
 };
 
 /// Throws rescuesim::Error on start() when the DDS participant cannot be created.

@@ -34,7 +34,8 @@ TEST(Ros1Ros2Together, RostopicAndADdsPeerReadScanWhileThePeerDrives) {
   ASSERT_TRUE(master.start()) << "roscore did not start";
 
   const fs::path yaml = write_room(dir);
-  auto sim = master.spawn({RESCUESIM_EXE, "run", yaml.string(), "--ros1", "--ros2", "--ros-domain", std::to_string(domain), "--duration",
+  // the Fast DDS peer is built from Humble's IDL: the run speaks Humble
+  auto sim = master.spawn({RESCUESIM_EXE, "run", yaml.string(), "--ros1", "--ros2", "--ros2-distro", "humble", "--ros-domain", std::to_string(domain), "--duration",
                            "60", "--quiet", "--out", (dir / "out").string()});
   ASSERT_TRUE(wait_until([&] { return sim->output().find("bridge        ros2 started") != std::string::npos || !sim->running(); }, kPatience));
   ASSERT_TRUE(sim->running()) << sim->output();

@@ -107,7 +107,8 @@ Session run_with_peer(const std::string& name, const std::string& mode, bool cam
   Session s;
   const auto t0 = std::chrono::steady_clock::now();
   {
-    Background sim({RESCUESIM_EXE, "run", scenario.string(), "--ros2", "--ros-domain", std::to_string(domain), "--duration", "40",
+    // the peer is built from Humble's IDL (24-byte Gids, Range without variance): the run speaks Humble
+    Background sim({RESCUESIM_EXE, "run", scenario.string(), "--ros2", "--ros2-distro", "humble", "--ros-domain", std::to_string(domain), "--duration", "40",
                     "--quiet", "--out", (dir / "run").string()},
                    dir / "sim.out", dir / "sim.err");
     EXPECT_TRUE(sim.running());
@@ -183,7 +184,9 @@ TEST(Ros2Interop, FastDdsPeerReadsSensorsDrivesTheRobotAndSeesTheNode) {
   EXPECT_TRUE(r["discovery"]["gid_padding_zero"].get<bool>());
   EXPECT_TRUE(r["discovery"]["scan_writer_listed"].get<bool>());
   EXPECT_GT(r["discovery"]["writers"].get<int>(), 10);
-  EXPECT_EQ(r["discovery"]["readers"], 3);  // cmd_vel, head/command, lights
+  // cmd_vel (Twist and TwistStamped), head/command, lights; and the request readers of the control
+  // services: 20 of the Simulation Interfaces, 3 of the simulate_steps action, 6 parameter services
+  EXPECT_EQ(r["discovery"]["readers"], 4 + 20 + 3 + 6);
 
   EXPECT_NE(s.sim_out.find("bridge ros2:"), std::string::npos) << s.sim_out;
   EXPECT_EQ(s.sim_err.find("rejected"), std::string::npos) << s.sim_err;
