@@ -27,6 +27,9 @@ packages=(
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   libros-rosgraph-msgs-dev python3-sensor-msgs python3-nav-msgs
   python3-tf2-msgs python3-geometry-msgs
+  # ROS 1 services (/reset_simulation, /pause_physics, ... as gazebo_ros has them): rosservice
+  # and std_srvs's Python types, for users and tests (the bridge itself needs no std_srvs headers)
+  python3-rosservice python3-std-srvs
   # SLAM demonstration (docs/demos.md): MRPT's ICP scan-matching SLAM
   libmrpt-slam-dev
   # ROS 2 wire compatibility: Cyclone DDS, and Fast DDS as a second vendor for tests

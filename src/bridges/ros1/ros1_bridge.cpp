@@ -6,6 +6,7 @@
 #include <ros/callback_queue.h>
 #include <ros/init.h>
 #include <ros/master.h>
+#include <ros/message_event.h>
 #include <ros/message_traits.h>
 #include <ros/network.h>
 #include <ros/node_handle.h>
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -31,9 +33,12 @@
 #include "bridges/ros1/ros1_console.h"
 #include "bridges/ros1/ros1_endpoint.h"
 #include "bridges/ros1/ros1_raw_message.h"
+#include "bridges/ros1/ros1_sim_services.h"
+#include "bridges/ros1/ros1_velocity.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/thread.h"
+#include "core/throttle.h"
 #include "msgs/serialize.h"
 #include "bus/bridge_host.h"
 
@@ -77,7 +82,7 @@ class Ros1Bridge final : public Bridge {
     s.sent = sent_.load();
     s.dropped = outbox_.stats().dropped;
     s.received = gate_ ? gate_->received() : 0;
-    s.rejected = gate_ ? gate_->rejected() : 0;
+    s.rejected = (gate_ ? gate_->rejected() : 0) + refused_.load();
     return s;
   }
 
@@ -99,7 +104,14 @@ class Ros1Bridge final : public Bridge {
     ros::Subscriber sub;                      ///< spinner thread only (after start)
     int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
     std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
+    // Kind::velocity (spinner thread): a roscpp subscription of MD5 "*" takes on the MD5 of the
+    // first publisher it connects to, and publishers of the other type then refuse it
+    bool adopted = false;                     ///< connected since it was made: its type is set
+    bool retried = false;                     ///< made afresh for publishers it could not connect to
+    std::string connected_type{};             ///< the type of the last message received
   };
+  /// The type a command subscription asks its publishers for: "*" for cmd_vel (either type).
+  static std::string subscribed_type(const Input& in) { return in.kind == Input::Kind::velocity ? "*" : in.type->ros1_name; }
 
   void advertise_all();
   void set_parameters();
@@ -112,6 +124,9 @@ class Ros1Bridge final : public Bridge {
   void watch_master();
   void check_input_publishers();
   void on_command(std::size_t input, const RawMessage& raw);
+  void on_velocity(std::size_t input, const ros::M_string& connection, const RawMessage& raw);
+  /// Counts a command refused here rather than by the gate, and warns as the gate does.
+  void refuse(const std::string& topic, const char* kind, const std::string& why);
   void shut_down();
 
   Ros1Options options_;
@@ -131,6 +146,15 @@ class Ros1Bridge final : public Bridge {
   std::atomic<bool> stopping_{false};
   std::atomic<Clock::rep> drain_until_{Clock::time_point::max().time_since_epoch().count()};
   std::atomic<std::uint64_t> sent_{0};
+  std::unique_ptr<Ros1SimServices> services_;  ///< /reset_simulation, /pause_physics, ... (their own thread)
+  /// The host's sim time as of its last Bus message (written on the simulation thread): what
+  /// stamped cmd_vel is checked against. A client on sim time stamps from /clock, which this
+  /// never lags: it is updated before the /clock message is even queued.
+  std::atomic<std::int64_t> sim_now_ns_{0};
+  // refusals of commands the gate does not see (a cmd_vel of another type, a stamp in the
+  // future): spinner thread only
+  std::map<std::string, Throttle> throttles_;
+  std::atomic<std::uint64_t> refused_{0};
 
   // master watch (spinner thread only), and type mismatches (publisher thread only)
   bool connected_ = true;
@@ -144,6 +168,7 @@ void Ros1Bridge::start(BridgeHost& host) {
   if (g_node_in_use.exchange(true)) throw Error("ROS 1: only one ROS 1 bridge per process (roscpp runs one node per process)");
   host_ = &host;
   gate_ = std::make_unique<CommandGate>(host, "ROS 1");
+  sim_now_ns_ = host.time().ns;
   endpoint_ = resolve_ros1_endpoint(env("ROS_MASTER_URI"), env("ROS_HOSTNAME"), env("ROS_IP"));
   try {
     route_rosconsole_to_log();
@@ -203,10 +228,16 @@ void Ros1Bridge::start(BridgeHost& host) {
     }
     advertise_all();
     set_parameters();
+    // the simulation services last: they start a thread of their own
+    services_ = std::make_unique<Ros1SimServices>(
+        host, std::chrono::milliseconds(std::llround(std::max(0.0, options_.service_timeout) * 1000)));
+    services_->advertise(*nh_);
   } catch (const ros::Exception& e) {
+    services_.reset();
     g_node_in_use = false;
     throw Error(fmt::format("ROS 1: {} (master {})", e.what(), endpoint_.master_uri));
   } catch (...) {
+    services_.reset();
     g_node_in_use = false;
     throw;
   }
@@ -217,6 +248,7 @@ void Ros1Bridge::start(BridgeHost& host) {
   wanted_ = std::make_unique<std::atomic<bool>[]>(outputs_.size());
   for (std::size_t i = 0; i < outputs_.size(); ++i) wanted_[i] = outputs_[i].type && outputs_[i].latched;
   bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) {
+    sim_now_ns_.store(host_->time().ns, std::memory_order_relaxed);
     // a topic advertised after start has no ROS publisher: it is not bridged, so not even queued
     if (static_cast<std::size_t>(t.id) >= outputs_.size()) return;
     if (wanted_[static_cast<std::size_t>(t.id)].load(std::memory_order_relaxed)) {
@@ -228,8 +260,9 @@ void Ros1Bridge::start(BridgeHost& host) {
   publisher_ = start_named_thread("ros1-send", [this] { publish_loop(); });
   spinner_ = start_named_thread("ros1-spin", [this] { spin_loop(); });
   started_ = true;
-  log::info("ROS 1: node {} registered with the master at {}, reachable as {}: {} topics out, {} in", ros::this_node::getName(),
-            endpoint_.master_uri, ros::network::getHost(), outputs_.size(), inputs_.size());
+  log::info("ROS 1: node {} registered with the master at {}, reachable as {}: {} topics out, {} in, {} services",
+            ros::this_node::getName(), endpoint_.master_uri, ros::network::getHost(), outputs_.size(), inputs_.size(),
+            services_->size());
 }
 
 void Ros1Bridge::advertise_all() {
@@ -246,6 +279,30 @@ void Ros1Bridge::advertise_all() {
 void Ros1Bridge::subscribe(std::size_t i) {
   Input& in = inputs_[i];
   in.sub.shutdown();
+  if (in.kind == Input::Kind::velocity) {
+    // cmd_vel takes geometry_msgs/Twist or TwistStamped: MD5 and type "*" let publishers of any
+    // type connect (rospy checks the type name too), and each message's connection header says
+    // which type it is. roscpp then fixes the subscription's MD5 to its first publisher's:
+    // check_input_publishers makes it afresh when publishers of the other type come
+    using Helper = ros::SubscriptionCallbackHelperT<const ros::MessageEvent<const RawMessage>&>;
+    ros::SubscribeOptions so(in.topic, kRosSubscribeQueue, "*", subscribed_type(in));
+    so.helper = boost::make_shared<Helper>(
+        [this, i](const ros::MessageEvent<const RawMessage>& e) { on_velocity(i, e.getConnectionHeader(), *e.getConstMessage()); });
+    so.callback_queue = &callbacks_;
+    in.sub = nh_->subscribe(so);
+    in.unconnected_checks = 0;
+    in.adopted = false;
+    // roscpp registered the subscription as "*": name the classic type to the master too (which
+    // keeps the last type it is told), so that `rostopic type` and tools that bridge topics by
+    // type see geometry_msgs/Twist
+    XmlRpc::XmlRpcValue args, result, payload;
+    args[0] = ros::this_node::getName();
+    args[1] = in.topic;
+    args[2] = in.type->ros1_name;
+    args[3] = ros::XMLRPCManager::instance()->getServerURI();
+    ros::master::execute("registerSubscriber", args, result, payload, false);
+    return;
+  }
   // the subscription asks for the command type's MD5: roscpp refuses publishers of other types
   using Helper = ros::SubscriptionCallbackHelperT<const boost::shared_ptr<const RawMessage>&>;
   ros::SubscribeOptions so(in.topic, kRosSubscribeQueue, in.type->ros1_md5, in.type->ros1_name);
@@ -298,7 +355,7 @@ bool Ros1Bridge::register_again() {
     }
     if (others) subscribe(i);
   }
-  return true;
+  return !services_ || services_->register_again();
 }
 
 void Ros1Bridge::publish_loop() {
@@ -409,7 +466,8 @@ void Ros1Bridge::watch_master() {
 void Ros1Bridge::check_input_publishers() {
   // a publisher of another type on a command topic cannot connect (roscpp and rospy refuse the
   // md5 when connecting): compare the master's publishers of each command topic with those the
-  // subscription is connected to, and say so once when some stay unconnected for two checks
+  // subscription is connected to, and say so once when some stay unconnected for two checks.
+  // cmd_vel connects to either type, but to one at a time: see below
   XmlRpc::XmlRpcValue args, result, state, types;
   args[0] = ros::this_node::getName();
   if (!ros::master::execute("getSystemState", args, result, state, false)) return;
@@ -419,7 +477,8 @@ void Ros1Bridge::check_input_publishers() {
   if (ros::master::execute("getTopicTypes", args, result, types, false) && types.getType() == XmlRpc::XmlRpcValue::TypeArray) {
     for (int i = 0; i < types.size(); ++i) registered_type[std::string(types[i][0])] = std::string(types[i][1]);
   }
-  for (Input& in : inputs_) {
+  for (std::size_t index = 0; index < inputs_.size(); ++index) {
+    Input& in = inputs_[index];
     std::vector<std::string> nodes;
     for (int i = 0; i < publishers.size(); ++i) {
       if (std::string(publishers[i][0]) != in.topic) continue;
@@ -428,17 +487,38 @@ void Ros1Bridge::check_input_publishers() {
         if (node != ros::this_node::getName()) nodes.push_back(node);
       }
     }
-    const bool missing = in.sub.getNumPublishers() < nodes.size();
+    const std::size_t connected = in.sub.getNumPublishers();
+    const bool missing = connected < nodes.size();
+    if (in.kind == Input::Kind::velocity) {
+      // cmd_vel's subscription took the type of its first publisher: with none connected now, it
+      // is made afresh, so that the next publisher of either type connects (at once when it comes
+      // later; when it is there already and was refused, it connects now, and only if it still
+      // cannot after that is there a warning)
+      if (connected > 0) in.adopted = true;
+      if (!missing) in.retried = false;
+      if (connected == 0 && (in.adopted || (missing && !in.retried))) {
+        if (missing) in.retried = true;
+        subscribe(index);
+        continue;
+      }
+    }
     in.unconnected_checks = missing ? in.unconnected_checks + 1 : 0;
     if (in.unconnected_checks != 2) continue;  // new publishers take a moment to connect; warn once
     std::string list;
     for (const auto& n : nodes) list += (list.empty() ? "" : ", ") + n;
     const std::string type = registered_type.count(in.topic) ? registered_type[in.topic] : "";
-    log::warn("ROS 1: {} has {} publisher(s) ({}) but rescuesim is connected to {}{}: their messages do not arrive (a message type "
-              "other than {}, or a host name rescuesim cannot reach); still simulating",
-              in.topic, nodes.size(), list, in.sub.getNumPublishers(),
-              !type.empty() && type != in.type->ros1_name ? fmt::format("; the master has the topic as {}", type) : std::string(),
-              in.type->ros1_name);
+    const bool velocity = in.kind == Input::Kind::velocity;
+    const bool known = type == in.type->ros1_name || (velocity && (type == ros1_wire::kTwistStampedName || type == "*"));
+    std::string why = fmt::format("a message type other than {}, or a host name rescuesim cannot reach", in.type->ros1_name);
+    if (velocity) {
+      why = connected > 0 ? fmt::format("ROS 1 gives a subscription one type at a time, and rescuesim takes {} from the other "
+                                        "publisher(s): these connect when those are gone; or a host name rescuesim cannot reach",
+                                        in.connected_type.empty() ? std::string("another type") : in.connected_type)
+                          : std::string("a host name rescuesim cannot reach?");
+    }
+    log::warn("ROS 1: {} has {} publisher(s) ({}) but rescuesim is connected to {}{}: their messages do not arrive ({}); still simulating",
+              in.topic, nodes.size(), list, connected,
+              !type.empty() && !known ? fmt::format("; the master has the topic as {}", type) : std::string(), why);
   }
 }
 
@@ -455,6 +535,44 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
     }
   } catch (const std::exception& e) {
     gate_->malformed(in.topic, e.what());
+  }
+}
+
+void Ros1Bridge::on_velocity(std::size_t input, const ros::M_string& connection, const RawMessage& raw) {
+  Input& in = inputs_[input];
+  const auto header = [&](const char* key) {
+    const auto it = connection.find(key);
+    return it == connection.end() ? std::string() : it->second;
+  };
+  // which of the two types this publisher sends, by its connection header
+  std::string why;
+  in.connected_type = header("type");
+  const std::optional<ros1_wire::VelocityType> type = ros1_wire::velocity_type(in.connected_type, header("md5sum"), &why);
+  if (!type) return refuse(in.topic, "type", why);
+  ros1_wire::VelocityCommand command;
+  try {
+    command = ros1_wire::decode_velocity(*type, raw.bytes);
+  } catch (const std::exception& e) {
+    return gate_->malformed(in.topic, e.what());
+  }
+  // a stamp ahead of the simulation (a publisher on wall-clock time, say) is refused; NaN and the
+  // drive's limits are the gate's, as for every velocity command
+  if (command.stamped) {
+    const std::string problem = ros1_wire::stamp_problem(command.stamp, SimTime{sim_now_ns_.load(std::memory_order_relaxed)});
+    if (!problem.empty()) return refuse(in.topic, "stamp", problem);
+  }
+  gate_->velocity(in.robot, in.topic, command.twist);
+}
+
+void Ros1Bridge::refuse(const std::string& topic, const char* kind, const std::string& why) {
+  ++refused_;
+  // worded and throttled as CommandGate's refusals (per topic and kind, one every 2 s)
+  std::uint64_t held = 0;
+  if (!throttles_.try_emplace(topic + "#" + kind).first->second.allow(&held)) return;
+  if (held > 0) {
+    log::warn("ROS 1: rejected a command on {}: {} ({} more like it since the last report)", topic, why, held);
+  } else {
+    log::warn("ROS 1: rejected a command on {}: {}", topic, why);
   }
 }
 
@@ -475,6 +593,8 @@ void Ros1Bridge::shut_down() {
   if (spinner_.joinable()) spinner_.join();
   for (Output& o : outputs_) o.pub.shutdown();
   for (Input& in : inputs_) in.sub.shutdown();
+  // calls in progress end with an error ("stopping") rather than wait for a simulation that stops
+  if (services_) services_->stop();
   nh_.reset();
   // unregisters from the master (without waiting for one that is gone)
   ros::shutdown();

@@ -1,0 +1,129 @@
+// cmd_vel as geometry_msgs/TwistStamped from `rostopic pub`, against the bridge in this process:
+// it drives the robot exactly as the same Twist does, and a stamp ahead of sim time, NaN, or a
+// message of another type is refused with a warning. The test steps the simulation itself, so
+// both drives start from the same snapshot with their command in place before the first step.
+
+#include <gtest/gtest.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "bridges/ros1/ros1_bridge.h"
+#include "bridges/ros1/ros1_rig.h"
+#include "robots/rescue_robot.h"
+#include "sim/simulation.h"
+#include "support/rig.h"
+
+namespace rescuesim {
+namespace {
+
+using namespace testing;
+
+/// Collects what is logged while it lives.
+class LogCapture {
+ public:
+  LogCapture() : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(200)), previous_(spdlog::default_logger()) {
+    auto logger = std::make_shared<spdlog::logger>("capture", sink_);
+    logger->set_pattern("%v");
+    spdlog::set_default_logger(logger);
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  std::string text() const {
+    std::string s;
+    for (const auto& line : sink_->last_formatted()) s += line;
+    return s;
+  }
+
+ private:
+  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
+
+TEST(Ros1TwistStamped, DrivesAsTwistDoesAndFutureStampsNanAndOtherTypesAreRefused) {
+  SKIP_WITHOUT_ROS1();
+  LogCapture log;
+  const fs::path dir = temp_dir("ros1-twist-stamped");
+  RosMaster master(dir);
+  ASSERT_TRUE(master.start()) << "roscore did not come up on port " << master.port();
+  for (const auto& [k, v] : master.env()) ::setenv(k.c_str(), v.c_str(), 1);
+
+  // the rescue robot in the middle of a 20 m room, facing +x; settled on its wheels for 1 s
+  Simulation sim(compile_world(testing::room_spec(), builtin_models()));
+  for (int i = 0; i < 200; ++i) sim.step();
+  Ros1Options options;
+  options.node_name = "rescuesim_twist_stamped";
+  auto bridge = make_ros1_bridge(options);
+  bridge->start(sim);
+  // the master has cmd_vel as the classic type, though the subscription takes either
+  EXPECT_EQ(master.run("rostopic type /cmd_vel", kToolSeconds).out, "geometry_msgs/Twist\n");
+  const State start = sim.snapshot();
+  const double x0 = sim.state().robots[0].base.X_WB.p.x();
+  const DriveSpec& drive = sim.world().robots[0].spec.drive;
+  const double dt = sim.dt();
+  // 80 steps = 0.4 s: less than the drive's command timeout (0.5 s), so the one command that is
+  // in place before the first step drives the whole way, and nothing arriving later matters
+  constexpr int kSteps = 80;
+  ASSERT_LT(kSteps * dt, drive.command_timeout);
+
+  // publishes `value` as `type` on /cmd_vel until the bridge has counted it (taken or refused),
+  // then stops the publisher and takes the steps; the x distance driven from the start snapshot
+  const auto drive_from_start = [&](const std::string& type, const std::string& value) {
+    sim.restore(start);
+    const BridgeStats before = bridge->stats();
+    auto pub = master.spawn({"rostopic", "pub", "-r", "10", "/cmd_vel", type, value});
+    const bool counted = wait_until(
+        [&] {
+          const BridgeStats now = bridge->stats();
+          return now.received > before.received || now.rejected > before.rejected;
+        },
+        kPatience);
+    pub->interrupt();
+    EXPECT_TRUE(counted) << "nothing of " << type << " " << value << " arrived\n" << pub->output();
+    for (int i = 0; i < kSteps; ++i) sim.step();
+    return sim.state().robots[0].base.X_WB.p.x() - x0;
+  };
+  const std::string stamp_now = "{secs: " + std::to_string(sim.time().sec_part()) + ", nsecs: " + std::to_string(sim.time().nsec_part()) + "}";
+
+  const double by_twist = drive_from_start("geometry_msgs/Twist", "{linear: {x: 0.3}}");
+  const BridgeStats after_twist = bridge->stats();
+  const double by_stamped =
+      drive_from_start("geometry_msgs/TwistStamped", "{header: {stamp: " + stamp_now + ", frame_id: base_link}, twist: {linear: {x: 0.3}}}");
+  const BridgeStats after_stamped = bridge->stats();
+  EXPECT_GT(after_stamped.received, after_twist.received);
+  EXPECT_EQ(after_stamped.rejected, 0u) << log.text();
+
+  // the drive reaches 0.3 m/s at 2.5 m/s^2 at best: over T = 0.4 s it covers at most
+  // v T - v^2 / (2 a) = 0.12 - 0.018 = 0.102 m (plus a step's travel for where the ramp starts)
+  const double v = 0.3, T = kSteps * dt;
+  const double ideal = v * T - v * v / (2 * drive.max_linear_accel);
+  std::printf("0.3 m/s for %.2f s: Twist %.5f m, TwistStamped %.5f m (ideal ramp %.5f m)\n", T, by_twist, by_stamped, ideal);
+  EXPECT_LT(by_twist, ideal + v * dt);
+  EXPECT_GT(by_twist, 0.5 * ideal) << "the Twist barely moved the robot";
+  // the same command from the same state: the same motion. Were the command to land a step
+  // later, the robot would be at most one step's travel at the drive's top speed behind.
+  EXPECT_NEAR(by_stamped, by_twist, drive.max_linear * dt);
+
+  // refused, and the robot stays where it is: a stamp 100000 s ahead of sim time, a NaN speed,
+  // a message of another type
+  const auto refused = [&](const std::string& type, const std::string& value, const std::string& warning) {
+    const std::uint64_t received = bridge->stats().received;
+    const double moved = drive_from_start(type, value);
+    EXPECT_NEAR(moved, 0.0, 0.002) << type << " " << value << " moved the robot";
+    EXPECT_EQ(bridge->stats().received, received) << type << " " << value;
+    EXPECT_TRUE(wait_until([&] { return log.text().find(warning) != std::string::npos; }, std::chrono::seconds(5)))
+        << "no warning \"" << warning << "\" in\n"
+        << log.text();
+  };
+  refused("geometry_msgs/TwistStamped", "{header: {stamp: {secs: 100000, nsecs: 0}}, twist: {linear: {x: 0.3}}}",
+          "ROS 1: rejected a command on /cmd_vel: header.stamp 100000.000 s is 99");
+  refused("geometry_msgs/TwistStamped", "{twist: {linear: {x: .nan}}}", "ROS 1: rejected a command on /cmd_vel: linear.x is");
+  refused("std_msgs/String", "hello",
+          "ROS 1: rejected a command on /cmd_vel: a std_msgs/String message: cmd_vel takes geometry_msgs/Twist or "
+          "geometry_msgs/TwistStamped");
+  EXPECT_GE(bridge->stats().rejected, 3u);
+  bridge->stop();
+}
+
+}  // namespace
+}  // namespace rescuesim
