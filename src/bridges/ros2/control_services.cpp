@@ -234,9 +234,9 @@ void serve_parameters(ServiceRegistry& registry, const std::shared_ptr<Context>&
 
 }  // namespace
 
-void register_control_services(ServiceRegistry& services, BridgeHost& host, const Ros2Options& options) {
+std::function<std::uint64_t()> register_control_services(ServiceRegistry& services, BridgeHost& host, const Ros2Options& options) {
   control::SimControl* c = host.control();
-  if (!c) return;  // a replay: nothing to control, nothing offered
+  if (!c) return [] { return std::uint64_t{0}; };  // a replay: nothing to control, nothing offered
   auto ctx = std::make_shared<Context>();
   ctx->control = c;
   ctx->version = options.sim_interfaces_v2 ? WireVersion::v2 : WireVersion::v1;
@@ -330,6 +330,7 @@ void register_control_services(ServiceRegistry& services, BridgeHost& host, cons
   serve_parameters(services, ctx, node);
   log::info("ROS 2 bridge: {} simulation control services and actions under {} (Simulation Interfaces {}), parameters of {}",
             services.size(), ns.empty() ? "/" : ns, options.sim_interfaces_v2 ? "2.x" : "1.x", node);
+  return [ctx] { return ctx->undecodable.load(); };
 }
 
 }  // namespace rescuesim::ros2

@@ -7,6 +7,9 @@
 /// wired here (through host.control(), bus/sim_control.h, which is null when the run cannot be
 /// controlled).
 
+#include <cstdint>
+#include <functional>
+
 #include "bridges/ros2/ros2_bridge.h"
 #include "bridges/ros2/service_registry.h"
 #include "bus/bridge_host.h"
@@ -14,7 +17,9 @@
 namespace rescuesim::ros2 {
 
 /// Registers the run's services and actions on `services`. Called by the bridge's start(), on the
-/// thread that steps; may throw Error (the bridge does not start then).
-void register_control_services(ServiceRegistry& services, BridgeHost& host, const Ros2Options& options);
+/// thread that steps; may throw Error (the bridge does not start then). Returns how many requests
+/// so far reached a service whole but did not decode as its type (the registry counts those that
+/// were not even whole: ServiceRegistry::malformed).
+std::function<std::uint64_t()> register_control_services(ServiceRegistry& services, BridgeHost& host, const Ros2Options& options);
 
 }  // namespace rescuesim::ros2

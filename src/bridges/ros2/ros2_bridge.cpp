@@ -60,6 +60,7 @@ class Ros2Bridge final : public Bridge {
     // malformed service requests count as refused commands
     std::lock_guard lock(services_mutex_);
     s.rejected += services_ ? services_->malformed() : services_malformed_;
+    if (undecodable_requests_) s.rejected += undecodable_requests_();
     return s;
   }
 
@@ -104,6 +105,7 @@ class Ros2Bridge final : public Bridge {
   mutable std::mutex services_mutex_;  ///< guards services_ itself (for stats() during stop())
   std::unique_ptr<ros2::ServiceRegistry> services_;  ///< polled on the receiver thread
   std::uint64_t services_malformed_ = 0;             ///< services_->malformed() when it was stopped
+  std::function<std::uint64_t()> undecodable_requests_;  ///< whole requests that did not decode (control_services.h)
   std::atomic<bool> discovery_dirty_{false};         ///< services were added after start: announce again
   std::atomic<std::int64_t> sim_time_ns_{0};         ///< the host's sim time, noted on the simulation thread
 };
@@ -189,7 +191,7 @@ void Ros2Bridge::start(BridgeHost& host) {
 
   // the run's services and actions, served on the receiver thread (sim time stamps their goals)
   services_ = std::make_unique<ros2::ServiceRegistry>(*dds_, [this] { return sim_time_ns_.load(std::memory_order_relaxed); });
-  ros2::register_control_services(*services_, host, options_);
+  undecodable_requests_ = ros2::register_control_services(*services_, host, options_);
 
   // the node, for `ros2 node list` / `ros2 node info` (transient-local: late joiners get it too);
   // services added later are announced again from the receiver thread

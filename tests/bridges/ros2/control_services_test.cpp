@@ -19,7 +19,9 @@
 #include "bridges/ros2/ros2_conventions.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
+#include "support/command.h"
 #include "support/dds_domain.h"
+#include <nlohmann/json.hpp>
 
 namespace rescuesim {
 namespace {
@@ -291,6 +293,56 @@ TEST_F(ControlServicesTest, ParametersOfNodeRescuesim) {
   const SetParameterResult atomic = call<iface::SetParametersAtomically>("/rescuesim/set_parameters_atomically", set);
   EXPECT_FALSE(atomic.successful);
   EXPECT_DOUBLE_EQ(call<iface::GetParameters>("/rescuesim/get_parameters", {{"real_time_factor"}}).values.at(0).double_value, 2.5);
+}
+
+/// As a user runs it: `rescuesim run --ros2 --paused` in a process of its own, driven from this one
+/// over loopback: 200 steps, a reset, 100 steps, then QUITTING ends the run, which writes its
+/// outputs with 100 steps of sim time (0.5 s) and says why it stopped.
+TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
+  ::setenv("CYCLONEDDS_URI",
+           "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
+           "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
+           1);
+  const int domain = testing::leased_dds_domain();
+  const auto dir = testing::temp_dir("ros2-control-cli");
+  testing::CommandResult run;
+  std::thread sim([&] {
+    run = testing::rescuesim("run --ros2 --paused --no-cameras --quiet --ros-domain " + std::to_string(domain) + " --out " +
+                             testing::quoted(dir / "out"));
+  });
+  DdsParticipant client(domain, ros2::participant_user_data());
+  const auto call = [&](const char* name, const char* type, const std::vector<std::uint8_t>& body) {
+    ServiceClient c(client, ros2::service_topics(name, type));
+    EXPECT_TRUE(c.wait_for_server(30s)) << name;  // the run starts within seconds
+    std::string why;
+    auto reply = c.call(body, kTimeout, &why);
+    EXPECT_TRUE(reply) << name << ": " << why;
+    return reply ? *reply : std::vector<std::uint8_t>{};
+  };
+  const auto result_of = [](const std::vector<std::uint8_t>& reply) {
+    auto r = decode_response<iface::StepSimulation>(reply, WireVersion::v1);
+    return r.value ? *r.value : Result::fail(255, r.problem);
+  };
+  std::vector<std::uint8_t> body;
+  encode_request<iface::StepSimulation>({200}, WireVersion::v1, body);
+  EXPECT_TRUE(result_of(call("/step_simulation", "simulation_interfaces/srv/StepSimulation", body)).is_ok());
+  body.clear();
+  encode_request<iface::ResetSimulation>({scope::kDefault}, WireVersion::v1, body);
+  const auto reset = decode_response<iface::ResetSimulation>(call("/reset_simulation", "simulation_interfaces/srv/ResetSimulation", body), WireVersion::v1);
+  EXPECT_TRUE(reset.value && reset.value->is_ok());
+  body.clear();
+  encode_request<iface::StepSimulation>({100}, WireVersion::v1, body);
+  EXPECT_TRUE(result_of(call("/step_simulation", "simulation_interfaces/srv/StepSimulation", body)).is_ok());
+  body.clear();
+  encode_request<iface::SetSimulationState>({RunState::quitting}, WireVersion::v1, body);
+  const auto quit = decode_response<iface::SetSimulationState>(call("/set_simulation_state", "simulation_interfaces/srv/SetSimulationState", body), WireVersion::v1);
+  EXPECT_TRUE(quit.value && quit.value->is_ok());
+  sim.join();
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const auto summary = nlohmann::json::parse(testing::slurp(dir / "out" / "summary.json"), nullptr, false);
+  ASSERT_FALSE(summary.is_discarded()) << run.out << run.err;
+  EXPECT_EQ(summary["stop_reason"], "quit by request");
+  EXPECT_DOUBLE_EQ(summary["sim_time_s"].get<double>(), 0.5);
 }
 
 }  // namespace
