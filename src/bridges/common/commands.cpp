@@ -65,6 +65,19 @@ std::string head_problem(const RobotSpec& spec, const std::vector<double>& posit
   return {};
 }
 
+std::string stamp_problem(SimTime stamp, SimTime now) {
+  if (stamp.ns == 0 || stamp.ns <= now.ns + kFutureStampTolerance.ns) return {};
+  return fmt::format(
+      "header.stamp {:.3f} s is {:.3f} s ahead of the simulation's time {:.3f} s (at most {:g} s is allowed; a publisher on "
+      "wall-clock time? nodes with use_sim_time stamp with sim time, or leave the stamp 0); the robot keeps its last command",
+      stamp.seconds(), (stamp - now).seconds(), now.seconds(), kFutureStampTolerance.seconds());
+}
+
+CommandOutcome CommandGate::velocity_stamped(int robot, const std::string& topic, SimTime stamp, SimTime now, const msg::Twist& twist) {
+  if (const std::string problem = stamp_problem(stamp, now); !problem.empty()) return reject(topic, "stamp", problem);
+  return velocity(robot, topic, twist);
+}
+
 CommandOutcome CommandGate::velocity(int robot, const std::string& topic, const msg::Twist& t) {
   if (const std::string problem = twist_problem(t); !problem.empty()) return reject(topic, "finite", problem);
   const DriveSpec& d = host_.world().robots.at(static_cast<std::size_t>(robot)).spec.drive;

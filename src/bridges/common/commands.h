@@ -23,6 +23,15 @@ namespace rescuesim {
 
 /// Why a twist may not be applied ("linear.x is nan (...)"), or "" when every component is finite.
 std::string twist_problem(const msg::Twist& twist);
+/// How far ahead of sim time a stamped velocity command (geometry_msgs/TwistStamped) may be.
+/// A publisher on sim time stamps from /clock, which never runs ahead of the simulation, so it
+/// needs no slack; 0.5 s (diff_drive_controller's default cmd_vel_timeout, the other way round)
+/// leaves room for one that extrapolates between /clock messages and still refuses what the
+/// check is for: stamps from the wall clock (some 1.7e9 s) and garbage.
+inline constexpr SimTime kFutureStampTolerance = SimTime::from_ms(500);
+/// Why a velocity command stamped `stamp` may not be applied at sim time `now`, or "" when it
+/// may: a stamp of zero (unset), in the past, or at most kFutureStampTolerance ahead is taken.
+std::string stamp_problem(SimTime stamp, SimTime now);
 /// Why head targets may not be applied (wrong count for `spec.head_joints`, a non-finite value),
 /// or "" when they may.
 std::string head_problem(const RobotSpec& spec, const std::vector<double>& positions);
@@ -38,6 +47,9 @@ class CommandGate {
   /// when a component is not finite; speeds beyond the drive's max_linear / max_angular are
   /// accepted and clamped by the drive, with a warning.
   CommandOutcome velocity(int robot, const std::string& topic, const msg::Twist& twist);
+  /// A stamped cmd_vel (TwistStamped) at the transport's latest sim time `now`: refused when its
+  /// stamp is ahead of `now` (stamp_problem), else as velocity().
+  CommandOutcome velocity_stamped(int robot, const std::string& topic, SimTime stamp, SimTime now, const msg::Twist& twist);
   /// Head joint targets (rad), one per RobotSpec::head_joints entry, in that order. Refused for
   /// a wrong count or a non-finite value; targets beyond a joint's limits are clamped by the
   /// head controller, with a warning.

@@ -558,8 +558,8 @@ void Ros1Bridge::on_velocity(std::size_t input, const ros::M_string& connection,
   // a stamp ahead of the simulation (a publisher on wall-clock time, say) is refused; NaN and the
   // drive's limits are the gate's, as for every velocity command
   if (command.stamped) {
-    const std::string problem = ros1_wire::stamp_problem(command.stamp, SimTime{sim_now_ns_.load(std::memory_order_relaxed)});
-    if (!problem.empty()) return refuse(in.topic, "stamp", problem);
+    gate_->velocity_stamped(in.robot, in.topic, command.stamp, SimTime{sim_now_ns_.load(std::memory_order_relaxed)}, command.twist);
+    return;
   }
   gate_->velocity(in.robot, in.topic, command.twist);
 }

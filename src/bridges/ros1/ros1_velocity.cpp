@@ -107,12 +107,5 @@ VelocityCommand decode_velocity(VelocityType type, std::span<const std::uint8_t>
   return c;
 }
 
-std::string stamp_problem(SimTime stamp, SimTime now) {
-  if (stamp.ns == 0 || stamp.ns <= now.ns + kFutureStampTolerance.ns) return {};
-  return fmt::format(
-      "header.stamp {:.3f} s is {:.3f} s ahead of the simulation's time {:.3f} s (at most {:g} s is allowed; a publisher on "
-      "wall-clock time? ROS 1 nodes take sim time from /clock when /use_sim_time is true); the robot keeps its last command",
-      stamp.seconds(), (stamp - now).seconds(), now.seconds(), kFutureStampTolerance.seconds());
-}
 
 }  // namespace rescuesim::ros1_wire

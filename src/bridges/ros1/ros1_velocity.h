@@ -30,13 +30,6 @@ namespace rescuesim::ros1_wire {
 inline constexpr const char* kTwistStampedMd5 = "98d34b0043a2093cf9d9345ab6eef12e";
 inline constexpr const char* kTwistStampedName = "geometry_msgs/TwistStamped";
 
-/// How far ahead of the simulation's time a cmd_vel stamp may be and still be taken: 0.5 s,
-/// the staleness window ROS's own base controller allows the other way (diff_drive_controller's
-/// default cmd_vel_timeout): a command within 0.5 s of "now" is current by that measure. A
-/// publisher on sim time stamps from /clock, which never runs ahead of the simulation, so it
-/// needs no slack at all; 0.5 s leaves room for one that extrapolates between /clock messages,
-/// and still refuses what the check is for: stamps from the wall clock (some 1.7e9 s) and garbage.
-inline constexpr SimTime kFutureStampTolerance = SimTime::from_ms(500);
 
 /// Which of the two velocity types a connection carries.
 enum class VelocityType { twist, twist_stamped };
@@ -59,9 +52,5 @@ struct VelocityCommand {
 /// header.stamp.nsec: truncated: a value needs 4 bytes, 2 left"), trailing bytes included.
 VelocityCommand decode_velocity(VelocityType type, std::span<const std::uint8_t> bytes);
 
-/// Why a command stamped `stamp` may not be applied at sim time `now`, or "" when it may: a
-/// stamp of zero (unset), in the past, or at most kFutureStampTolerance ahead of `now` is taken
-/// (a stamp in the past is applied as a Twist, which has no stamp, would be).
-std::string stamp_problem(SimTime stamp, SimTime now);
 
 }  // namespace rescuesim::ros1_wire

@@ -45,12 +45,6 @@ Decoded<StampedTwist> decode_twist_stamped(std::span<const std::uint8_t> cdr) {
   }
 }
 
-std::string stamp_problem(SimTime stamp, SimTime now) {
-  if (stamp.ns == 0 || stamp <= now + kFutureStampTolerance) return {};
-  return "header.stamp " + message_number(stamp.seconds()) + " s is " + message_number((stamp - now).seconds()) +
-         " s ahead of sim time " + message_number(now.seconds()) +
-         " s (stamp TwistStamped with sim time, as nodes with use_sim_time do, or leave it 0)";
-}
 
 Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> cdr) {
   auto a = decode<msg::Float64MultiArray>("std_msgs/Float64MultiArray", cdr);

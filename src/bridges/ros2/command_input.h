@@ -35,15 +35,6 @@ struct StampedTwist {
 /// follow the message; a stamp whose nanosec is not below 1e9 is malformed.
 Decoded<StampedTwist> decode_twist_stamped(std::span<const std::uint8_t> cdr);
 
-/// How far ahead of the host's sim time a TwistStamped stamp may be (a publisher on
-/// use_sim_time reads the clock from /clock, a little behind the host's; the margin also
-/// covers /clock's own period).
-inline constexpr SimTime kFutureStampTolerance = SimTime::from_ms(500);
-/// Why a TwistStamped stamped `stamp` may not be applied when the host's sim time is `now`, or
-/// "" when it may: stamps more than kFutureStampTolerance ahead of sim time are refused (ROS
-/// nodes on use_sim_time stamp commands with sim time; a wall-clock stamp from a node that is
-/// not is decades ahead). A zero stamp means "unset" and is taken; stamps in the past are taken.
-std::string stamp_problem(SimTime stamp, SimTime now);
 
 /// std_msgs/Float64MultiArray bytes (head/command): the data array.
 Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> cdr);

@@ -339,10 +339,8 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
     case Input::Kind::velocity: take(ros2::decode_twist(bytes), [&](const msg::Twist& t) { gate_->velocity(in.robot, in.topic, t); }); break;
     case Input::Kind::velocity_stamped:
       take(ros2::decode_twist_stamped(bytes), [&](const ros2::StampedTwist& t) {
-        // a stamp from the future is refused like a malformed command; NaN, as for Twist, by the gate
-        const std::string problem = ros2::stamp_problem(t.stamp, SimTime{sim_time_ns_.load(std::memory_order_relaxed)});
-        if (!problem.empty()) return gate_->malformed(in.topic + " (geometry_msgs/TwistStamped)", problem);
-        gate_->velocity(in.robot, in.topic, t.twist);
+        // a stamp from the future, NaN and the drive's limits: the gate's, as for every velocity command
+        gate_->velocity_stamped(in.robot, in.topic, t.stamp, SimTime{sim_time_ns_.load(std::memory_order_relaxed)}, t.twist);
       });
       break;
     case Input::Kind::head:

@@ -162,5 +162,25 @@ TEST(CommandGateFlippers, FlipperPositionsBecomeJointTargetsAndAWrongCountIsRefu
   EXPECT_NEAR(target[static_cast<std::size_t>(r.joint_index("right_flipper_joint"))], 170 * M_PI / 180, 1e-12);
 }
 
+TEST(CommandGate, AStampAheadOfSimTimeBeyondTheToleranceIsRefused) {
+  const SimTime now = SimTime::from_seconds(10);
+  EXPECT_EQ(stamp_problem(SimTime{0}, now), "");                           // unset
+  EXPECT_EQ(stamp_problem(SimTime::from_seconds(3), now), "");             // the past
+  EXPECT_EQ(stamp_problem(now, now), "");
+  EXPECT_EQ(stamp_problem(now + kFutureStampTolerance, now), "");          // at the tolerance
+  EXPECT_NE(stamp_problem(now + kFutureStampTolerance + SimTime{1}, now), "");  // 1 ns beyond
+  EXPECT_EQ(kFutureStampTolerance.ns, 500'000'000);
+  // a publisher on wall-clock time
+  const std::string wall = stamp_problem(SimTime::from_seconds(1.7e9), now);
+  EXPECT_EQ(wall.rfind("header.stamp 1700000000.000 s is 1699999990.000 s ahead of the simulation's time 10.000 s (at most 0.5 s is "
+                       "allowed; a publisher on wall-clock time?",
+                       0),
+            0u)
+      << wall;
+  // at the start of a run every set stamp beyond 0.5 s is ahead
+  EXPECT_EQ(stamp_problem(SimTime{1}, SimTime{0}), "");
+  EXPECT_NE(stamp_problem(SimTime::from_seconds(1), SimTime{0}), "");
+}
+
 }  // namespace
 }  // namespace rescuesim

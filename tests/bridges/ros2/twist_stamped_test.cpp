@@ -78,17 +78,6 @@ TEST(TwistStamped, MalformedBytesSayWhatIsWrong) {
   EXPECT_NE(d.problem.find("is not XCDR1"), std::string::npos) << d.problem;
 }
 
-TEST(TwistStamped, AStampFromTheFutureIsRefusedUnsetAndPastStampsAreTaken) {
-  const SimTime now = SimTime::from_seconds(12.0);
-  EXPECT_EQ(ros2::stamp_problem(SimTime{0}, now), "");
-  EXPECT_EQ(ros2::stamp_problem(SimTime::from_seconds(3.0), now), "");
-  EXPECT_EQ(ros2::stamp_problem(now + ros2::kFutureStampTolerance, now), "");
-  const std::string p = ros2::stamp_problem(now + SimTime::from_seconds(2.0), now);
-  EXPECT_NE(p.find("header.stamp 14 s is 2 s ahead of sim time 12 s"), std::string::npos) << p;
-  // a wall-clock stamp from a node without use_sim_time
-  EXPECT_NE(ros2::stamp_problem(SimTime::from_seconds(1.7e9), now), "");
-}
-
 class TwistStampedBridgeTest : public ::testing::Test {
  protected:
   void SetUp() override {
