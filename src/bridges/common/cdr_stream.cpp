@@ -56,19 +56,26 @@ std::uint32_t Writer::count(const char* name, std::size_t n, std::uint32_t bound
   return static_cast<std::uint32_t>(n);
 }
 
-Reader::Reader(std::span<const std::uint8_t> cdr, const char* type) : type_(type) {
+std::optional<std::endian> xcdr1_byte_order(std::span<const std::uint8_t> cdr) {
+  if (cdr.size() < kEncapsulationSize || cdr[0] != 0x00 || cdr[1] > 0x01) return std::nullopt;
+  return cdr[1] == 0x01 ? std::endian::little : std::endian::big;
+}
+
+Reader::Reader(std::span<const std::uint8_t> cdr, const char* type, Encapsulations accept) : type_(type) {
   if (cdr.size() < kEncapsulationSize) {
     throw Error(std::string(type) + ": CDR data of " + std::to_string(cdr.size()) +
                 " bytes is shorter than the 4-byte encapsulation header");
   }
-  if (cdr[0] != 0x00 || cdr[1] != 0x01) {
+  const std::optional<std::endian> order = xcdr1_byte_order(cdr);
+  const bool either = accept == Encapsulations::either_endian;
+  if (!order || (*order == std::endian::big && !either)) {
     char id[8];
     std::snprintf(id, sizeof id, "%02x %02x", cdr[0], cdr[1]);
-    const bool big = cdr[0] == 0x00 && cdr[1] == 0x00;
     throw Error(std::string(type) + ": encapsulation " + id +
-                (big ? " (big-endian CDR) is not supported" : " is not supported") +
-                "; expected 00 01 (XCDR1 little endian)");
+                (order ? " (big-endian CDR) is not supported" : " is not supported") +
+                "; expected 00 01 (XCDR1 little endian)" + (either ? " or 00 00 (XCDR1 big endian)" : ""));
   }
+  order_ = *order;
   padding_ = cdr[3] & 0x03u;
   p_ = cdr.data() + kEncapsulationSize;
   n_ = cdr.size() - kEncapsulationSize;

@@ -9,8 +9,11 @@
 /// rmw_cyclonedds's serialize_many, Fast-CDR and Cyclone do); a bounded sequence like an
 /// unbounded one; builtin_interfaces/Time = int32 sec + uint32 nanosec.
 ///
-/// The reader never reads out of bounds, checks every count against the bytes left before it
-/// allocates, and names the field in its errors: it throws rescuesim::Error
+/// The writer writes little endian; the reader reads little endian, or (Encapsulations::
+/// either_endian, for the ROS 2 transport's own action_msgs and TwistStamped) also big endian
+/// behind 00 00, every number in that order. The reader never reads out of bounds, checks
+/// every count against the bytes left before it allocates, and names the field in its errors:
+/// it throws rescuesim::Error
 /// ("simulation_interfaces/srv/SetEntityState_Request: state.pose.orientation.w: 8 bytes
 /// needed, 2 left"). Trailing bytes after the message are refused, but for (a) the padding the
 /// encapsulation options announce (their two low bits, DDS-XTypes 7.6.3.1.2) and (b) up to 3
@@ -24,12 +27,14 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "core/error.h"
+#include "msgs/wire.h"
 
 namespace rescuesim::cdr {
 
@@ -38,30 +43,28 @@ inline constexpr std::size_t kEncapsulationSize = 4;
 /// A sequence without a bound.
 inline constexpr std::uint32_t kUnbounded = std::numeric_limits<std::uint32_t>::max();
 
-namespace detail {
+/// The primitive at `src` in byte order `order` (XCDR1: 00 01 little endian, 00 00 big endian).
 template <class T>
-void store_le(std::uint8_t* dst, T x) {
-  static_assert(std::is_arithmetic_v<T>);
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &x, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) {
-    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  }
-  std::memcpy(dst, b, sizeof(T));
-}
-template <class T>
-T load_le(const std::uint8_t* src) {
-  static_assert(std::is_arithmetic_v<T>);
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, src, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) {
-    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  }
+T load(const std::uint8_t* src, std::endian order) {
   T x;
-  std::memcpy(&x, b, sizeof(T));
-  return x;
+  msg::wire::load_le(&x, src, 1);
+  return order == std::endian::little ? x : msg::wire::byteswap(x);
 }
-}  // namespace detail
+/// Writes the primitive `x` at `dst` in byte order `order`.
+template <class T>
+void store(std::uint8_t* dst, T x, std::endian order) {
+  if (order != std::endian::little) x = msg::wire::byteswap(x);
+  msg::wire::store_le(dst, &x, 1);
+}
+/// The byte order the XCDR1 encapsulation header at the start of `cdr` names (00 01 little,
+/// 00 00 big endian), or nullopt when `cdr` is shorter than the header or has another one.
+std::optional<std::endian> xcdr1_byte_order(std::span<const std::uint8_t> cdr);
+
+/// The encapsulations a Reader takes.
+enum class Encapsulations {
+  little_endian,  ///< 00 01 only: what every Writer writes
+  either_endian,  ///< 00 01, and 00 00 read big endian
+};
 
 /// Writes one CDR message, or measures a body without writing it. The field names only serve
 /// the errors (a sequence longer than a uint32 count or its bound: rescuesim::Error).
@@ -137,7 +140,7 @@ class Writer {
   template <class T>
   void put(T x) {
     align(sizeof(T));
-    if (out_ != nullptr) detail::store_le(reserve(sizeof(T)), x);
+    if (out_ != nullptr) store(reserve(sizeof(T)), x, std::endian::little);
     pos_ += sizeof(T);
   }
   std::uint32_t count(const char* name, std::size_t n, std::uint32_t bound) const;
@@ -154,9 +157,10 @@ class Reader {
  public:
   static constexpr bool kWrites = false;
 
-  /// Checks the encapsulation (00 01: XCDR1 little endian) and takes the padding its options
-  /// announce. `type` names the message in every error and must outlive the reader.
-  Reader(std::span<const std::uint8_t> cdr, const char* type);
+  /// Checks the encapsulation (00 01: XCDR1 little endian; with `accept` either_endian also 00 00,
+  /// then every number is read big endian) and takes the padding its options announce. `type`
+  /// names the message in every error and must outlive the reader.
+  Reader(std::span<const std::uint8_t> cdr, const char* type, Encapsulations accept = Encapsulations::little_endian);
 
   template <class T>
   void value(const char* name, T& x) {
@@ -201,7 +205,7 @@ class Reader {
         if constexpr (std::is_same_v<T, bool>) {
           s[i] = p_[pos_ + i] != 0;
         } else {
-          s[i] = detail::load_le<T>(p_ + pos_ + std::size_t{i} * size);
+          s[i] = load<T>(p_ + pos_ + std::size_t{i} * size, order_);
         }
       }
       pos_ += std::size_t{n} * size;
@@ -246,7 +250,7 @@ class Reader {
     const std::size_t pad = (sizeof(T) - pos_ % sizeof(T)) % sizeof(T);
     need(field, pad + sizeof(T), pad);
     pos_ += pad;
-    const T x = detail::load_le<T>(p_ + pos_);
+    const T x = load<T>(p_ + pos_, order_);
     pos_ += sizeof(T);
     return x;
   }
@@ -255,6 +259,7 @@ class Reader {
   std::size_t n_;
   std::size_t pos_ = 0;
   std::size_t padding_ = 0;  ///< announced by the encapsulation options
+  std::endian order_ = std::endian::little;
   const char* type_;
   std::vector<Segment> path_;
 };

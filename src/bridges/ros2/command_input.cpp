@@ -1,6 +1,6 @@
 #include "bridges/ros2/command_input.h"
 
-#include "bridges/ros2/cdr_bytes.h"
+#include "bridges/common/cdr_stream.h"
 #include "core/error.h"
 #include "msgs/serialize.h"
 
@@ -25,20 +25,24 @@ Decoded<msg::Twist> decode_twist(std::span<const std::uint8_t> cdr) { return dec
 
 Decoded<StampedTwist> decode_twist_stamped(std::span<const std::uint8_t> cdr) {
   try {
-    cdr::Reader in(cdr, "geometry_msgs/TwistStamped");
+    // read in the byte order the encapsulation names, as the transport's own action_msgs are
+    cdr::Reader in(cdr, "geometry_msgs/TwistStamped", cdr::Encapsulations::either_endian);
     StampedTwist out;
-    const std::int32_t sec = in.get<std::int32_t>("header.stamp.sec");
-    const std::uint32_t nanosec = in.get<std::uint32_t>("header.stamp.nanosec");
+    std::int32_t sec = 0;
+    std::uint32_t nanosec = 0;
+    in.value("header.stamp.sec", sec);
+    in.value("header.stamp.nanosec", nanosec);
     if (nanosec >= 1'000'000'000u) in.fail("header.stamp.nanosec", std::to_string(nanosec) + " is not below 1e9");
     out.stamp = SimTime{std::int64_t{sec} * 1'000'000'000 + nanosec};
-    out.frame_id = in.string("header.frame_id");
+    in.string("header.frame_id", out.frame_id);
     static const char* const kNames[6] = {"twist.linear.x", "twist.linear.y", "twist.linear.z",
                                           "twist.angular.x", "twist.angular.y", "twist.angular.z"};
     for (int i = 0; i < 6; ++i) {
-      const double v = in.get<double>(kNames[i]);
+      double v = 0;
+      in.value(kNames[i], v);
       (i < 3 ? out.twist.linear : out.twist.angular)[i % 3] = v;
     }
-    in.finish(3);
+    in.finish();
     return {std::move(out), {}};
   } catch (const Error& e) {
     return {std::nullopt, "malformed CDR: " + e.message()};

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "bridges/ros2/cdr_bytes.h"
+#include "bridges/common/cdr_stream.h"
 #include "core/error.h"
 
 namespace rescuesim::ros2 {
@@ -13,53 +13,44 @@ namespace {
 
 constexpr std::size_t kUuid = 16;
 
+// the ROS 2 transport reads these in the byte order their encapsulation names
+constexpr auto kEither = cdr::Encapsulations::either_endian;
+constexpr std::size_t kHeader = cdr::kEncapsulationSize;
+
 // a message (encapsulation header, then payload) whose payload starts with a UUID: the id and
 // the rest as a message of its own (same header; same alignment, as the UUID is 16 bytes)
 GoalId split_uuid(std::span<const std::uint8_t> body, const char* what, std::vector<std::uint8_t>* rest) {
-  cdr::Reader in(body, what);
+  cdr::Reader in(body, what, kEither);
   GoalId id{};
-  const auto b = in.bytes(kUuid, "goal_id");
-  std::copy(b.begin(), b.end(), id.begin());
+  in.octets("goal_id", id);
   if (rest) {
-    rest->assign(body.begin(), body.begin() + cdr::kEncapsulation);
-    rest->insert(rest->end(), body.begin() + cdr::kEncapsulation + kUuid, body.end());
+    rest->assign(body.begin(), body.begin() + kHeader);
+    rest->insert(rest->end(), body.begin() + kHeader + kUuid, body.end());
   }
   return id;
 }
 
 std::vector<std::uint8_t> join_uuid(const GoalId& id, std::span<const std::uint8_t> message, const char* what) {
-  if (message.size() < cdr::kEncapsulation || message[0] != 0x00 || message[1] > 0x01) {
+  if (!cdr::xcdr1_byte_order(message)) {
     throw Error(std::string(what) + ": not a CDR message (no XCDR1 encapsulation header)");
   }
   std::vector<std::uint8_t> out(message.size() + kUuid);
-  std::memcpy(out.data(), message.data(), cdr::kEncapsulation);
-  std::memcpy(out.data() + cdr::kEncapsulation, id.data(), kUuid);
-  std::memcpy(out.data() + cdr::kEncapsulation + kUuid, message.data() + cdr::kEncapsulation, message.size() - cdr::kEncapsulation);
+  std::memcpy(out.data(), message.data(), kHeader);
+  std::memcpy(out.data() + kHeader, id.data(), kUuid);
+  std::memcpy(out.data() + kHeader + kUuid, message.data() + kHeader, message.size() - kHeader);
   return out;
 }
 
 void put_info(cdr::Writer& w, const GoalInfo& g) {
-  w.bytes(g.id);
-  w.put(g.stamp.sec);
-  w.put(g.stamp.nanosec);
+  w.octets("goal_id.uuid", g.id);
+  w.value("stamp.sec", g.stamp.sec);
+  w.value("stamp.nanosec", g.stamp.nanosec);
 }
 
-GoalInfo get_info(cdr::Reader& in) {
-  GoalInfo g;
-  const auto b = in.bytes(kUuid, "goal_id.uuid");
-  std::copy(b.begin(), b.end(), g.id.begin());
-  g.stamp.sec = in.get<std::int32_t>("stamp.sec");
-  g.stamp.nanosec = in.get<std::uint32_t>("stamp.nanosec");
-  return g;
-}
-
-// a sequence count no larger than the bytes left could hold, `min_size` bytes an element
-std::uint32_t get_count(cdr::Reader& in, const char* field, std::size_t min_size) {
-  const std::uint32_t n = in.get<std::uint32_t>(field);
-  if (std::uint64_t{n} * min_size > in.remaining()) {
-    in.fail(field, std::to_string(n) + " elements cannot fit in the " + std::to_string(in.remaining()) + " bytes left");
-  }
-  return n;
+void get_info(cdr::Reader& in, GoalInfo& g) {
+  in.octets("goal_id.uuid", g.id);
+  in.value("stamp.sec", g.stamp.sec);
+  in.value("stamp.nanosec", g.stamp.nanosec);
 }
 
 }  // namespace
@@ -117,79 +108,84 @@ SendGoalRequest decode_send_goal_request(std::span<const std::uint8_t> body) {
 }
 
 std::vector<std::uint8_t> encode_send_goal_response(const SendGoalResponse& r) {
-  cdr::Writer w;
-  w.put<std::uint8_t>(r.accepted ? 1 : 0);
-  w.put(r.stamp.sec);
-  w.put(r.stamp.nanosec);
-  return w.take();
+  std::vector<std::uint8_t> out;
+  cdr::Writer w(out, "SendGoal response");
+  w.value("accepted", r.accepted);
+  w.value("stamp.sec", r.stamp.sec);
+  w.value("stamp.nanosec", r.stamp.nanosec);
+  return out;
 }
 
 SendGoalResponse decode_send_goal_response(std::span<const std::uint8_t> body) {
-  cdr::Reader in(body, "SendGoal response");
+  cdr::Reader in(body, "SendGoal response", kEither);
   SendGoalResponse r;
-  r.accepted = in.get<std::uint8_t>("accepted") != 0;
-  r.stamp.sec = in.get<std::int32_t>("stamp.sec");
-  r.stamp.nanosec = in.get<std::uint32_t>("stamp.nanosec");
+  in.value("accepted", r.accepted);
+  in.value("stamp.sec", r.stamp.sec);
+  in.value("stamp.nanosec", r.stamp.nanosec);
   in.finish();
   return r;
 }
 
 std::vector<std::uint8_t> encode_cancel_request(const GoalInfo& info) {
-  cdr::Writer w;
+  std::vector<std::uint8_t> out;
+  cdr::Writer w(out, "action_msgs/CancelGoal request");
   put_info(w, info);
-  return w.take();
+  return out;
 }
 
 GoalInfo decode_cancel_request(std::span<const std::uint8_t> body) {
-  cdr::Reader in(body, "action_msgs/CancelGoal request");
-  const GoalInfo g = get_info(in);
+  cdr::Reader in(body, "action_msgs/CancelGoal request", kEither);
+  GoalInfo g;
+  get_info(in, g);
   in.finish();
   return g;
 }
 
 std::vector<std::uint8_t> encode_cancel_response(const CancelResponse& r) {
-  cdr::Writer w;
-  w.put(r.return_code);
-  w.put(static_cast<std::uint32_t>(r.goals_canceling.size()));
-  for (const GoalInfo& g : r.goals_canceling) put_info(w, g);
-  return w.take();
+  std::vector<std::uint8_t> out;
+  cdr::Writer w(out, "action_msgs/CancelGoal response");
+  w.value("return_code", r.return_code);
+  w.elements("goals_canceling", r.goals_canceling, 24, cdr::kUnbounded, [&](const GoalInfo& g) { put_info(w, g); });
+  return out;
 }
 
 CancelResponse decode_cancel_response(std::span<const std::uint8_t> body) {
-  cdr::Reader in(body, "action_msgs/CancelGoal response");
+  cdr::Reader in(body, "action_msgs/CancelGoal response", kEither);
   CancelResponse r;
-  r.return_code = in.get<std::int8_t>("return_code");
-  const std::uint32_t n = get_count(in, "goals_canceling", 24);
-  for (std::uint32_t i = 0; i < n; ++i) r.goals_canceling.push_back(get_info(in));
+  in.value("return_code", r.return_code);
+  // a count the bytes left cannot hold (24 bytes a GoalInfo) is refused before anything is allocated
+  in.elements("goals_canceling", r.goals_canceling, 24, cdr::kUnbounded, [&](GoalInfo& g) { get_info(in, g); });
   in.finish();
   return r;
 }
 
 std::vector<std::uint8_t> encode_result_request(const GoalId& id) {
-  cdr::Writer w;
-  w.bytes(id);
-  return w.take();
+  std::vector<std::uint8_t> out;
+  cdr::Writer w(out, "GetResult request");
+  w.octets("goal_id", id);
+  return out;
 }
 
 GoalId decode_result_request(std::span<const std::uint8_t> body) {
-  cdr::Reader in(body, "GetResult request");
+  cdr::Reader in(body, "GetResult request", kEither);
   GoalId id{};
-  const auto b = in.bytes(kUuid, "goal_id");
-  std::copy(b.begin(), b.end(), id.begin());
+  in.octets("goal_id", id);
   in.finish();
   return id;
 }
 
 void set_result_status(std::vector<std::uint8_t>& response, std::int8_t status) {
-  if (response.size() <= cdr::kEncapsulation || response[0] != 0x00 || response[1] > 0x01) {
+  if (response.size() <= kHeader || !cdr::xcdr1_byte_order(response)) {
     throw Error("GetResult response: not a CDR message with an int8 status first (" + std::to_string(response.size()) + " bytes)");
   }
-  response[cdr::kEncapsulation] = static_cast<std::uint8_t>(status);
+  response[kHeader] = static_cast<std::uint8_t>(status);
 }
 
 std::int8_t result_status(std::span<const std::uint8_t> response) {
-  cdr::Reader in(response, "GetResult response");
-  return in.get<std::int8_t>("status");
+  cdr::Reader in(response, "GetResult response", kEither);
+  std::int8_t status = 0;
+  in.value("status", status);
+  return status;
 }
 
 std::vector<std::uint8_t> encode_feedback_message(const GoalId& id, std::span<const std::uint8_t> feedback) {
@@ -203,23 +199,23 @@ FeedbackMessage decode_feedback_message(std::span<const std::uint8_t> body) {
 }
 
 std::vector<std::uint8_t> encode_status_array(const std::vector<GoalStatus>& list) {
-  cdr::Writer w;
-  w.put(static_cast<std::uint32_t>(list.size()));
-  for (const GoalStatus& s : list) {
+  std::vector<std::uint8_t> out;
+  cdr::Writer w(out, "action_msgs/GoalStatusArray");
+  w.elements("status_list", list, 25, cdr::kUnbounded, [&](const GoalStatus& s) {
     put_info(w, s.info);
-    w.put(s.status);
-  }
-  return w.take();
+    w.value("status", s.status);
+  });
+  return out;
 }
 
 std::vector<GoalStatus> decode_status_array(std::span<const std::uint8_t> body) {
-  cdr::Reader in(body, "action_msgs/GoalStatusArray");
-  const std::uint32_t n = get_count(in, "status_list", 25);
-  std::vector<GoalStatus> out(n);
-  for (GoalStatus& s : out) {
-    s.info = get_info(in);
-    s.status = in.get<std::int8_t>("status");
-  }
+  cdr::Reader in(body, "action_msgs/GoalStatusArray", kEither);
+  std::vector<GoalStatus> out;
+  // a count the bytes left cannot hold (at least 25 bytes a GoalStatus) is refused before anything is allocated
+  in.elements("status_list", out, 25, cdr::kUnbounded, [&](GoalStatus& s) {
+    get_info(in, s.info);
+    in.value("status", s.status);
+  });
   in.finish();
   return out;
 }

@@ -1,31 +1,16 @@
 #include "bridges/ros2/dds_service_wire.h"
 
-#include <bit>
 #include <cstdio>
 #include <cstring>
 
-#include "bridges/ros2/cdr_bytes.h"
+#include "bridges/common/cdr_stream.h"
 #include "core/error.h"
 
 namespace rescuesim::ros2 {
 
 namespace {
 
-// the header's numbers in the byte order the encapsulation names (00 01 little, 00 00 big endian)
-template <class T>
-T load(const std::uint8_t* p, bool little) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return little == (std::endian::native == std::endian::little) ? v : cdr::swapped(v);
-}
-
-template <class T>
-void store(std::uint8_t* p, T v, bool little) {
-  if (little != (std::endian::native == std::endian::little)) v = cdr::swapped(v);
-  std::memcpy(p, &v, sizeof(T));
-}
-
-bool xcdr1(std::span<const std::uint8_t> b) { return b.size() >= cdr::kEncapsulation && b[0] == 0x00 && b[1] <= 0x01; }
+constexpr std::size_t kHeader = cdr::kEncapsulationSize;
 
 }  // namespace
 
@@ -34,35 +19,35 @@ std::optional<ServiceSample> split_service_sample(std::span<const std::uint8_t> 
     if (why) *why = std::move(text);
     return std::nullopt;
   };
-  if (sample.size() < cdr::kEncapsulation + kRequestHeaderBytes) {
+  if (sample.size() < kHeader + kRequestHeaderBytes) {
     return fail(std::to_string(sample.size()) + " bytes, shorter than the encapsulation and request headers (20 bytes)");
   }
-  if (!xcdr1(sample)) {
+  // the header's numbers in the byte order the encapsulation names (00 01 little, 00 00 big endian)
+  const std::optional<std::endian> order = cdr::xcdr1_byte_order(sample);
+  if (!order) {
     return fail("encapsulation " + std::to_string(sample[0]) + " " + std::to_string(sample[1]) +
                 " is not XCDR1 (00 00 big endian or 00 01 little endian)");
   }
-  const bool little = sample[1] == 0x01;
   ServiceSample out;
-  out.header.guid = load<std::uint64_t>(sample.data() + cdr::kEncapsulation, little);
-  out.header.seq = load<std::int64_t>(sample.data() + cdr::kEncapsulation + 8, little);
+  out.header.guid = cdr::load<std::uint64_t>(sample.data() + kHeader, *order);
+  out.header.seq = cdr::load<std::int64_t>(sample.data() + kHeader + 8, *order);
   // the body as a message of its own: same encapsulation header, the bytes after the request
   // header (same alignment: see the file comment of the header)
   out.body.reserve(sample.size() - kRequestHeaderBytes);
-  out.body.insert(out.body.end(), sample.begin(), sample.begin() + cdr::kEncapsulation);
-  out.body.insert(out.body.end(), sample.begin() + cdr::kEncapsulation + kRequestHeaderBytes, sample.end());
+  out.body.insert(out.body.end(), sample.begin(), sample.begin() + kHeader);
+  out.body.insert(out.body.end(), sample.begin() + kHeader + kRequestHeaderBytes, sample.end());
   return out;
 }
 
 std::vector<std::uint8_t> join_service_sample(const RequestHeader& header, std::span<const std::uint8_t> body) {
-  if (!xcdr1(body)) throw Error("service reply or request body: not a CDR message (no XCDR1 encapsulation header)");
-  const bool little = body[1] == 0x01;
+  const std::optional<std::endian> order = cdr::xcdr1_byte_order(body);
+  if (!order) throw Error("service reply or request body: not a CDR message (no XCDR1 encapsulation header)");
   std::vector<std::uint8_t> out(body.size() + kRequestHeaderBytes);
-  std::memcpy(out.data(), body.data(), cdr::kEncapsulation);
-  store(out.data() + cdr::kEncapsulation, header.guid, little);
-  store(out.data() + cdr::kEncapsulation + 8, header.seq, little);
-  if (body.size() > cdr::kEncapsulation) {
-    std::memcpy(out.data() + cdr::kEncapsulation + kRequestHeaderBytes, body.data() + cdr::kEncapsulation,
-                body.size() - cdr::kEncapsulation);
+  std::memcpy(out.data(), body.data(), kHeader);
+  cdr::store(out.data() + kHeader, header.guid, *order);
+  cdr::store(out.data() + kHeader + 8, header.seq, *order);
+  if (body.size() > kHeader) {
+    std::memcpy(out.data() + kHeader + kRequestHeaderBytes, body.data() + kHeader, body.size() - kHeader);
   }
   return out;
 }

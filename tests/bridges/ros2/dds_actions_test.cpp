@@ -13,7 +13,7 @@
 #include <mutex>
 #include <thread>
 
-#include "bridges/ros2/cdr_bytes.h"
+#include "bridges/common/cdr_stream.h"
 #include "bridges/ros2/dds_action_client.h"
 #include "bridges/ros2/service_registry.h"
 #include "support/dds_domain.h"
@@ -53,22 +53,25 @@ class Spinner {
 // SimulateSteps: Goal {uint64 steps}; Feedback {uint64 completed_steps; uint64 remaining_steps};
 // GetResult response {int8 status; simulation_interfaces/Result result {uint8 result; string error_message}}
 Bytes goal(std::uint64_t steps) {
-  cdr::Writer w;
-  w.put(steps);
-  return w.take();
+  Bytes out;
+  cdr::Writer w(out, "SimulateSteps goal");
+  w.value("steps", steps);
+  return out;
 }
 Bytes feedback(std::uint64_t done, std::uint64_t left) {
-  cdr::Writer w;
-  w.put(done);
-  w.put(left);
-  return w.take();
+  Bytes out;
+  cdr::Writer w(out, "SimulateSteps feedback");
+  w.value("completed_steps", done);
+  w.value("remaining_steps", left);
+  return out;
 }
 Bytes result(std::uint8_t code, const std::string& message) {
-  cdr::Writer w;
-  w.put<std::int8_t>(0);  // status: the server writes it
-  w.put(code);
-  w.string(message);
-  return w.take();
+  Bytes out;
+  cdr::Writer w(out, "SimulateSteps result");
+  w.value<std::int8_t>("status", 0);  // the server writes it
+  w.value("result.result", code);
+  w.string("result.error_message", message);
+  return out;
 }
 Bytes with_status(Bytes response, std::int8_t status) {
   response.at(4) = static_cast<std::uint8_t>(status);
@@ -88,7 +91,8 @@ struct Server {
     ActionCallbacks callbacks;
     callbacks.on_goal = [this](GoalHandle h) {
       cdr::Reader in(h.goal(), "SimulateSteps goal");
-      const auto steps = in.get<std::uint64_t>("steps");
+      std::uint64_t steps = 0;
+      in.value("steps", steps);
       if (steps == 0) {
         h.reject();
         return;

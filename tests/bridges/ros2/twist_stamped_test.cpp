@@ -11,7 +11,7 @@
 #include <limits>
 #include <thread>
 
-#include "bridges/ros2/cdr_bytes.h"
+#include "bridges/common/cdr_stream.h"
 #include "bridges/ros2/command_input.h"
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/ros2_bridge.h"
@@ -28,12 +28,13 @@ using namespace std::chrono_literals;
 
 /// TwistStamped {header {stamp, frame_id}, twist {linear (x, 0, 0), angular (0, 0, w)}} as a ROS 2 publisher writes it.
 Bytes twist_stamped(SimTime stamp, const std::string& frame, double x, double w) {
-  ros2::cdr::Writer out;
-  out.put(static_cast<std::int32_t>(stamp.sec_part()));
-  out.put(stamp.nsec_part());
-  out.string(frame);
-  for (const double v : {x, 0.0, 0.0, 0.0, 0.0, w}) out.put(v);
-  return out.take();
+  Bytes out;
+  cdr::Writer writer(out, "geometry_msgs/TwistStamped");
+  writer.value("header.stamp.sec", static_cast<std::int32_t>(stamp.sec_part()));
+  writer.value("header.stamp.nanosec", stamp.nsec_part());
+  writer.string("header.frame_id", frame);
+  for (const double v : {x, 0.0, 0.0, 0.0, 0.0, w}) writer.value("twist", v);
+  return out;
 }
 
 TEST(TwistStamped, DecodesTheHeaderAndTheTwistFromBytesWorkedOutByHand) {
@@ -61,21 +62,21 @@ TEST(TwistStamped, MalformedBytesSayWhatIsWrong) {
   const Bytes good = twist_stamped(SimTime{0}, "", 1, 0);
   auto d = ros2::decode_twist_stamped(Bytes(good.begin(), good.end() - 8));
   EXPECT_FALSE(d.value);
-  EXPECT_NE(d.problem.find("twist.angular.z: truncated"), std::string::npos) << d.problem;
+  EXPECT_NE(d.problem.find("twist.angular.z: 8 bytes needed, 0 left"), std::string::npos) << d.problem;
   Bytes bad_nanos = good;
   bad_nanos[8] = 0xff, bad_nanos[9] = 0xff, bad_nanos[10] = 0xff, bad_nanos[11] = 0xff;
   d = ros2::decode_twist_stamped(bad_nanos);
   EXPECT_NE(d.problem.find("header.stamp.nanosec: 4294967295 is not below 1e9"), std::string::npos) << d.problem;
   Bytes long_name = good;
-  long_name[12] = 0xff;  // frame_id's length far beyond the bytes
+  long_name[12] = 0xff;  // frame_id's length far beyond the bytes: 255, with 4 + 48 after it
   d = ros2::decode_twist_stamped(long_name);
-  EXPECT_NE(d.problem.find("header.frame_id: truncated"), std::string::npos) << d.problem;
+  EXPECT_NE(d.problem.find("header.frame_id: 255 bytes needed, 52 left"), std::string::npos) << d.problem;
   Bytes extra = good;
   extra.insert(extra.end(), 8, 0);
   d = ros2::decode_twist_stamped(extra);
   EXPECT_NE(d.problem.find("8 trailing bytes"), std::string::npos) << d.problem;
   d = ros2::decode_twist_stamped(Bytes{0x00, 0x07, 0, 0});
-  EXPECT_NE(d.problem.find("is not XCDR1"), std::string::npos) << d.problem;
+  EXPECT_NE(d.problem.find("encapsulation 00 07 is not supported"), std::string::npos) << d.problem;
 }
 
 class TwistStampedBridgeTest : public ::testing::Test {
@@ -91,22 +92,29 @@ class TwistStampedBridgeTest : public ::testing::Test {
 
 /// The reader GIDs of the nodes in a Humble ros_discovery_info sample (24-byte Gids).
 std::vector<ros2::Guid> discovery_readers(std::span<const std::uint8_t> bytes) {
-  ros2::cdr::Reader in(bytes, "ParticipantEntitiesInfo");
-  in.bytes(24, "gid");
+  using Gid = std::array<std::uint8_t, 24>;
+  struct Node {
+    std::string ns, name;
+    std::vector<Gid> readers, writers;
+  };
+  cdr::Reader in(bytes, "ParticipantEntitiesInfo");
+  Gid gid;
+  in.octets("gid", gid);
+  std::vector<Node> nodes;
+  // a node takes at least two empty strings (5 bytes each) and two counts
+  in.elements("node_entities_info_seq", nodes, 18, cdr::kUnbounded, [&](Node& n) {
+    in.string("node_namespace", n.ns);
+    in.string("node_name", n.name);
+    in.elements("reader_gid_seq", n.readers, 24, cdr::kUnbounded, [&](Gid& g) { in.octets("data", g); });
+    in.elements("writer_gid_seq", n.writers, 24, cdr::kUnbounded, [&](Gid& g) { in.octets("data", g); });
+  });
   std::vector<ros2::Guid> out;
-  const std::uint32_t nodes = in.get<std::uint32_t>("node_entities_info_seq");
-  for (std::uint32_t n = 0; n < nodes; ++n) {
-    in.string("node_namespace");
-    in.string("node_name");
-    const std::uint32_t readers = in.get<std::uint32_t>("reader_gid_seq");
-    for (std::uint32_t r = 0; r < readers; ++r) {
-      const auto g = in.bytes(24, "reader");
+  for (const Node& n : nodes) {
+    for (const Gid& g : n.readers) {
       ros2::Guid guid;
       std::copy(g.begin(), g.begin() + 16, guid.begin());
       out.push_back(guid);
     }
-    const std::uint32_t writers = in.get<std::uint32_t>("writer_gid_seq");
-    in.bytes(std::size_t{writers} * 24, "writers");
   }
   return out;
 }
