@@ -1,6 +1,6 @@
 #pragma once
-/// Little-endian byte helpers and the field path shared by the ROS 1 and CDR codecs (internal
-/// to msgs/). Both wire formats are little endian; on a little-endian host (every platform we
+/// Little-endian byte helpers and the field path shared by the ROS 1 and CDR codecs of msgs/
+/// (the byte helpers also serve bridges/common/cdr_stream). Both wire formats are little endian; on a little-endian host (every platform we
 /// build for) arrays move with one memcpy, elsewhere they are byte-swapped element by element.
 
 #include <bit>

@@ -20,6 +20,7 @@
 #include "robots/rescue_robot.h"
 #include "session/session.h"
 #include "support/command.h"
+#include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
 #include <nlohmann/json.hpp>
 
@@ -37,10 +38,7 @@ constexpr auto kTimeout = 10s;
 class ControlServicesTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::setenv("CYCLONEDDS_URI",
-             "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-             "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-             1);
+    testing::pin_cyclone_to_loopback();
     const ModelMap models = builtin_models();
     Scenario s = default_scenario(models);
     s.duration = 1e9;
@@ -299,10 +297,7 @@ TEST_F(ControlServicesTest, ParametersOfNodeRescuesim) {
 /// over loopback: 200 steps, a reset, 100 steps, then QUITTING ends the run, which writes its
 /// outputs with 100 steps of sim time (0.5 s) and says why it stopped.
 TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
-  ::setenv("CYCLONEDDS_URI",
-           "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-           "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-           1);
+  testing::pin_cyclone_to_loopback();
   const int domain = testing::leased_dds_domain();
   const auto dir = testing::temp_dir("ros2-control-cli");
   testing::CommandResult run;

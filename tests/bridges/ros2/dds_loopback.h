@@ -9,6 +9,15 @@
 
 namespace rescuesim::testing {
 
+/// Pins Cyclone DDS of this process (rescuesim's participants and the tests' own) to 127.0.0.1
+/// without multicast, with the configuration inline in CYCLONEDDS_URI.
+inline void pin_cyclone_to_loopback() {
+  ::setenv("CYCLONEDDS_URI",
+           "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
+           "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
+           1);
+}
+
 /// Pins Cyclone (rescuesim) and Fast DDS (the peer) to 127.0.0.1 without multicast.
 inline void pin_dds_to_loopback(const std::filesystem::path& dir) {
   write_text(dir / "cyclonedds.xml",

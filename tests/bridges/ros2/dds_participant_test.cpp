@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "msgs/serialize.h"
+#include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
 
 namespace rescuesim::ros2 {
@@ -21,10 +22,7 @@ namespace {
 class DdsParticipantTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::setenv("CYCLONEDDS_URI",
-             "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-             "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-             1);
+    testing::pin_cyclone_to_loopback();
   }
   // domains of this process's own, so tests running in parallel (ctest -j) do not see each other
   int domain(int index = 0) const { return testing::leased_dds_domain(index); }

@@ -21,6 +21,7 @@
 
 #include "bridges/ros2/service_registry.h"
 #include "core/error.h"
+#include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
 
 namespace rescuesim::ros2 {
@@ -32,10 +33,7 @@ using namespace std::chrono_literals;
 class DdsServicesTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::setenv("CYCLONEDDS_URI",
-             "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-             "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-             1);
+    testing::pin_cyclone_to_loopback();
   }
   int domain() const { return testing::leased_dds_domain(); }
 };

@@ -19,6 +19,7 @@
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
 #include "support/rig.h"
 
@@ -28,10 +29,7 @@ namespace {
 using ros2::DdsParticipant;
 
 TEST(Ros2MissionTopics, ADatagramCrossesTheRadioAndAReportIsAnswered) {
-  ::setenv("CYCLONEDDS_URI",
-           "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-           "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-           1);
+  testing::pin_cyclone_to_loopback();
   const int domain = testing::leased_dds_domain();
   // two robots 4 m apart in a 20 m room, a victim at (5, 0)
   Simulation sim(compile_world(testing::two_robots_and_a_victim(), builtin_models()));

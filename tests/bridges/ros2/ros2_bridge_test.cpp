@@ -18,6 +18,7 @@
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
+#include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
 #include "support/rig.h"
 
@@ -29,10 +30,7 @@ using ros2::DdsParticipant;
 class Ros2BridgeTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::setenv("CYCLONEDDS_URI",
-             "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast></General>"
-             "<Discovery><ParticipantIndex>auto</ParticipantIndex><Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>",
-             1);
+    testing::pin_cyclone_to_loopback();
   }
   int domain() const { return testing::leased_dds_domain(); }
 };
