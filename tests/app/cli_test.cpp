@@ -309,6 +309,16 @@ TEST(RunCommand, ThreadsMustBeACount) {
   EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
 }
 
+TEST(RunCommand, PausedNeedsALiveBridgeAndTheDistroIsChecked) {
+  // nothing could play a paused run without a bridge: a usage error, before anything is built
+  auto r = testing::rescuesim("run --paused --no-cameras --duration 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--paused needs a live bridge"), std::string::npos) << r.err;
+  r = testing::rescuesim("run --ros2 --ros2-distro foxy --duration 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--ros2-distro"), std::string::npos) << r.err;
+}
+
 TEST(RunCameras, ZeroOrHugeResolutionAndBadFovAreRejected) {
   const auto dir = testing::temp_dir("cam-bad");
   const char* bad[] = {"color_camera: {width: 0}", "depth_camera: {height: 100000}", "thermal_camera: {hfov: 180}",
