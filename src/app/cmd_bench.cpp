@@ -16,6 +16,7 @@
 
 #include "app/bench_batch.h"
 #include "app/bench_child.h"
+#include "app/bench_control.h"
 #include "app/bench_figures.h"
 #include "app/bench_reset.h"
 #include "app/bench_ros.h"
@@ -66,6 +67,8 @@ struct BenchOptions {
   std::string mission_scenario = "worlds/team.yaml";  ///< the mission figures' scenario
   bool mission_only = false;    ///< only the mission figures
   bool reset_only = false;      ///< only the reset figure (bench_reset.h)
+  bool control_only = false;    ///< only the control figures (bench_control.h)
+  BenchControlOptions control_options;
   bool lidar_only = false;      ///< only the lidar figures (rays, the laser sampler, the laser in smoke)
   bool cameras_only = false;    ///< only the camera figures (frames/s beside bare GL, and in smoke)
   BenchRosOptions ros_options;
@@ -399,6 +402,10 @@ int run_bench(const BenchOptions& given) {
     report["reset"] = bench_reset(def, models);
     return print_report(report);
   }
+  if (o.control_only) {
+    report["control"] = bench_control(def, models, o.control_options);
+    return print_report(report);
+  }
   if (o.lidar_only) {
     report["lidar"] = bench_rays(world, o.seconds);
     return print_report(report);
@@ -492,6 +499,7 @@ int run_bench(const BenchOptions& given) {
   report["reset"] = bench_reset(def, models);
   report["python_step"] = bench_python_step();
   if (o.ros) report["ros"] = bench_ros(def, models, o.ros_options);
+  if (o.ros) report["control"] = bench_control(def, models, o.control_options);
   return print_report(report);
 }
 
@@ -519,6 +527,12 @@ void add_bench_command(CLI::App& app, Action& action) {
       "lockstep run without bridges (target >= 0.9x; also\n"
       "with /scan subscribers alone). A transport this build or machine lacks is reported as skipped,\n"
       "with the reason (docs/ros.md).\n"
+      "Control (control; about 8 s, with the ROS figures; --control-only runs nothing else;\n"
+      "docs/performance.md): the default scenario without cameras, started paused, with the ROS 2 bridge,\n"
+      "and a client in another process on loopback: ResetSimulation round trip p50/p99 beside\n"
+      "Session::restore alone and beside rebuilding the Session (target < 5 ms p50); StepSimulation(1)\n"
+      "round trip beside one step in-process (target < 1 ms p50); a 10,000-step SimulateSteps goal beside\n"
+      "the same steps lockstep in-process (alternating, medians of 3; target >= 0.9x).\n"
       "URDF (urdf; docs/robots.md): reading the --urdf-scenario's robot with its meshes beside loading\n"
       "the mesh files alone; convex hull of its largest mesh (64 vertices) beside the exact hull, and\n"
       "its convex decomposition; the robot's real-time factor beside the built-in robot in the same maze.\n"
@@ -537,7 +551,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--physics-steps", o->physics_steps, "steps per physics measurement")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--batch-trials", o->batch_trials, "trials per batch measurement (twice as many at --jobs 2; 0 skips)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost)");
+  cmd->add_flag("!--no-ros", o->ros, "skip the ROS figures (latency over ROS 1 / ROS 2, bridge cost) and the control figures");
   cmd->add_flag("--ros-only", o->ros_only, "measure only the ROS figures");
   cmd->add_flag("--urdf-only", o->urdf_only, "measure only the URDF figures");
   cmd->add_flag("--sdf-only", o->sdf_only, "measure only the SDF figures");
@@ -547,6 +561,18 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--sdf-resource-path", o->sdf_resource_paths, "where the SDF world's model:// URIs are looked for first")
       ->capture_default_str();
   cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
+  cmd->add_flag("--control-only", o->control_only,
+                "measure only the control figures (ResetSimulation and StepSimulation round trips, the SimulateSteps action, "
+                "over ROS 2 on loopback, each beside the same in-process)");
+  cmd->add_option("--control-resets", o->control_options.resets, "timed ResetSimulation calls of the control figures")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--control-steps", o->control_options.steps, "timed StepSimulation(1) calls of the control figures")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--control-action-steps", o->control_options.action_steps, "steps of each SimulateSteps goal of the control figures")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--control-rounds", o->control_options.action_rounds,
+                  "SimulateSteps goals and lockstep runs, alternating (the medians count)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--lidar-only", o->lidar_only, "measure only the lidar figures (rays beside bare Embree, the laser sampler, the laser in smoke)");
   cmd->add_flag("--cameras-only", o->cameras_only, "measure only the camera figures (frames/s beside a bare GL loop, and through smoke)");
   cmd->add_option("--urdf-scenario", o->urdf_scenario, "scenario whose first robot is a URDF robot, for the URDF figures")
