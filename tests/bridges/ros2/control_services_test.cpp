@@ -49,13 +49,15 @@ class ControlServicesTest : public ::testing::Test {
     o.control = true;
     o.control_options.start_paused = true;
     session_ = std::make_unique<Session>(s, models, o);
-    Ros2Options ro;
+    Ros2Options ro = options();
     ro.domain_id = testing::leased_dds_domain();
     bridge_ = make_ros2_bridge(ro);
     bridge_->start(session_->sim());
     runner_ = std::thread([this] { session_->run(&stop_); });
     client_ = std::make_unique<DdsParticipant>(ro.domain_id, ros2::participant_user_data());
   }
+  /// The bridge's options (the domain is set by SetUp).
+  virtual Ros2Options options() const { return {}; }
   void TearDown() override {
     stop_ = true;
     if (runner_.joinable()) runner_.join();
@@ -64,18 +66,18 @@ class ControlServicesTest : public ::testing::Test {
 
   /// Calls service S at `name` with `request`; the decoded response.
   template <class S>
-  typename S::Response call(const std::string& name, const typename S::Request& request) {
+  typename S::Response call(const std::string& name, const typename S::Request& request, WireVersion version = WireVersion::v1) {
     ServiceClient c(*client_, ros2::service_topics(name, info(S::id).ros_type));
     EXPECT_TRUE(c.wait_for_server(kTimeout)) << name;
     std::vector<std::uint8_t> body;
-    encode_request<S>(request, WireVersion::v1, body);
+    encode_request<S>(request, version, body);
     std::string why;
     const auto reply = c.call(body, kTimeout, &why);
     if (!reply) {
       ADD_FAILURE() << name << ": " << why;
       return {};
     }
-    auto decoded = decode_response<S>(*reply, WireVersion::v1);
+    auto decoded = decode_response<S>(*reply, version);
     EXPECT_TRUE(decoded.value) << decoded.problem;
     return decoded.value ? *decoded.value : typename S::Response{};
   }
@@ -291,6 +293,57 @@ TEST_F(ControlServicesTest, ParametersOfNodeRescuesim) {
   const SetParameterResult atomic = call<iface::SetParametersAtomically>("/rescuesim/set_parameters_atomically", set);
   EXPECT_FALSE(atomic.successful);
   EXPECT_DOUBLE_EQ(call<iface::GetParameters>("/rescuesim/get_parameters", {{"real_time_factor"}}).values.at(0).double_value, 2.5);
+}
+
+/// Where Gazebo serves them (--sim-services-ns /gzserver) and in the 2.x layouts (--ros2-distro
+/// rolling): SetEntityState's set_pose / set_twist flags say what changes.
+class ControlServicesGzNamesV2Test : public ControlServicesTest {
+ protected:
+  Ros2Options options() const override {
+    Ros2Options o;
+    o.sim_services_ns = "/gzserver";
+    o.sim_interfaces_v2 = true;
+    return o;
+  }
+};
+
+TEST_F(ControlServicesGzNamesV2Test, ServicesLiveUnderTheNamespaceAndTheFlagsPickWhatIsSet) {
+  // nothing at the root
+  ServiceClient root(*client_, ros2::service_topics("/reset_simulation", "simulation_interfaces/srv/ResetSimulation"));
+  EXPECT_FALSE(root.wait_for_server(1s));
+  // 100 steps with the robot driving forward at 0.3 m/s, so it has a twist to keep or to lose
+  ASSERT_TRUE(session_->sim().command_velocity(0, msg::Twist{Vec3(0.3, 0, 0), Vec3::Zero()}));
+  EXPECT_TRUE(call<iface::StepSimulation>("/gzserver/step_simulation", {100}, WireVersion::v2).is_ok());
+  const auto moving = call<iface::GetEntityState>("/gzserver/get_entity_state", {"robot"}, WireVersion::v2);
+  ASSERT_GT(moving.state.linear.norm(), 0.05);
+  // the pose only (set_twist false): the robot keeps its velocity
+  SetEntityStateRequest set;
+  set.entity = "robot";
+  set.state.pose = moving.state.pose;
+  set.state.pose.p.y() += 0.2;
+  set.set_pose = true;
+  set.set_twist = false;
+  set.set_acceleration = false;
+  Result r = call<iface::SetEntityState>("/gzserver/set_entity_state", set, WireVersion::v2);
+  ASSERT_TRUE(r.is_ok()) << r.error_message;
+  auto after = call<iface::GetEntityState>("/gzserver/get_entity_state", {"robot"}, WireVersion::v2).state;
+  EXPECT_NEAR(after.pose.p.y(), moving.state.pose.p.y() + 0.2, 1e-9);
+  EXPECT_NEAR((after.linear - moving.state.linear).norm(), 0.0, 1e-9);
+  // the twist only (set_pose false): the pose stays, the robot stops
+  set.set_pose = false;
+  set.set_twist = true;
+  set.state.pose.p.x() += 5.0;  // ignored
+  set.state.linear = Vec3::Zero();
+  r = call<iface::SetEntityState>("/gzserver/set_entity_state", set, WireVersion::v2);
+  ASSERT_TRUE(r.is_ok()) << r.error_message;
+  const auto stopped = call<iface::GetEntityState>("/gzserver/get_entity_state", {"robot"}, WireVersion::v2).state;
+  EXPECT_NEAR(stopped.pose.p.x(), after.pose.p.x(), 1e-9);
+  EXPECT_NEAR(stopped.linear.norm(), 0.0, 1e-12);
+  // an acceleration cannot be set
+  set.set_acceleration = true;
+  EXPECT_EQ(call<iface::SetEntityState>("/gzserver/set_entity_state", set, WireVersion::v2).result, code::kFeatureUnsupported);
+  // the parameters stay the node's
+  EXPECT_FALSE(call<iface::ListParameters>("/rescuesim/list_parameters", {}).names.empty());
 }
 
 /// As a user runs it: `rescuesim run --ros2 --paused` in a process of its own, driven from this one
