@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 #include <spdlog/spdlog.h>
-#include <spdlog/sinks/ringbuffer_sink.h>
 
 #include <cmath>
 #include <limits>
@@ -13,30 +12,11 @@
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
+#include "support/log_capture.h"
 #include "support/rig.h"
 
 namespace rescuesim {
 namespace {
-
-/// Collects what is logged while it lives.
-class LogCapture {
- public:
-  LogCapture() : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(100)), previous_(spdlog::default_logger()) {
-    auto logger = std::make_shared<spdlog::logger>("capture", sink_);
-    logger->set_pattern("%v");
-    spdlog::set_default_logger(logger);
-  }
-  ~LogCapture() { spdlog::set_default_logger(previous_); }
-  std::string text() const {
-    std::string s;
-    for (const auto& line : sink_->last_formatted()) s += line;
-    return s;
-  }
-
- private:
-  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
-  std::shared_ptr<spdlog::logger> previous_;
-};
 
 class CommandGateTest : public ::testing::Test {
  protected:
@@ -58,7 +38,7 @@ TEST_F(CommandGateTest, AFiniteTwistReachesTheRobotAtTheNextStep) {
 }
 
 TEST_F(CommandGateTest, NonFiniteTwistsAreRefusedWithTheTopicAndTheValue) {
-  LogCapture log;
+  testing::LogCapture log(100);
   msg::Twist t;
   t.linear.x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(gate_.velocity(0, "/cmd_vel", t));
@@ -76,7 +56,7 @@ TEST_F(CommandGateTest, NonFiniteTwistsAreRefusedWithTheTopicAndTheValue) {
 }
 
 TEST_F(CommandGateTest, SpeedsBeyondTheLimitsAreAcceptedWithAClampWarning) {
-  LogCapture log;
+  testing::LogCapture log(100);
   msg::Twist t;
   t.linear.x() = 5.0;
   t.angular.z() = -9.0;
@@ -87,7 +67,7 @@ TEST_F(CommandGateTest, SpeedsBeyondTheLimitsAreAcceptedWithAClampWarning) {
 }
 
 TEST_F(CommandGateTest, HeadCommandsNeedOnePositionPerHeadJoint) {
-  LogCapture log;
+  testing::LogCapture log(100);
   const std::size_t n = sim_.world().robots[0].spec.head_joints.size();
   ASSERT_EQ(n, 4u);
   EXPECT_FALSE(gate_.head(0, "/head/command", {0.1}));
@@ -102,7 +82,7 @@ TEST_F(CommandGateTest, HeadCommandsNeedOnePositionPerHeadJoint) {
 }
 
 TEST_F(CommandGateTest, HeadTargetsBeyondAJointsLimitsAreClampedWithAWarning) {
-  LogCapture log;
+  testing::LogCapture log(100);
   EXPECT_TRUE(gate_.head(0, "/head/command", {0, 0, 0, 9.0}));
   EXPECT_NE(log.text().find("/head/command data[3] (head_tilt) = 9 rad (516 deg) is beyond the joint's limits: clamped to"),
             std::string::npos)
@@ -110,7 +90,7 @@ TEST_F(CommandGateTest, HeadTargetsBeyondAJointsLimitsAreClampedWithAWarning) {
 }
 
 TEST_F(CommandGateTest, MalformedBytesAreCountedAsRejected) {
-  LogCapture log;
+  testing::LogCapture log(100);
   gate_.malformed("/cmd_vel", "geometry_msgs/Twist: angular.z: needs 8 bytes, 3 left");
   EXPECT_EQ(gate_.rejected(), 1u);
   EXPECT_NE(log.text().find("rejected a command on /cmd_vel: malformed message: geometry_msgs/Twist"), std::string::npos) << log.text();
@@ -119,7 +99,7 @@ TEST_F(CommandGateTest, MalformedBytesAreCountedAsRejected) {
 TEST(CommandGateJoints, RefusalsSayWhichJointAndWhyAndClampsAreReported) {
   Simulation sim(testing::slider_world());
   CommandGate gate(sim, "ROS 1");
-  LogCapture log;
+  testing::LogCapture log(100);
   msg::JointState wheel;
   wheel.name = {"wheel"};
   wheel.velocity = {1.0};
@@ -145,7 +125,7 @@ TEST(CommandGateFlippers, FlipperPositionsBecomeJointTargetsAndAWrongCountIsRefu
   spec.robots[0].model = "tracked_robot";
   Simulation sim(compile_world(spec, builtin_models()));
   CommandGate gate(sim, "ROS 2");
-  LogCapture log;
+  testing::LogCapture log(100);
   EXPECT_FALSE(gate.flippers(0, "/flippers/command", {0.3}));
   EXPECT_NE(log.text().find("/flippers/command: 1 positions, expected 2 (rad, in the order left_flipper_joint, right_flipper_joint)"),
             std::string::npos)

@@ -4,7 +4,6 @@
 // both drives start from the same snapshot with their command in place before the first step.
 
 #include <gtest/gtest.h>
-#include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -13,32 +12,13 @@
 #include "bridges/ros1/ros1_rig.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
+#include "support/log_capture.h"
 #include "support/rig.h"
 
 namespace rescuesim {
 namespace {
 
 using namespace testing;
-
-/// Collects what is logged while it lives.
-class LogCapture {
- public:
-  LogCapture() : sink_(std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(200)), previous_(spdlog::default_logger()) {
-    auto logger = std::make_shared<spdlog::logger>("capture", sink_);
-    logger->set_pattern("%v");
-    spdlog::set_default_logger(logger);
-  }
-  ~LogCapture() { spdlog::set_default_logger(previous_); }
-  std::string text() const {
-    std::string s;
-    for (const auto& line : sink_->last_formatted()) s += line;
-    return s;
-  }
-
- private:
-  std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> sink_;
-  std::shared_ptr<spdlog::logger> previous_;
-};
 
 TEST(Ros1TwistStamped, DrivesAsTwistDoesAndFutureStampsNanAndOtherTypesAreRefused) {
   SKIP_WITHOUT_ROS1();

@@ -17,6 +17,7 @@
 #include "bridges/ros2/dds_action_client.h"
 #include "bridges/ros2/service_registry.h"
 #include "bridges/ros2/dds_loopback.h"
+#include "bridges/ros2/registry_spinner.h"
 #include "support/dds_domain.h"
 
 namespace rescuesim::ros2 {
@@ -33,20 +34,6 @@ class DdsActionsTest : public ::testing::Test {
   int domain() const { return testing::leased_dds_domain(); }
 };
 
-class Spinner {
- public:
-  explicit Spinner(ServiceRegistry& r) : thread_([this, &r] {
-    while (!stop_) r.spin_once(20ms);
-  }) {}
-  ~Spinner() {
-    stop_ = true;
-    thread_.join();
-  }
-
- private:
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 // SimulateSteps: Goal {uint64 steps}; Feedback {uint64 completed_steps; uint64 remaining_steps};
 // GetResult response {int8 status; simulation_interfaces/Result result {uint8 result; string error_message}}
@@ -133,7 +120,7 @@ GoalStatus st(const GoalId& id, std::int64_t stamp_ns, std::int8_t status) { ret
 TEST_F(DdsActionsTest, GoalFeedbackResultCancelAndTheStatusArray) {
   DdsParticipant server_side(domain(), participant_user_data()), client_side(domain(), participant_user_data());
   Server server(server_side);
-  Spinner spinner(server.registry);
+  testing::RegistrySpinner spinner(server.registry);
   ActionClient client(client_side, action_topics("/simulate_steps", "simulation_interfaces/action/SimulateSteps"));
   ASSERT_TRUE(client.wait_for_server(10s));
   std::string why;
@@ -246,7 +233,7 @@ TEST_F(DdsActionsTest, FinishedGoalsBeyondTheBoundAreForgottenOldestFirst) {
   ActionOptions options;
   options.max_finished_goals = 1;
   Server server(server_side, options);
-  Spinner spinner(server.registry);
+  testing::RegistrySpinner spinner(server.registry);
   ActionClient client(client_side, action_topics("/simulate_steps", "simulation_interfaces/action/SimulateSteps"));
   ASSERT_TRUE(client.wait_for_server(10s));
   std::string why;
@@ -268,7 +255,7 @@ TEST_F(DdsActionsTest, FinishedGoalsBeyondTheBoundAreForgottenOldestFirst) {
 TEST_F(DdsActionsTest, MalformedGoalRequestsAreCountedAndUnanswered) {
   DdsParticipant server_side(domain(), participant_user_data()), client_side(domain(), participant_user_data());
   Server server(server_side);
-  Spinner spinner(server.registry);
+  testing::RegistrySpinner spinner(server.registry);
   const ActionTopics topics = action_topics("/simulate_steps", "simulation_interfaces/action/SimulateSteps");
   ServiceClient send_goal(client_side, topics.send_goal);
   ASSERT_TRUE(send_goal.wait_for_server(10s));

@@ -22,6 +22,7 @@
 #include "bridges/ros2/service_registry.h"
 #include "core/error.h"
 #include "bridges/ros2/dds_loopback.h"
+#include "bridges/ros2/registry_spinner.h"
 #include "support/dds_domain.h"
 
 namespace rescuesim::ros2 {
@@ -38,21 +39,6 @@ class DdsServicesTest : public ::testing::Test {
   int domain() const { return testing::leased_dds_domain(); }
 };
 
-/// Polls a registry on a thread of its own until destroyed (the bridge's receive thread).
-class Spinner {
- public:
-  explicit Spinner(ServiceRegistry& r) : thread_([this, &r] {
-    while (!stop_) r.spin_once(20ms);
-  }) {}
-  ~Spinner() {
-    stop_ = true;
-    thread_.join();
-  }
-
- private:
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 /// Requests handed over from the polling thread to a "simulation thread".
 struct Inbox {
@@ -100,7 +86,7 @@ TEST_F(DdsServicesTest, ARequestIsAnsweredLaterFromAnotherThread) {
       lock.lock();
     }
   });
-  Spinner spinner(registry);
+  testing::RegistrySpinner spinner(registry);
 
   ServiceClient client(client_side, reset_topics());
   ASSERT_TRUE(client.wait_for_server(10s)) << "the client never matched the server";
@@ -136,7 +122,7 @@ TEST_F(DdsServicesTest, TwoClientsCallingInTurnEachGetTheirOwnReplies) {
   registry.add_service(reset_topics(), [](const RequestHeader&, auto body, ReplyHandle r) {
     r.send(reset_response(static_cast<std::uint8_t>(10 + body[4])));
   });
-  Spinner spinner(registry);
+  testing::RegistrySpinner spinner(registry);
   // both clients read every reply on rr/reset_simulationReply; each keeps those with its guid
   ServiceClient a(client_side, reset_topics()), b(client_side, reset_topics());
   ASSERT_NE(a.guid(), b.guid());
@@ -179,7 +165,7 @@ TEST_F(DdsServicesTest, ARoundTripBetweenTwoProcessesAlsoOfALargeBody) {
   DdsParticipant dds(d, participant_user_data());
   ServiceRegistry registry(dds);
   ServiceServer& server = registry.add_service(echo, [](const RequestHeader&, auto body, ReplyHandle r) { r.send(body); });
-  Spinner spinner(registry);
+  testing::RegistrySpinner spinner(registry);
   int status = 0;
   const auto give_up = std::chrono::steady_clock::now() + 60s;
   while (::waitpid(child, &status, WNOHANG) == 0) {
@@ -235,7 +221,7 @@ TEST_F(DdsServicesTest, AMalformedRequestIsCountedAndGetsNoReply) {
     ++handled;
     r.send(reset_response(static_cast<std::uint8_t>(body.size())));
   });
-  Spinner spinner(registry);
+  testing::RegistrySpinner spinner(registry);
   // a client by hand, without clientid (so the server does not wait for its reader)
   const int w = client_side.create_raw_writer(reset_topics().request_topic, reset_topics().request_type, service_qos());
   const int r = client_side.create_raw_reader(reset_topics().reply_topic, reset_topics().reply_type, service_qos(), {},
