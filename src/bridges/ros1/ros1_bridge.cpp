@@ -107,7 +107,6 @@ class Ros1Bridge final : public Bridge {
     // Kind::velocity (spinner thread): a roscpp subscription of MD5 "*" takes on the MD5 of the
     // first publisher it connects to, and publishers of the other type then refuse it
     bool adopted = false;                     ///< connected since it was made: its type is set
-    bool retried = false;                     ///< made afresh for publishers it could not connect to
     std::string connected_type{};             ///< the type of the last message received
   };
   /// The type a command subscription asks its publishers for: "*" for cmd_vel (either type).
@@ -490,16 +489,18 @@ void Ros1Bridge::check_input_publishers() {
     const std::size_t connected = in.sub.getNumPublishers();
     const bool missing = connected < nodes.size();
     if (in.kind == Input::Kind::velocity) {
-      // cmd_vel's subscription took the type of its first publisher: with none connected now, it
-      // is made afresh, so that the next publisher of either type connects (at once when it comes
-      // later; when it is there already and was refused, it connects now, and only if it still
-      // cannot after that is there a warning)
+      // cmd_vel's subscription takes the type of the first publisher it connects to and keeps it
+      // after that publisher is gone (roscpp keeps the MD5 it adopted), even when the connection
+      // came and went between two checks. So with none connected it is made afresh: once when it
+      // had connected (the next publisher of either type then connects at once), and at every
+      // check while there are publishers it is not connected to (a publisher of the other type
+      // may have been first and gone since; a retry is one registerSubscriber). The warning
+      // below comes when they still do not connect after two checks.
       if (connected > 0) in.adopted = true;
-      if (!missing) in.retried = false;
-      if (connected == 0 && (in.adopted || (missing && !in.retried))) {
-        if (missing) in.retried = true;
+      if (connected == 0 && (in.adopted || missing)) {
+        const int checks = in.unconnected_checks;
         subscribe(index);
-        continue;
+        in.unconnected_checks = checks;
       }
     }
     in.unconnected_checks = missing ? in.unconnected_checks + 1 : 0;
@@ -547,6 +548,7 @@ void Ros1Bridge::on_velocity(std::size_t input, const ros::M_string& connection,
   // which of the two types this publisher sends, by its connection header
   std::string why;
   in.connected_type = header("type");
+  in.adopted = true;
   const std::optional<ros1_wire::VelocityType> type = ros1_wire::velocity_type(in.connected_type, header("md5sum"), &why);
   if (!type) return refuse(in.topic, "type", why);
   ros1_wire::VelocityCommand command;

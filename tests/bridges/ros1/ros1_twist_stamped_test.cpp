@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "bridges/ros1/ros1_bridge.h"
 #include "bridges/ros1/ros1_rig.h"
@@ -102,6 +104,50 @@ TEST(Ros1TwistStamped, DrivesAsTwistDoesAndFutureStampsNanAndOtherTypesAreRefuse
           "ROS 1: rejected a command on /cmd_vel: a std_msgs/String message: cmd_vel takes geometry_msgs/Twist or "
           "geometry_msgs/TwistStamped");
   EXPECT_GE(bridge->stats().rejected, 3u);
+  bridge->stop();
+}
+
+// roscpp gives a cmd_vel subscription the type of the first publisher it connects to and keeps it
+// after that publisher leaves. A publisher that connects and leaves between two of the bridge's
+// master checks (period 4 s here, so that the handover below fits between two) must not leave
+// the subscription deaf to the next publisher of the other type: a Twist publisher takes over
+// from a TwistStamped one that took over from a Twist one, and its commands arrive.
+TEST(Ros1TwistStamped, EachPublisherTakesOverWhenThePreviousTypeLeavesBetweenChecks) {
+  SKIP_WITHOUT_ROS1();
+  LogCapture log;
+  const fs::path dir = temp_dir("ros1-velocity-handover");
+  RosMaster master(dir);
+  ASSERT_TRUE(master.start()) << "roscore did not come up on port " << master.port();
+  for (const auto& [k, v] : master.env()) ::setenv(k.c_str(), v.c_str(), 1);
+  Simulation sim(compile_world(testing::room_spec(), builtin_models()));
+  Ros1Options options;
+  options.node_name = "rescuesim_velocity_handover";
+  options.master_check_period = 4.0;
+  auto bridge = make_ros1_bridge(options);
+  bridge->start(sim);
+  const auto arrives = [&](const char* what) {
+    const std::uint64_t before = bridge->stats().received;
+    const bool ok = wait_until([&] { return bridge->stats().received > before + 2; }, kPatience);
+    EXPECT_TRUE(ok) << what << " never arrived\n" << log.text();
+    return ok;
+  };
+  const auto pub = [&](const std::string& type, const std::string& value) {
+    return master.spawn({"rostopic", "pub", "-r", "20", "/cmd_vel", type, value});
+  };
+  const std::string twist = "{linear: {x: 0.1}}";
+  const std::string stamped = "{twist: {linear: {x: 0.1}}}";  // stamp 0: unset, taken
+  auto first = pub("geometry_msgs/Twist", twist);
+  ASSERT_TRUE(arrives("the first Twist publisher's commands"));
+  auto second = pub("geometry_msgs/TwistStamped", stamped);
+  first->interrupt();
+  ASSERT_TRUE(arrives("the TwistStamped publisher's commands, once the Twist publisher left"));
+  // a Twist publisher comes and the TwistStamped one leaves at once, likely before the next check
+  auto third = pub("geometry_msgs/Twist", twist);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // registered with the master
+  second->interrupt();
+  EXPECT_TRUE(arrives("the second Twist publisher's commands, once the TwistStamped publisher left"));
+  third->interrupt();
+  EXPECT_EQ(bridge->stats().rejected, 0u) << log.text();
   bridge->stop();
 }
 
