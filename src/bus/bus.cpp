@@ -45,13 +45,22 @@ TopicId Bus::advertise(const std::string& name, const std::string& type, double 
   demand_unlocked("advertise");
   const TopicId existing = find(name);
   if (existing != kNoTopic) {
-    if (topic(existing).type != type) {
-      throw Error({"", 0, "topic " + name}, "advertised as " + type + " but it already carries " + topic(existing).type);
+    Topic& t = topics_[static_cast<std::size_t>(existing)];
+    if (t.type != type) {
+      throw Error({"", 0, "topic " + name}, "advertised as " + type + " but it already carries " + t.type);
+    }
+    if (robot >= 0) t.robot = robot;  // a robot's index changes when a robot before it is removed
+    if (t.retired) {
+      // back (a robot of that name spawned again): with this advertisement's description
+      t.rate = rate;
+      t.latched = latched;
+      t.robot = robot;
+      t.retired = false;
     }
     return existing;
   }
   const TopicId id{static_cast<int>(topics_.size())};
-  topics_.push_back({id, name, type, rate, latched, robot});
+  topics_.push_back({id, name, type, rate, latched, robot, false});
   counts_.push_back(0);
   latched_.emplace_back();
   rebuild_index();
@@ -104,8 +113,30 @@ void Bus::deliver_latched(const Subscriber& s) {
   }
 }
 
+void Bus::retire(TopicId topic) {
+  demand_unlocked("retire");
+  const std::size_t t = index(topic, "retire");
+  topics_[t].retired = true;
+  latched_[t].reset();
+}
+
+SubscriptionId Bus::watch_layout(std::function<void()> callback) {
+  demand_unlocked("watch_layout");
+  const SubscriptionId handle{next_handle_++};
+  layout_watchers_.emplace_back(handle, std::move(callback));
+  return handle;
+}
+
+void Bus::layout_changed() {
+  demand_unlocked("layout_changed");
+  ++layout_version_;
+  const Delivering lock(delivering_);
+  for (const auto& [handle, callback] : layout_watchers_) callback();
+}
+
 void Bus::unsubscribe(SubscriptionId handle) {
   demand_unlocked("unsubscribe");
+  std::erase_if(layout_watchers_, [&](const auto& w) { return w.first == handle; });
   for (std::size_t i = 0; i < subscribers_.size(); ++i) {
     if (subscribers_[i].handle == handle) {
       subscribers_.erase(subscribers_.begin() + static_cast<long>(i));

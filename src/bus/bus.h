@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct Topic {
   double rate = 0;         ///< nominal rate (Hz), 0 when irregular
   bool latched = false;    ///< late subscribers get the last message (like /tf_static)
   int robot = -1;          ///< the robot it belongs to, -1 for global topics
+  /// Gone: its robot was deleted while running (DeleteEntity, a reset that removes spawned
+  /// robots). The id stays valid and nothing is published on it; bridges drop its writers.
+  /// Advertising the name again brings it back.
+  bool retired = false;
 };
 
 class Bus {
@@ -61,6 +66,19 @@ class Bus {
   /// Ends a subscription (an unknown or already ended handle: nothing happens). Not from a
   /// subscriber callback.
   void unsubscribe(SubscriptionId handle);
+
+  /// Retires a topic (Topic::retired): its latched message is dropped. Not from a subscriber callback.
+  void retire(TopicId topic);
+  /// Called on the owner's thread each time the owner says the layout changed (topics
+  /// advertised or retired, robots added or removed while running: layout_changed()). Bridges
+  /// watch it to make writers and command readers for what appeared and drop what went,
+  /// without waiting for the next message. Returns a handle for unsubscribe.
+  SubscriptionId watch_layout(std::function<void()> callback);
+  /// The owner (Simulation) says the layout changed: bumps layout_version() and calls the
+  /// watchers, in the order they watched. Not from a subscriber callback.
+  void layout_changed();
+  /// How many times the layout changed.
+  std::uint64_t layout_version() const { return layout_version_; }
 
   const std::vector<Topic>& topics() const { return topics_; }
   /// The topic of that id (which must be valid).
@@ -88,6 +106,8 @@ class Bus {
   std::vector<Subscriber> subscribers_;
   std::vector<int> shared_subscribers_;           ///< per topic: how many take SharedMessage
   std::vector<SharedMessage> latched_;            ///< per topic: the last message of a latched one
+  std::vector<std::pair<SubscriptionId, std::function<void()>>> layout_watchers_;
+  std::uint64_t layout_version_ = 0;
   int next_handle_ = 1;
   int delivering_ = 0;                            ///< depth of deliveries under way (> 0: locked)
 };

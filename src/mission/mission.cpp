@@ -99,7 +99,9 @@ Mission::Mission(const MissionSpec& spec, Simulation& sim)
 std::vector<Vec3> Mission::radio_positions() const {
   const State& s = sim_.state();
   std::vector<Vec3> out;
-  for (std::size_t r = 0; r < s.robots.size(); ++r) out.push_back(s.robots[r].base.X_WB.p + Vec3(0, 0, spec_.radio.antenna_height_m));
+  // the scenario's robots: the team (robots spawned while running carry no radio)
+  const std::size_t robots = std::min(s.robots.size(), sim_.base_robots());
+  for (std::size_t r = 0; r < robots; ++r) out.push_back(s.robots[r].base.X_WB.p + Vec3(0, 0, spec_.radio.antenna_height_m));
   return out;
 }
 

@@ -211,7 +211,8 @@ Session::~Session() {
 }
 
 bool Session::world_has_no_thermal() const {
-  for (std::size_t r = 0; r < sim_->world().robots.size(); ++r) {
+  // the scenario's robots (the camera service renders no spawned robot's cameras)
+  for (std::size_t r = 0; r < sim_->base_robots(); ++r) {
     if (cameras_->detects_victims(static_cast<int>(r))) return false;
   }
   return true;
@@ -221,7 +222,7 @@ std::string Session::render_device() const { return cameras_ ? cameras_->device(
 
 bool Session::thin_trajectory() {
   // samples come in groups of one per robot at each sample time: keep groups 0, 2, 4, ...
-  const std::size_t group = sim_->state().robots.size();
+  const std::size_t group = sim_->base_robots();
   const std::size_t groups = trajectory_.size() / group;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < trajectory_.size(); i += 2 * group) {
@@ -236,7 +237,10 @@ bool Session::thin_trajectory() {
 void Session::record() {
   const State& s = sim_->state();
   if (s.time < next_record_) return;
-  if (!s.robots.empty() && trajectory_.size() + s.robots.size() > options_.trajectory_max_points) {
+  // the scenario's robots only: robots spawned while running come and go, and the trajectory
+  // is kept in groups of one sample per robot
+  const std::size_t robots = std::min(s.robots.size(), sim_->base_robots());
+  if (robots > 0 && trajectory_.size() + robots > options_.trajectory_max_points) {
     const SimTime before = record_interval_;
     if (!thin_trajectory()) {
       next_record_ = s.time + before;  // the sample due now falls between the kept ones
@@ -244,7 +248,7 @@ void Session::record() {
     }
   }
   next_record_ = s.time + record_interval_;
-  for (std::size_t r = 0; r < s.robots.size(); ++r) {
+  for (std::size_t r = 0; r < robots; ++r) {
     const RobotState& rs = s.robots[r];
     const Pose2 truth = rs.base.X_WB.to_pose2();
     const Vec3 v_B = rs.base.X_WB.q.conjugate() * rs.base.v_WB;

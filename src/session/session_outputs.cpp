@@ -271,7 +271,7 @@ void Session::write_camera_frames(const std::filesystem::path& dir) const {
         img.set(static_cast<int>(x), static_cast<int>(y), c);
       }
     }
-    const std::string name = (world.robots.size() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
+    const std::string name = (sim_->base_robots() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
     img.write_png(dir / "sensors" / name);
   }
 }
@@ -361,7 +361,7 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
   write_camera_frames(dir);
   for (std::size_t r = 0; r < last_scans_.size(); ++r) {
     if (last_scans_[r].ranges.empty()) continue;
-    const std::string name = world.robots.size() > 1 ? "laser_" + world.robots[r].name + ".png" : "laser.png";
+    const std::string name = sim_->base_robots() > 1 ? "laser_" + world.robots[r].name + ".png" : "laser.png";
     char t[64];
     std::snprintf(t, sizeof t, "%.1f s", last_scans_[r].header.stamp.seconds());
     laser_plot(last_scans_[r], world.robots[r].name + " laser at " + t).write_png(dir / "sensors" / name);

@@ -67,39 +67,41 @@ bool has_commandable_joints(const RobotSpec& spec) {
   return false;
 }
 
-Simulation::Simulation(World world, const SimOptions& options) : world_(std::move(world)), options_(options) {
-  physics_ = std::make_unique<Physics>(world_, options_.physics);
-  rays_ = std::make_unique<RayScene>(world_);
+Simulation::Simulation(World initial, const SimOptions& options) : options_(options) {
+  worlds_.push_back(std::make_unique<const World>(std::move(initial)));
+  world_.store(worlds_.back().get(), std::memory_order_release);
+  base_robots_ = world().robots.size();
+  base_dynamics_ = world().dynamics.size();
+  base_namespaced_ = options_.namespacing == Namespacing::always || (options_.namespacing == Namespacing::automatic && base_robots_ > 1);
+  physics_ = std::make_unique<Physics>(world(), options_.physics);
+  rays_ = std::make_unique<RayScene>(world());
   physics_->init_state(state_);
-  state_.victims.assign(world_.victims.size(), VictimState{});
+  state_.victims.assign(world().victims.size(), VictimState{});
   for (auto& r : state_.robots) r.odom = Pose2{};
   setup_topics();
 }
 
 Simulation::~Simulation() = default;
 
-bool Simulation::namespaced() const {
-  switch (options_.namespacing) {
-    case Namespacing::always: return true;
-    case Namespacing::never: return false;
-    case Namespacing::automatic: return world_.robots.size() > 1;
-  }
-  return false;
-}
-
 std::string Simulation::topic_name(int robot, const std::string& relative) const {
   if (!relative.empty() && relative[0] == '/') return relative;
-  return namespaced() ? "/" + world_.robots[static_cast<std::size_t>(robot)].name + "/" + relative : "/" + relative;
+  const RobotInstance& r = world().robots[static_cast<std::size_t>(robot)];
+  // a spawned robot is always under its namespace; the scenario's robots are namespaced as the
+  // options say for the robots the run started with, so their names never change
+  if (r.spawned) return "/" + r.ns + "/" + relative;
+  return base_namespaced_ ? "/" + r.name + "/" + relative : "/" + relative;
 }
 
 std::string Simulation::frame_name(int robot, const std::string& frame) const {
   if (frame == "map" || frame.empty()) return frame;
-  return namespaced() ? world_.robots[static_cast<std::size_t>(robot)].name + "/" + frame : frame;
+  const RobotInstance& r = world().robots[static_cast<std::size_t>(robot)];
+  if (r.spawned) return r.ns + "/" + frame;
+  return base_namespaced_ ? r.name + "/" + frame : frame;
 }
 
 int Simulation::robot_index(const std::string& name) const {
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    if (world_.robots[r].name == name) return static_cast<int>(r);
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    if (world().robots[r].name == name) return static_cast<int>(r);
   }
   return -1;
 }
@@ -108,29 +110,43 @@ void Simulation::setup_topics() {
   clock_topic_ = bus_.advertise("/clock", "rosgraph_msgs/Clock", options_.clock_rate > 0 ? options_.clock_rate : 1.0 / dt());
   tf_topic_ = bus_.advertise("/tf", "tf2_msgs/TFMessage", options_.tf_rate);
   tf_static_topic_ = bus_.advertise("/tf_static", "tf2_msgs/TFMessage", 0, true);
-  // a robot loaded from a description (URDF) offers it, latched, as robot_state_publisher does
-  description_topics_.assign(world_.robots.size(), kNoTopic);
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    if (world_.robots[r].spec.description.empty()) continue;
-    const int ri = static_cast<int>(r);
-    description_topics_[r] = bus_.advertise(topic_name(ri, "robot_description"), "std_msgs/String", 0, true, ri);
-  }
   // a robot with lamps switches them all on and off with /lights (std_msgs/Bool)
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    if (world_.robots[r].spec.lights.empty()) continue;
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    if (world().robots[r].spec.lights.empty()) continue;
     add_input({topic_name(static_cast<int>(r), "lights"), "std_msgs/Bool", static_cast<int>(r)},
               [this, r](const msg::Message& m) { state_.robots[r].lights_on = std::get<msg::Bool>(m).data; });
   }
+  setup_robot_topics();
   // one random stream and one schedule per sensor, in robot and spec order
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    const RobotInstance& robot = world_.robots[r];
+  for (const SensorInstance& s : sensors_) state_.sensors.push_back(new_slot(s, SimTime{0}));
+}
+
+SensorSlot Simulation::new_slot(const SensorInstance& s, SimTime first_due) const {
+  SensorSlot slot;
+  slot.rng = Rng(options_.seed, "sensor/" + world().robots[static_cast<std::size_t>(s.robot)].name + "/" + s.spec.name);
+  slot.next_due = first_due;
+  return slot;
+}
+
+void Simulation::setup_robot_topics() {
+  // a robot loaded from a description (URDF) offers it, latched, as robot_state_publisher does
+  description_topics_.assign(world().robots.size(), kNoTopic);
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    if (world().robots[r].spec.description.empty()) continue;
+    const int ri = static_cast<int>(r);
+    description_topics_[r] = bus_.advertise(topic_name(ri, "robot_description"), "std_msgs/String", 0, true, ri);
+  }
+  // the sensors, in robot and spec order; slot k of the State is sensor k's
+  sensors_.clear();
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    const RobotInstance& robot = world().robots[r];
     for (std::size_t i = 0; i < robot.spec.sensors.size(); ++i) {
       const SensorSpec& spec = robot.spec.sensors[i];
       if (!spec.enabled) continue;
       SensorInstance s;
       s.robot = static_cast<int>(r);
       s.index = static_cast<int>(i);
-      s.slot = static_cast<int>(state_.sensors.size());
+      s.slot = static_cast<int>(sensors_.size());
       s.period = period_of(spec.rate);
       // images are in an optical frame (z forward, x right, y down) beside the camera's body frame (REP-103)
       s.frame_id = frame_name(s.robot, spec.is_camera() ? optical_frame(spec.frame_id) : spec.frame_id);
@@ -146,17 +162,13 @@ void Simulation::setup_topics() {
       if (const SensorExtraTopic* extra = spec.extra_topic()) {
         s.extra_topic = bus_.advertise(folder + extra->name, extra->ros_type, spec.rate, false, s.robot);
       }
-      SensorSlot slot;
-      slot.rng = Rng(options_.seed, "sensor/" + robot.name + "/" + spec.name);
-      slot.next_due = SimTime{0};
-      state_.sensors.push_back(slot);
       sensors_.push_back(s);
     }
   }
 }
 
 bool Simulation::command_velocity(int robot, const msg::Twist& t) {
-  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return false;
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return false;
   for (int i = 0; i < 3; ++i) {
     if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return false;
   }
@@ -184,8 +196,8 @@ bool Simulation::wait_for_velocity_commands(std::uint64_t count, std::chrono::du
 }
 
 bool Simulation::command_head(int robot, const std::vector<double>& positions) {
-  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return false;
-  if (positions.size() != world_.robots[static_cast<std::size_t>(robot)].spec.head_joints.size()) return false;
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return false;
+  if (positions.size() != world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size()) return false;
   for (double p : positions) {
     if (!std::isfinite(p)) return false;
   }
@@ -203,8 +215,8 @@ bool Simulation::command_joints(int robot, const msg::JointState& command, std::
     if (why) *why = std::move(text);
     return false;
   };
-  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return refuse("no robot " + std::to_string(robot));
-  const RobotSpec& spec = world_.robots[static_cast<std::size_t>(robot)].spec;
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return refuse("no robot " + std::to_string(robot));
+  const RobotSpec& spec = world().robots[static_cast<std::size_t>(robot)].spec;
   const std::size_t n = command.name.size();
   if (n == 0) return refuse("no joint names");
   for (const auto& [field, values] : {std::pair<const char*, const std::vector<double>*>{"position", &command.position},
@@ -243,13 +255,13 @@ bool Simulation::command_joints(int robot, const msg::JointState& command, std::
 }
 
 CommandOutcome Simulation::submit_velocity(int robot, const msg::Twist& twist) {
-  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
   return command_velocity(robot, twist) ? CommandOutcome::ok() : CommandOutcome::refused("a value is not finite");
 }
 
 CommandOutcome Simulation::submit_head(int robot, const std::vector<double>& positions) {
-  if (robot < 0 || robot >= static_cast<int>(world_.robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
-  const std::size_t joints = world_.robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+  const std::size_t joints = world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
   if (positions.size() != joints) {
     return CommandOutcome::refused(std::to_string(positions.size()) + " positions for " + std::to_string(joints) + " head joints");
   }
@@ -305,6 +317,7 @@ void Simulation::pre_step() {
   }
   for (const auto& [index, m] : inputs) inputs_[index].handler(m);
   for (const auto& c : pending) {
+    if (static_cast<std::size_t>(c.robot) >= state_.robots.size()) continue;  // its robot was removed meanwhile
     RobotState& rs = state_.robots[static_cast<std::size_t>(c.robot)];
     switch (c.kind) {
       case Command::Kind::velocity:
@@ -315,14 +328,14 @@ void Simulation::pre_step() {
       case Command::Kind::head: rs.head_target = c.values; break;
       case Command::Kind::joints:
         // joints the command does not name keep their targets
-        rs.joint_target.resize(world_.robots[static_cast<std::size_t>(c.robot)].spec.joints.size(), 0.0);
+        rs.joint_target.resize(world().robots[static_cast<std::size_t>(c.robot)].spec.joints.size(), 0.0);
         for (std::size_t i = 0; i < c.joints.size(); ++i) rs.joint_target[c.joints[i]] = c.values[i];
         break;
     }
   }
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    update_drive(world_.robots[r].spec, state_.robots[r], state_.time, dt());
-    update_head(world_.robots[r].spec, state_.robots[r]);
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    update_drive(world().robots[r].spec, state_.robots[r], state_.time, dt());
+    update_head(world().robots[r].spec, state_.robots[r]);
   }
 }
 
@@ -347,8 +360,8 @@ void Simulation::step() {
   for (std::size_t r = 0; r < state_.robots.size(); ++r) state_.robots[r].distance += (state_.robots[r].base.X_WB.p - before[r]).head<2>().norm();
   // wheel odometry integrates every step, whatever rate it publishes at
   for (const auto& s : sensors_) {
-    const SensorSpec& spec = world_.robots[static_cast<std::size_t>(s.robot)].spec.sensors[static_cast<std::size_t>(s.index)];
-    if (spec.type == SensorSpec::Type::odometry) integrate_odometry(world_, state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
+    const SensorSpec& spec = world().robots[static_cast<std::size_t>(s.robot)].spec.sensors[static_cast<std::size_t>(s.index)];
+    if (spec.type == SensorSpec::Type::odometry) integrate_odometry(world(), state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
   }
   if (in_trouble()) return;
   post_step();
@@ -397,8 +410,8 @@ void Simulation::post_step() {
     publish_tf();
     while (due.next_tf <= now) due.next_tf += period_of(options_.tf_rate);
   }
-  if (cameras_) cameras_->deliver(world_, state_, now, [this](TopicId topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
-  if (now >= due.next_victim_check && !world_.victims.empty()) {
+  if (cameras_) cameras_->deliver(world(), state_, now, [this](TopicId topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
+  if (now >= due.next_victim_check && !world().victims.empty()) {
     check_victims();
     while (due.next_victim_check <= now) due.next_victim_check += period_of(options_.victim_check_rate);
   }
@@ -420,10 +433,10 @@ msg::Message Simulation::sample_rays(const SensorInstance& s, const RayScene& sc
   const SensorSpec& spec = s.spec;
   Rng& rng = state_.sensors[static_cast<std::size_t>(s.slot)].rng;
   const SimTime now = state_.time;
-  if (spec.type == SensorSpec::Type::sonar) return sample_sonar(world_, state_, scene, s.robot, spec, now, rng);
+  if (spec.type == SensorSpec::Type::sonar) return sample_sonar(world(), state_, scene, s.robot, spec, now, rng);
   RS_DEMAND(spec.type == SensorSpec::Type::lidar, "Simulation::sample_rays: not a ray sensor");
-  if (spec.lidar.layers > 1) return sample_lidar_cloud(world_, state_, scene, s.robot, spec, now, rng);
-  return sample_lidar(world_, state_, scene, s.robot, spec, now, rng);
+  if (spec.lidar.layers > 1) return sample_lidar_cloud(world(), state_, scene, s.robot, spec, now, rng);
+  return sample_lidar(world(), state_, scene, s.robot, spec, now, rng);
 }
 
 void Simulation::sample(const SensorInstance& s) {
@@ -432,17 +445,17 @@ void Simulation::sample(const SensorInstance& s) {
   SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
   const SimTime now = state_.time;
   // the robot's root link (base_link for the rescue robot, maybe base_footprint for a URDF robot)
-  const auto root_frame = [&] { return frame_name(s.robot, world_.robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
+  const auto root_frame = [&] { return frame_name(s.robot, world().robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
   switch (spec.type) {
     case SensorSpec::Type::lidar:
     case SensorSpec::Type::sonar:
       // post_step samples these itself, in parallel; this is the one-at-a-time way
       bus_.publish(s.topic, sample_rays(s, current_rays()));
       break;
-    case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world_, state_, s.robot, spec, now, slot)); break;
+    case SensorSpec::Type::imu: bus_.publish(s.topic, sample_imu(world(), state_, s.robot, spec, now, slot)); break;
     case SensorSpec::Type::odometry: {
       // odom -> root link on /tf from wheel odometry, unless ground truth gives it
-      const msg::Odometry odom = odometry_message(world_, state_, s.robot, spec, now, root_frame());
+      const msg::Odometry odom = odometry_message(world(), state_, s.robot, spec, now, root_frame());
       if (!options_.tf_from_ground_truth) {
         msg::TFMessage tf;
         tf.transforms.push_back(transform(now, odom.header.frame_id, odom.child_frame_id, odom.pose));
@@ -459,12 +472,12 @@ void Simulation::sample(const SensorInstance& s) {
       }
       break;
     }
-    case SensorSpec::Type::joint_states: bus_.publish(s.topic, sample_joint_states(world_, state_, s.robot, now)); break;
+    case SensorSpec::Type::joint_states: bus_.publish(s.topic, sample_joint_states(world(), state_, s.robot, now)); break;
     case SensorSpec::Type::contact: bus_.publish(s.topic, sample_contacts(state_, s.robot, spec, now)); break;
     case SensorSpec::Type::color_camera:
     case SensorSpec::Type::depth_camera:
     case SensorSpec::Type::thermal_camera:
-      if (cameras_) cameras_->sample(world_, state_, s, slot);
+      if (cameras_) cameras_->sample(world(), state_, s, slot);
       break;
   }
 }
@@ -472,8 +485,8 @@ void Simulation::sample(const SensorInstance& s) {
 void Simulation::publish_tf_static() {
   // every sensor mount, and every fixed joint, relative to its link
   msg::TFMessage tf;
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    const RobotSpec& spec = world_.robots[r].spec;
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    const RobotSpec& spec = world().robots[r].spec;
     const int ri = static_cast<int>(r);
     for (const auto& j : spec.joints) {
       if (j.type == JointSpec::Type::fixed) tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
@@ -494,16 +507,16 @@ void Simulation::publish_tf_static() {
 }
 
 void Simulation::publish_descriptions() {
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    if (description_topics_[r] != kNoTopic) bus_.publish(description_topics_[r], msg::String{world_.robots[r].spec.description});
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    if (description_topics_[r] != kNoTopic) bus_.publish(description_topics_[r], msg::String{world().robots[r].spec.description});
   }
 }
 
 void Simulation::publish_tf() {
   // moving joints: each child link relative to its parent at the current joint position
   msg::TFMessage tf;
-  for (std::size_t r = 0; r < world_.robots.size(); ++r) {
-    const RobotSpec& spec = world_.robots[r].spec;
+  for (std::size_t r = 0; r < world().robots.size(); ++r) {
+    const RobotSpec& spec = world().robots[r].spec;
     const RobotState& rs = state_.robots[r];
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       const JointSpec& js = spec.joints[j];
@@ -519,7 +532,7 @@ void Simulation::publish_tf() {
 void Simulation::check_victims() {
   // one detector, picked at set-up (line of sight, or thermal images: those robots' victims are
   // recorded as their frames are delivered)
-  victim_detector_->check(world_, state_, current_rays());
+  victim_detector_->check(world(), state_, current_rays());
 }
 
 void Simulation::set_victim_detector(std::unique_ptr<VictimDetector> detector) {
@@ -528,7 +541,7 @@ void Simulation::set_victim_detector(std::unique_ptr<VictimDetector> detector) {
 
 void Simulation::flush_cameras() {
   if (cameras_) {
-    cameras_->deliver(world_, state_, SimTime{std::numeric_limits<std::int64_t>::max()},
+    cameras_->deliver(world(), state_, SimTime{std::numeric_limits<std::int64_t>::max()},
                       [this](TopicId topic, msg::Message m) { bus_.publish(topic, std::move(m)); });
   }
 }
@@ -541,6 +554,8 @@ State Simulation::snapshot() {
 }
 
 void Simulation::restore(const State& state) {
+  // a state from before anything was spawned: what was spawned since goes first
+  if (state.robots.size() == base_robots_ && state.dynamics.size() == base_dynamics_) remove_spawned();
   RS_DEMAND(state.robots.size() == state_.robots.size() && state.dynamics.size() == state_.dynamics.size() &&
                 state.sensors.size() == state_.sensors.size() && state.victims.size() == state_.victims.size(),
             "Simulation::restore: the state is of another world");

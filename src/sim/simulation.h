@@ -8,6 +8,7 @@
 /// are queued and applied at the next step boundary, so a run's messages do not depend on
 /// thread timing.
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -51,7 +52,11 @@ class Simulation : public BridgeHost {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  const World& world() const override { return world_; }
+  /// The world now. Robots and loose bodies added or removed while running (add_robot,
+  /// remove_robot, ...) make a new version; every version lives as long as the Simulation, so a
+  /// reference taken on any thread stays valid (and unchanged), and world() may be called from
+  /// any thread (bridges' command checks do).
+  const World& world() const override { return *world_.load(std::memory_order_acquire); }
   const State& state() const override { return state_; }
   Bus& bus() override { return bus_; }
   const SimOptions& options() const { return options_; }
@@ -131,6 +136,30 @@ class Simulation : public BridgeHost {
   /// Publishes every camera frame still in flight (at the end of a run).
   void flush_cameras();
 
+  // ---- robots and loose bodies added and removed while running (SpawnEntity, DeleteEntity) ----
+  // On the stepping thread, between steps. Each change rebuilds the physics engine and the ray
+  // scene from the new world and restores the State into them (Physics::restore: the canonical
+  // form a snapshot also takes), advertises the new robot's topics (a spawned robot's are under
+  // its namespace: RobotInstance::ns), retires a removed robot's, and tells the Bus's layout
+  // watchers (the bridges). Cameras of a spawned robot are off, and the render thread keeps
+  // the scene it was built with (docs/ros.md, "Spawning"); a spawned robot has no /lights input.
+
+  /// Adds a robot, placed (world/world.h: place_robot) and with `spawned` and `ns` set, its
+  /// name unused; it starts at rest at its X_W_start, its sensors due at once. Returns its index.
+  int add_robot(RobotInstance robot);
+  /// Adds a loose rigid body (spawned set) at its X_WO, at rest; returns its index in World::dynamics.
+  std::size_t add_body(DynamicObject body);
+  /// Removes a spawned robot: the robots after it move down one index (commands queued for them
+  /// follow them; bridges remap their command inputs when the layout watchers are called).
+  void remove_robot(int robot);
+  /// Removes a spawned loose body.
+  void remove_body(std::size_t body);
+  /// Removes every spawned robot and body (a reset of spawned entities).
+  void remove_spawned();
+  /// How many robots and loose bodies the simulation was made with (they come first and stay).
+  std::size_t base_robots() const { return base_robots_; }
+  std::size_t base_bodies() const { return base_dynamics_; }
+
   /// A copy of the whole changing state — bodies, joints, controller and sensor memory, RNG
   /// streams, the /clock, /tf and victim-check schedule — to restore() later. Exact: run on
   /// from a snapshot, restore it, run again with the same commands, and the messages and
@@ -143,12 +172,26 @@ class Simulation : public BridgeHost {
   /// flight live outside the Simulation: Session::snapshot covers them.
   State snapshot();
   /// Puts the simulation back to a state from snapshot() of this simulation (same World and
-  /// options); publishing resumes on the state's own schedule at once. Commands queued and not
+  /// options); publishing resumes on the state's own schedule at once. A state taken before
+  /// anything was spawned removes what was spawned since (remove_spawned) first; a state taken
+  /// with spawned entities restores only while the same ones are there. Commands queued and not
   /// yet applied stay queued; the Bus's message counts are not rewound.
   void restore(const State& state);
 
  private:
   void setup_topics();
+  /// description_topics_ and sensors_ for the robots of world() (advertising what is new).
+  void setup_robot_topics();
+  SensorSlot new_slot(const SensorInstance& s, SimTime first_due) const;
+  /// Makes `next` the world and `next_state` the state (which fits it): new physics and ray
+  /// scene, robot topics, retired topics of robots gone, queued commands moved by `robot_map`
+  /// (old index -> new, -1: gone); then the layout watchers.
+  void rebuild(std::unique_ptr<const World> next, State next_state, const std::vector<int>& robot_map);
+  /// Makes world version `next` current (already in worlds_), under the command lock, moving
+  /// queued commands by `robot_map`.
+  void switch_world(const World* next, const std::vector<int>& robot_map);
+  /// The rest of rebuild, for a version already in worlds_.
+  void adopt(const World* next, State next_state, const std::vector<int>& robot_map);
   void pre_step();
   void post_step();
   void sample(const SensorInstance& s);
@@ -161,9 +204,11 @@ class Simulation : public BridgeHost {
   void publish_descriptions();
   void publish_tf();
   void check_victims();
-  bool namespaced() const;
 
-  World world_;
+  std::vector<std::unique_ptr<const World>> worlds_;  ///< every version (worlds_[0]: as made); kept to the end
+  std::atomic<const World*> world_{nullptr};          ///< the current version
+  std::size_t base_robots_ = 0, base_dynamics_ = 0;
+  bool base_namespaced_ = false;                      ///< the scenario's robots' topics are under their names
   SimOptions options_;
   State state_;
   Bus bus_;

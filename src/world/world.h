@@ -36,6 +36,7 @@ struct DynamicObject {
   double mass = 1.0;          ///< kg
   Vec3 inertia{0.01, 0.01, 0.01};  ///< principal moments (kg m^2)
   int material = 0;
+  bool spawned = false;       ///< added while running (SpawnEntity); a reset of spawned entities removes it
 };
 
 /// A victim: where they are and which static parts make up their body.
@@ -61,6 +62,11 @@ struct RobotInstance {
   std::string name;           ///< unique, used for topic namespaces
   RobotSpec spec;
   Pose3 X_W_start;            ///< base link pose at the start
+  /// Added while running (SpawnEntity): its topics and frames are always under `ns` (so the
+  /// names of the robots already there never change), it has no built-in controller and is
+  /// not in the mission; a reset of spawned entities removes it.
+  bool spawned = false;
+  std::string ns;             ///< a spawned robot's namespace, without slashes ("p3at"); empty otherwise
 };
 
 /// The compiled world.
@@ -97,6 +103,15 @@ struct CompileOptions {
 /// are placed at their start poses with their wheels on the ground. Throws Error for a robot
 /// model that is not in `models`.
 World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options = {});
+
+/// A robot placed as compile_world places the scenario's robots: its base frame at `X_W` (a 2-D
+/// start gives `height` 0), raised when needed so that its lowest collision point is 2 mm
+/// above the floor (z = 0) rather than in it.
+RobotInstance place_robot(std::string name, RobotSpec spec, const Pose3& X_W);
+
+/// Adds the materials the world's robots name and the world lacks (after the others, so the
+/// indices of those already there stay).
+void add_robot_materials(World& world);
 
 /// The body parts of a victim as (geometry, pose in the world, material name) triples: torso,
 /// head, arms and legs from boxes, spheres and cylinders, lying or sitting.

@@ -1,6 +1,7 @@
 #include <cctype>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "world/world.h"
 #include "world/terrain.h"
@@ -91,13 +92,51 @@ void add_missing(std::vector<MaterialSpec>& materials, const MaterialSpec& m) {
   materials.push_back(m);
 }
 
+}  // namespace
+
 /// Adds every robot's own materials (RobotSpec::materials, e.g. a URDF's) to the world's.
 void add_robot_materials(World& world) {
   for (const auto& r : world.robots) {
     for (const auto& m : r.spec.materials) add_missing(world.materials, m);
   }
 }
+
+namespace {
+
+/// The lowest point of a robot's collision shapes in its base frame, at its initial joint
+/// positions (0 when every point is above the base frame's origin).
+double lowest_point(const RobotSpec& spec) {
+  const auto X_BL = link_poses(spec, initial_positions(spec));
+  double lowest = 0;
+  for (std::size_t l = 0; l < spec.links.size(); ++l) {
+    for (const auto& shape : spec.links[l].shapes) {
+      if (!shape.collides) continue;
+      for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_BL[l] * (shape.X_LG * v)).z());
+    }
+  }
+  return lowest;
+}
+
 }  // namespace
+
+RobotInstance place_robot(std::string name, RobotSpec spec, const Pose3& X_W) {
+  RobotInstance r;
+  r.name = std::move(name);
+  r.X_W_start = X_W;
+  // the lowest point at this pose, in the world: raise the robot when it is below the floor
+  const double floor_gap = 0.002;
+  const auto X_BL = link_poses(spec, initial_positions(spec));
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t l = 0; l < spec.links.size(); ++l) {
+    for (const auto& shape : spec.links[l].shapes) {
+      if (!shape.collides) continue;
+      for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_W * (X_BL[l] * (shape.X_LG * v))).z());
+    }
+  }
+  if (std::isfinite(lowest) && lowest < floor_gap) r.X_W_start.p.z() += floor_gap - lowest;
+  r.spec = std::move(spec);
+  return r;
+}
 
 World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec>& models, const CompileOptions& options) {
   World w;
@@ -258,15 +297,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     r.name = placement.name;
     r.spec = it->second;
     // stand the robot on the floor: its lowest point at the start pose touches z = 0
-    const auto X_BL = link_poses(r.spec, initial_positions(r.spec));
-    double lowest = 0;
-    for (std::size_t l = 0; l < r.spec.links.size(); ++l) {
-      for (const auto& shape : r.spec.links[l].shapes) {
-        if (!shape.collides) continue;
-        for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_BL[l] * (shape.X_LG * v)).z());
-      }
-    }
-    r.X_W_start = Pose3::from_pose2(placement.start, placement.height - lowest + 0.002);
+    r.X_W_start = Pose3::from_pose2(placement.start, placement.height - lowest_point(r.spec) + 0.002);
     w.robots.push_back(std::move(r));
   }
   add_robot_materials(w);
