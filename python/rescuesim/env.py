@@ -183,13 +183,22 @@ class Env:
         """dict(features, spawn_formats, custom_info) as GetSimulatorFeatures answers it."""
         return self._core.simulator_features()
 
-    def spawn(self, name, uri):
-        """Spawns a robot or object from a file (not supported yet: raises rescuesim.Error
-        saying so; docs/ros.md "Controlling a run")."""
-        return self._core.spawn(str(name), str(uri))
+    def spawn(self, name, uri="", resource_string="", position=(0.0, 0.0, 0.0), orientation=(0.0, 0.0, 0.0, 1.0),
+              namespace="", allow_renaming=False):
+        """Adds a robot or a loose body to the running simulation, as SpawnEntity does, and
+        returns its name. ``uri``: a built-in robot ("rescue_robot", "tracked_robot"), a built-in
+        body ("box", "brick", "cylinder", "sphere"), or a URDF, SDF or rescuesim YAML robot file
+        (a path, file://, package:// or model://); or else ``resource_string``: URDF or SDF text,
+        or a scenario's robot entry in YAML. The pose is in the world (orientation x, y, z, w); a
+        robot's topics are under ``namespace`` (default: its name). rescuesim.Error, with the
+        standard's result code, for a name in use, a file not found or not readable, a bad pose
+        (docs/ros.md, "Spawning")."""
+        return self._core.spawn(str(name), str(uri), str(resource_string), tuple(float(v) for v in position),
+                                tuple(float(v) for v in orientation), str(namespace), bool(allow_renaming))
 
     def delete(self, name):
-        """Deletes an entity (not supported yet: raises rescuesim.Error saying so)."""
+        """Removes a spawned robot or body (rescuesim.Error for the scenario's own: a reset brings
+        those back)."""
         self._core.delete(str(name))
 
     def close(self):

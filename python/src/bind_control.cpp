@@ -3,6 +3,7 @@
 // teleports, the state hash, the features. Python steps its environment itself, so it needs no
 // pause: step() is the step. See docs/python.md.
 
+#include <array>
 #include <pybind11/stl.h>
 
 #include "bindings.h"
@@ -107,15 +108,22 @@ void add_control_methods(py::class_<EnvCore>& cls) {
            })
       .def(
           "spawn",
-          [](EnvCore& e, const std::string& name, const std::string& uri) {
+          [](EnvCore& e, const std::string& name, const std::string& uri, const std::string& resource_string,
+             const std::array<double, 3>& position, const std::array<double, 4>& orientation, const std::string& ns,
+             bool allow_renaming) {
             SpawnRequest r;
             r.name = name;
             r.uri = uri;
+            r.resource_string = resource_string;
+            r.pose = Pose3{Vec3(position[0], position[1], position[2]), Quat(orientation[3], orientation[0], orientation[1], orientation[2])};
+            r.entity_namespace = ns;
+            r.allow_renaming = allow_renaming;
             std::string given;
             check(control_of(e).spawn(r, given));
             return given;
           },
-          py::arg("name"), py::arg("uri"))
+          py::arg("name"), py::arg("uri"), py::arg("resource_string"), py::arg("position"), py::arg("orientation"), py::arg("namespace"),
+          py::arg("allow_renaming"))
       .def("delete", [](EnvCore& e, const std::string& name) { check(control_of(e).remove(name)); }, py::arg("name"));
 }
 

@@ -67,6 +67,11 @@ RunControl::RunControl(Session& session, RunControlOptions options) : session_(s
   realtime_ = session_.scenario().realtime;
   rate_ = session_.scenario().rate;
   state_ = options_.start_paused ? RunState::paused : RunState::playing;
+  rebuild_entities();
+}
+
+void RunControl::rebuild_entities() {
+  entities_.clear();
   const World& w = session_.sim().world();
   std::set<std::string> taken;
   const auto add = [&](Entity::Kind kind, std::size_t i, const std::string& name) {
@@ -167,8 +172,11 @@ SimulatorFeatures RunControl::features() const {
                 feature::kNamedPoses,             feature::kSimulationReset,        feature::kSimulationResetTime,
                 feature::kSimulationResetState,   feature::kSimulationStateGetting, feature::kSimulationStateSetting,
                 feature::kSimulationStatePause,   feature::kStepSimulationSingle,   feature::kStepSimulationMultiple,
-                feature::kStepSimulationAction,   feature::kWorldInfoGetting,       feature::kAvailableWorlds};
-  f.spawn_formats = {};  // spawning is not offered yet (docs/ros.md, "Controlling a run")
+                feature::kStepSimulationAction,   feature::kWorldInfoGetting,       feature::kAvailableWorlds,
+                feature::kSpawning,               feature::kDeleting,               feature::kSpawningResourceString,
+                feature::kSpawnables,             feature::kSimulationResetSpawned};
+  // URDF and SDF robots, and rescuesim's own: a scenario's robot entry in YAML (docs/ros.md, "Spawning")
+  f.spawn_formats = {"urdf", "sdf", "yaml"};
   f.custom_info =
       "rescuesim: resets restore the start snapshot bitwise (the state hash after a reset equals the hash at the "
       "start); steps from PAUSED are the lockstep steps; entity names are robots, victims (HUMAN), rubble "
@@ -238,34 +246,48 @@ Result RunControl::reset(std::uint8_t scope_bits) {
   const bool all = scope_bits == scope::kDefault || scope_bits == scope::kAll;
   const bool time = all || (scope_bits & scope::kTime);
   const bool state = all || (scope_bits & scope::kState);
-  if (!time && !state) {
-    // SPAWNED alone: nothing was spawned (spawning is not offered), so nothing goes
-    if ((scope_bits & ~scope::kSpawned) == 0) return Result::ok();
+  const bool spawned = all || (scope_bits & scope::kSpawned);
+  if ((scope_bits & ~(scope::kTime | scope::kState | scope::kSpawned)) != 0 && !all) {
     return Result::fail(code::kFeatureUnsupported, "unknown reset scope bits " + std::to_string(scope_bits));
   }
   arm();
+  Simulation& sim = session_.sim();
+  // what was spawned goes first (the start had none of it); unless SPAWNED is in the scope it
+  // comes back after the reset: at its spawn pose when STATE is, else where it is now
+  const State now = sim.state();
+  const std::size_t base_robots = sim.base_robots(), base_bodies = sim.base_bodies();
+  std::vector<RobotInstance> robots(sim.world().robots.begin() + static_cast<long>(base_robots), sim.world().robots.end());
+  std::vector<DynamicObject> bodies(sim.world().dynamics.begin() + static_cast<long>(base_bodies), sim.world().dynamics.end());
+  sim.remove_spawned();
   if (time && state) {
     restore_start();
-    if (state_ == RunState::stopped) state_ = RunState::paused;
-    return Result::ok();
-  }
-  Simulation& sim = session_.sim();
-  if (state) {
-    // STATE alone: every body back where it started; the clock, the schedules and the sensors go on
+  } else if (state) {
+    // STATE: every body back where it started; the clock, the schedules and the sensors go on
     State s = sim.state();
     s.robots = start_->state.robots;
     s.dynamics = start_->state.dynamics;
     s.victims = start_->state.victims;
     sim.restore(s);
-  } else {
-    // TIME alone: the clock and everything timed back to the start, the bodies where they are now
-    const State now = sim.state();
+  } else if (time) {
+    // TIME: the clock and everything timed back to the start, the bodies where they are now
     session_.restore(*start_);
     State s = sim.state();
-    s.robots = now.robots;
-    s.dynamics = now.dynamics;
+    std::copy(now.robots.begin(), now.robots.begin() + static_cast<long>(base_robots), s.robots.begin());
+    std::copy(now.dynamics.begin(), now.dynamics.begin() + static_cast<long>(base_bodies), s.dynamics.begin());
     sim.restore(s);
   }
+  if (!spawned && (!robots.empty() || !bodies.empty())) {
+    for (RobotInstance& r : robots) sim.add_robot(std::move(r));
+    for (DynamicObject& b : bodies) sim.add_body(std::move(b));
+    if (!state) {
+      State s = sim.state();
+      std::copy(now.robots.begin() + static_cast<long>(base_robots), now.robots.end(), s.robots.begin() + static_cast<long>(base_robots));
+      std::copy(now.dynamics.begin() + static_cast<long>(base_bodies), now.dynamics.end(), s.dynamics.begin() + static_cast<long>(base_bodies));
+      sim.restore(s);
+    }
+  }
+  rebuild_entities();
+  if (time && state && state_ == RunState::stopped) state_ = RunState::paused;
   ++pacing_epoch_;
   return Result::ok();
 }

@@ -8,7 +8,9 @@
 /// Reset goes back to the snapshot taken when the run started (Session::snapshot), so a reset
 /// is bitwise exact: the state hash after it equals the hash at the start, and the same
 /// commands after it give the same messages. Teleports (set_entity_state) edit the State and
-/// restore it into the engine (Simulation::restore), the way a snapshot is restored.
+/// restore it into the engine (Simulation::restore), the way a snapshot is restored. Spawning
+/// (run_control_spawn.cpp) adds robots and loose bodies to the running simulation
+/// (Simulation::add_robot, add_body); a reset of spawned entities, or of everything, removes them.
 
 #include <atomic>
 #include <condition_variable>
@@ -100,6 +102,8 @@ class RunControl final : public control::SimControl {
     std::string name;
   };
   const Entity* find(const std::string& name) const;
+  /// entities_ from the world now (after a spawn, a delete, a reset).
+  void rebuild_entities();
   void run_tasks();
   void end_job(const control::Result& result);
   void restore_start();

@@ -1,5 +1,5 @@
 // RunControl's entities: what a run has (robots, victims, rubble, walls), their states and
-// bounds, teleports, named poses; and the spawning it does not offer yet (see run_control.h).
+// bounds, teleports, named poses (see run_control.h); spawning is in run_control_spawn.cpp.
 
 #include "session/run_control.h"
 
@@ -258,21 +258,6 @@ Result RunControl::named_poses(const TagsFilter& tags, std::vector<NamedPose>& o
 
 Result RunControl::named_pose_bounds(const std::string& name, Bounds&) const {
   return Result::fail(code::kFeatureUnsupported, "named poses have no bounds in rescuesim ('" + name + "')");
-}
-
-Result RunControl::spawnables(const std::vector<std::string>&, std::vector<Spawnable>& out) const {
-  out.clear();
-  return Result::fail(code::kFeatureUnsupported, "spawning is not supported yet: robots come from the scenario file (docs/ros.md)");
-}
-
-Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) {
-  entity_name.clear();
-  return Result::fail(code::kFeatureUnsupported, "spawning '" + request.name + "' is not supported yet: add robots in the scenario file (docs/ros.md, \"Controlling a run\")");
-}
-
-Result RunControl::remove(const std::string& name) {
-  if (!find(name)) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
-  return Result::fail(code::kFeatureUnsupported, "deleting '" + name + "' is not supported yet (docs/ros.md, \"Controlling a run\")");
 }
 
 }  // namespace rescuesim

@@ -53,8 +53,23 @@ class Control(unittest.TestCase):
             self.env.set_entity_state("robot", orientation=(0, 0, 0.5, 0.5))
         with self.assertRaisesRegex(rescuesim.Error, "not finite"):
             self.env.set_entity_state("robot", position=(float("nan"), 0, 0))
-        with self.assertRaisesRegex(rescuesim.Error, "not supported"):
+        with self.assertRaisesRegex(rescuesim.Error, "no such file /nowhere.urdf.*result 104"):
             self.env.spawn("p3at", "file:///nowhere.urdf")
+        with self.assertRaisesRegex(rescuesim.Error, "comes from the scenario"):
+            self.env.delete("robot")
+
+    def test_a_spawned_box_falls_and_is_deleted(self):
+        x, y, _ = self.env.entity_state("robot")["position"]
+        # 2.5 m above the robot: 0.3 s of free fall takes it down g 0.3^2 / 2 = 0.44 m
+        name = self.env.spawn("crate", "box", position=(x, y, 2.5))
+        self.assertEqual(name, "crate")
+        self.assertIn("crate", self.env.entities(categories=[4]))
+        for _ in range(3):  # 3 agent steps of 0.1 s
+            self.env.step((0.0, 0.0))
+        z = self.env.entity_state("crate")["position"][2]
+        self.assertAlmostEqual(z, 2.5 - 0.5 * 9.81 * 0.3 ** 2, delta=0.02)
+        self.env.delete("crate")
+        self.assertNotIn("crate", self.env.entities())
 
     def test_features_and_state_hash(self):
         f = self.env.simulator_features()

@@ -244,11 +244,11 @@ TEST(RunControl, BadPosesUnknownNamesAndFixedEntitiesAreRefusedWithTheirCodes) {
   ASSERT_TRUE(c.entities(f, humans).is_ok());
   ASSERT_FALSE(humans.empty());
   EXPECT_EQ(c.set_entity_state(humans[0], s, true, true, false).result, code::kOperationFailed);
-  // spawning is not offered, and says so
+  // a spawn without anything to spawn (run_control_spawn_test.cpp has the rest)
   std::string name;
   SpawnRequest spawn;
   spawn.name = "p3at";
-  EXPECT_EQ(c.spawn(spawn, name).result, code::kFeatureUnsupported);
+  EXPECT_EQ(c.spawn(spawn, name).result, code::kNoResource);
   EXPECT_EQ(c.remove("nobody").result, code::kNotFound);
 }
 

@@ -92,6 +92,13 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& file, c
 /// by parse_scenario, and again by whoever changes the world or the includes afterwards.
 void load_scenario_models(Scenario& s);
 
+/// One robot as an entry of a scenario's `robots:` describes it (model:, urdf: or sdf:, with
+/// name, drive, sensors, head, lamps), from YAML text of its own: what SpawnEntity takes as a
+/// rescuesim robot. `file` names the text in messages, and relative URIs resolve against its
+/// folder; `resource_paths` are searched first, as a scenario's. Throws Error naming the key.
+RobotConfig read_robot_yaml(const std::string& yaml_text, const std::string& file, const ModelMap& models,
+                            const std::vector<std::filesystem::path>& resource_paths = {});
+
 /// Reads a scenario file.
 Scenario load_scenario(const std::filesystem::path& file, const ModelMap& models);
 

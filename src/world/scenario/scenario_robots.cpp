@@ -318,4 +318,11 @@ RobotConfig read_robot(const YamlNode& node, int index, const ModelMap& models, 
   return c;
 }
 
+RobotConfig read_robot_yaml(const std::string& yaml_text, const std::string& file, const ModelMap& models,
+                            const std::vector<std::filesystem::path>& resource_paths) {
+  const YamlNode node = YamlNode::parse(yaml_text, file);
+  if (!node.is_map()) throw Error({file, 1, "robot"}, "expected a robot as a map (model: or urdf: or sdf:, name:, sensors:, ...)");
+  return read_robot(node, 0, models, {file, resource_paths});
+}
+
 }  // namespace rescuesim

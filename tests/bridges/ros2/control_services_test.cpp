@@ -101,7 +101,8 @@ TEST_F(ControlServicesTest, StateStepsResetAndEntitiesOverTheWire) {
                              feature::kStepSimulationAction, feature::kEntityStateSetting}) {
     EXPECT_NE(std::find(f.features.begin(), f.features.end(), want), f.features.end()) << want;
   }
-  EXPECT_EQ(std::find(f.features.begin(), f.features.end(), feature::kSpawning), f.features.end());
+  EXPECT_NE(std::find(f.features.begin(), f.features.end(), feature::kSpawning), f.features.end());
+  EXPECT_EQ(f.spawn_formats, (std::vector<std::string>{"urdf", "sdf", "yaml"}));
 
   // started PAUSED: the clock stands at 0
   GetSimulationStateResponse st = call<iface::GetSimulationState>("/get_simulation_state", {});
@@ -170,12 +171,13 @@ TEST_F(ControlServicesTest, StateStepsResetAndEntitiesOverTheWire) {
   EXPECT_EQ(r.result, code::kOperationFailed);
   EXPECT_NE(r.error_message.find("PAUSED"), std::string::npos);
 
-  // spawning is not offered, and says so; worlds: the current one is the scenario
+  // a file that is not there is NO_RESOURCE, and says where it looked; worlds: the current one is the scenario
   SpawnRequest spawn;
   spawn.name = "p3at";
   spawn.uri = "file:///nowhere/p3at.urdf";
   const SpawnEntityResponse sp = call<iface::SpawnEntity>("/spawn_entity", spawn);
-  EXPECT_EQ(sp.result.result, code::kFeatureUnsupported);
+  EXPECT_EQ(sp.result.result, code::kNoResource);
+  EXPECT_NE(sp.result.error_message.find("/nowhere/p3at.urdf"), std::string::npos) << sp.result.error_message;
   const WorldResponse w = call<iface::GetCurrentWorld>("/get_current_world", {});
   EXPECT_TRUE(w.result.is_ok());
   EXPECT_EQ(w.world.name, session_->scenario().name);
