@@ -248,6 +248,28 @@ DdsParticipant::Endpoint DdsParticipant::reader(int index) const {
   return readers_.at(static_cast<std::size_t>(index));
 }
 
+void DdsParticipant::delete_writer(int index) {
+  dds_entity_t e = 0;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(e, writers_.at(static_cast<std::size_t>(index)).entity);
+  }
+  if (e > 0) dds_delete(e);
+}
+
+void DdsParticipant::delete_reader(int index) {
+  dds_entity_t e = 0, waitset = 0;
+  {
+    std::lock_guard lock(mutex_);
+    Endpoint& r = readers_.at(static_cast<std::size_t>(index));
+    std::swap(e, r.entity);
+    std::swap(waitset, r.own_waitset);
+  }
+  // its read condition goes with it, and with that its place in the participant's waitset
+  if (e > 0) dds_delete(e);
+  if (waitset > 0) dds_delete(waitset);
+}
+
 bool DdsParticipant::write(int writer_index, std::span<const std::uint8_t> cdr, std::string* error) {
   RawSample sample;
   ddsi_serdata_init(&sample.base, &raw_sertype(), SDK_DATA);

@@ -58,6 +58,11 @@ class DdsParticipant {
   int create_raw_reader(const std::string& topic, const std::string& dds_type, const EndpointQos& qos,
                         const std::string& user_data = {}, Wake wake = Wake::participant);
 
+  /// Deletes a writer or a reader (a robot deleted while running): its index stays taken;
+  /// write() on it fails, take() gives nothing and it matches nobody.
+  void delete_writer(int writer);
+  void delete_reader(int reader);
+
   /// Publishes one serialised sample. False, with `error` set, when Cyclone refuses it (bytes that
   /// do not fit the topic's type, a writer timing out on a full reliable history).
   bool write(int writer, std::span<const std::uint8_t> cdr, std::string* error);

@@ -14,11 +14,21 @@
 // and writes, a round of at most one message per topic at a time; a receiver thread waits on the
 // readers, hands what they take to the shared command gate (bridges/common/commands.h), and
 // polls the services (requests in, replies out: service_registry.h).
+//
+// Robots spawned and deleted while running (Bus::watch_layout, on the simulation thread between
+// steps): topics new since start get writers, retired ones lose theirs, command readers follow
+// the robots by name (a robot after a deleted one moves down one index), and the node is
+// announced again. layout_mutex_ guards what that changes against the sender and receiver threads;
+// the Bus callback reads it unlocked, being on the thread that changes it.
 
 #include "bridges/ros2/ros2_bridge.h"
 
+#include <algorithm>
 #include <atomic>
+#include <deque>
+#include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "bridges/common/commands.h"
@@ -73,13 +83,27 @@ class Ros2Bridge final : public Bridge {
     int robot;
     Kind kind;
     std::string topic;  ///< ROS name, for warnings
+    std::string robot_name;                       ///< whose commands (the host's own inputs: "")
     std::size_t host_input = 0;                   ///< Kind::host: the index in BridgeHost::inputs()
     const msg::TypeSupport* type = nullptr;       ///< Kind::host: how to decode it
   };
 
+  /// What goes out on one Bus topic.
+  struct Out {
+    int writer = -1;          ///< -1: not bridged (no ROS 2 type, or retired)
+    bool bridgeable = false;  ///< ROS 2 knows its type
+    bool latched = false;
+  };
+
+  /// A writer for Bus topic `t` when ROS 2 knows its type (out_ grows to hold it). Under layout_mutex_.
+  void add_writer(const Topic& t);
+  /// The command readers of robot `robot` (cmd_vel twice, head, joints, flippers as it has them). Under layout_mutex_.
+  void add_robot_readers(int robot);
+  /// Bus::watch_layout: writers for topics new or back, none for retired ones; readers follow the robots.
+  void on_layout();
   void send_loop();
   void refresh_listened();
-  void send(int writer, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer);
+  void send(TopicId topic, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer);
   void receive_loop();
   void receive(Input& input, std::span<const std::uint8_t> bytes);
   /// Writes ros_discovery_info: the node with its topics' endpoints and every service's.
@@ -88,13 +112,13 @@ class Ros2Bridge final : public Bridge {
   Ros2Options options_;
   BridgeHost* host_ = nullptr;
   std::unique_ptr<DdsParticipant> dds_;
-  std::vector<int> writer_of_topic_;  ///< by Bus topic id; -1 when not bridged
-  std::vector<std::string> writer_topic_;  ///< by writer index: ROS topic name, for warnings
+  std::mutex layout_mutex_;                 ///< guards out_, listened_'s size, inputs_ and node_
+  std::vector<Out> out_;                    ///< by Bus topic id
+  std::deque<std::atomic<bool>> listened_;  ///< by Bus topic id: has matched readers (or is latched)
   std::vector<Input> inputs_;
   Outbox outbox_;                            ///< per topic, sized from its rate (ros2::queue_capacity)
-  std::vector<std::atomic<bool>> listened_;  ///< by writer index: has matched readers (or is latched)
-  std::vector<bool> latched_;                ///< by writer index
   SubscriptionId subscription_ = kNoSubscription;
+  SubscriptionId layout_watch_ = kNoSubscription;
   std::thread sender_, receiver_;
   std::atomic<bool> receiving_{false};
   std::atomic<std::uint64_t> sent_{0}, failed_{0};
@@ -121,56 +145,11 @@ void Ros2Bridge::start(BridgeHost& host) {
   node.node_name = options_.node_name;
   node.node_namespace = options_.node_namespace;
 
-  // a writer per Bus topic, typed and named the ROS 2 way
-  const std::vector<Topic>& topics = host.bus().topics();
-  writer_of_topic_.assign(topics.size(), -1);
-  for (const Topic& t : topics) {
-    const msg::TypeSupport* type = msg::find_type(t.type);
-    if (type == nullptr || !DdsParticipant::knows_type(type->dds_name)) {
-      log::warn("ROS 2 bridge: topic {} of type {} is not bridged (no ROS 2 type for it)", t.name, t.type);
-      continue;
-    }
-    const int w = dds_->create_writer(ros2::dds_topic_name(t.name), type->dds_name, ros2::writer_qos(t));
-    writer_of_topic_[static_cast<std::size_t>(t.id)] = w;
-    writer_topic_.push_back(t.name);
-    outbox_.set_capacity(t.id, ros2::queue_capacity(t, options_.queue_size));
-    latched_.push_back(t.latched);
-    node.writers.push_back(dds_->writer_guid(w));
-  }
-
-  // command readers for every robot
-  for (std::size_t r = 0; r < host.world().robots.size(); ++r) {
-    const int robot = static_cast<int>(r);
-    const std::string cmd_vel = host.topic_name(robot, "cmd_vel");
-    const std::string head = host.topic_name(robot, "head/command");
-    const int rv = dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos());
-    inputs_.push_back({rv, robot, Input::Kind::velocity, cmd_vel});
-    node.readers.push_back(dds_->reader_guid(rv));
-    // TwistStamped on the same topic (Jazzy's diff_drive_controller, Nav2 from Kilted): a type
-    // of its own, so a reader of its own; Cyclone keeps two types on one topic name apart
-    const int rs = dds_->create_raw_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::TwistStamped_",
-                                           ros2::command_reader_qos());
-    inputs_.push_back({rs, robot, Input::Kind::velocity_stamped, cmd_vel});
-    node.readers.push_back(dds_->reader_guid(rs));
-    if (!host.world().robots[r].spec.head_joints.empty()) {
-      const int rh = dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_",
-                                         ros2::command_reader_qos());
-      inputs_.push_back({rh, robot, Input::Kind::head, head});
-      node.readers.push_back(dds_->reader_guid(rh));
-    }
-    if (has_commandable_joints(host.world().robots[r].spec)) {
-      const std::string joints = host.topic_name(robot, "joint_command");
-      const int rj = dds_->create_reader(ros2::dds_topic_name(joints), "sensor_msgs::msg::dds_::JointState_", ros2::command_reader_qos());
-      inputs_.push_back({rj, robot, Input::Kind::joints, joints});
-      node.readers.push_back(dds_->reader_guid(rj));
-    }
-    if (!host.world().robots[r].spec.flipper_joints.empty()) {
-      const std::string flippers = host.topic_name(robot, "flippers/command");
-      const int rf = dds_->create_reader(ros2::dds_topic_name(flippers), "std_msgs::msg::dds_::Float64MultiArray_",
-                                         ros2::command_reader_qos());
-      inputs_.push_back({rf, robot, Input::Kind::flippers, flippers});
-      node.readers.push_back(dds_->reader_guid(rf));
-    }
+  // a writer per Bus topic, typed and named the ROS 2 way, and command readers for every robot
+  {
+    std::lock_guard lock(layout_mutex_);
+    for (const Topic& t : host.bus().topics()) add_writer(t);
+    for (std::size_t r = 0; r < host.world().robots.size(); ++r) add_robot_readers(static_cast<int>(r));
   }
 
   // the host's own inputs (a mission's reports, datagrams, relay drops)
@@ -182,7 +161,7 @@ void Ros2Bridge::start(BridgeHost& host) {
       continue;
     }
     const int reader = dds_->create_reader(ros2::dds_topic_name(host_inputs[i].topic), type->dds_name, ros2::command_reader_qos());
-    Input in{reader, host_inputs[i].robot, Input::Kind::host, host_inputs[i].topic};
+    Input in{reader, host_inputs[i].robot, Input::Kind::host, host_inputs[i].topic, ""};
     in.host_input = i;
     in.type = type;
     inputs_.push_back(std::move(in));
@@ -204,18 +183,17 @@ void Ros2Bridge::start(BridgeHost& host) {
   });
 
   // the simulation thread only queues the shared messages (no copy), and only what someone listens to
-  listened_ = std::vector<std::atomic<bool>>(writer_topic_.size());
   refresh_listened();
   subscription_ = host.bus().subscribe_shared("", [this](const Topic& topic, const Bus::SharedMessage& m) {
     // the receiver thread checks TwistStamped stamps against this
     sim_time_ns_.store(host_->time().ns, std::memory_order_relaxed);
     const std::size_t id = static_cast<std::size_t>(topic.id);
-    // a topic advertised after start has no DDS writer: it is not bridged, so not even queued
-    if (id >= writer_of_topic_.size() || writer_of_topic_[id] < 0) return;
-    const auto w = static_cast<std::size_t>(writer_of_topic_[id]);
-    if (!listened_[w].load(std::memory_order_relaxed)) return;
+    // not bridged (no ROS 2 type, or advertised since the last layout change): not even queued
+    if (id >= out_.size() || out_[id].writer < 0) return;
+    if (!listened_[id].load(std::memory_order_relaxed)) return;
     outbox_.push(topic.id, host_->time(), m, 0);
   });
+  layout_watch_ = host.bus().watch_layout([this] { on_layout(); });
   receiving_ = true;
   sender_ = start_named_thread("ros2-send", [this] { send_loop(); });
   receiver_ = start_named_thread("ros2-receive", [this] { receive_loop(); });
@@ -229,6 +207,10 @@ void Ros2Bridge::stop() {
   if (subscription_ != kNoSubscription) {
     host_->bus().unsubscribe(subscription_);
     subscription_ = kNoSubscription;
+  }
+  if (layout_watch_ != kNoSubscription) {
+    host_->bus().unsubscribe(layout_watch_);
+    layout_watch_ = kNoSubscription;
   }
   // the sender drains what is queued, then ends
   outbox_.close();
@@ -258,7 +240,7 @@ void Ros2Bridge::send_loop() {
       next_refresh = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
     }
     // a round is at most one message per topic, oldest first
-    for (const OutboxItem& item : round) send(writer_of_topic_[static_cast<std::size_t>(item.topic)], item.message, buffer);
+    for (const OutboxItem& item : round) send(item.topic, item.message, buffer);
     if (outbox_.drained()) return;
     // stop() waits for what is queued, but not for ever
     if (took && outbox_.closed()) {
@@ -271,12 +253,125 @@ void Ros2Bridge::send_loop() {
 
 void Ros2Bridge::refresh_listened() {
   // a topic nobody reads is neither copied nor serialised; latched ones always are, for latecomers
-  for (std::size_t w = 0; w < listened_.size(); ++w) {
-    listened_[w].store(latched_[w] || dds_->matched_readers(static_cast<int>(w)) > 0, std::memory_order_relaxed);
+  std::lock_guard lock(layout_mutex_);
+  for (std::size_t id = 0; id < out_.size(); ++id) {
+    const Out& o = out_[id];
+    listened_[id].store(o.writer >= 0 && (o.latched || dds_->matched_readers(o.writer) > 0), std::memory_order_relaxed);
   }
 }
 
-void Ros2Bridge::send(int writer, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer) {
+void Ros2Bridge::add_writer(const Topic& t) {
+  const auto id = static_cast<std::size_t>(t.id);
+  while (out_.size() <= id) {
+    out_.emplace_back();
+    listened_.emplace_back(false);
+  }
+  Out& o = out_[id];
+  const msg::TypeSupport* type = msg::find_type(t.type);
+  o.bridgeable = type != nullptr && DdsParticipant::knows_type(type->dds_name);
+  if (!o.bridgeable) {
+    log::warn("ROS 2 bridge: topic {} of type {} is not bridged (no ROS 2 type for it)", t.name, t.type);
+    return;
+  }
+  if (t.retired) return;
+  o.writer = dds_->create_writer(ros2::dds_topic_name(t.name), type->dds_name, ros2::writer_qos(t));
+  o.latched = t.latched;
+  outbox_.set_capacity(t.id, ros2::queue_capacity(t, options_.queue_size));
+  node_.writers.push_back(dds_->writer_guid(o.writer));
+}
+
+void Ros2Bridge::add_robot_readers(int robot) {
+  const BridgeHost& host = *host_;
+  const RobotInstance& r = host.world().robots[static_cast<std::size_t>(robot)];
+  const auto add = [&](Input::Kind kind, const std::string& topic, int reader) {
+    inputs_.push_back({reader, robot, kind, topic, r.name});
+    node_.readers.push_back(dds_->reader_guid(reader));
+  };
+  const std::string cmd_vel = host.topic_name(robot, "cmd_vel");
+  add(Input::Kind::velocity, cmd_vel,
+      dds_->create_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::Twist_", ros2::command_reader_qos()));
+  // TwistStamped on the same topic (Jazzy's diff_drive_controller, Nav2 from Kilted): a type
+  // of its own, so a reader of its own; Cyclone keeps two types on one topic name apart
+  add(Input::Kind::velocity_stamped, cmd_vel,
+      dds_->create_raw_reader(ros2::dds_topic_name(cmd_vel), "geometry_msgs::msg::dds_::TwistStamped_", ros2::command_reader_qos()));
+  if (!r.spec.head_joints.empty()) {
+    const std::string head = host.topic_name(robot, "head/command");
+    add(Input::Kind::head, head,
+        dds_->create_reader(ros2::dds_topic_name(head), "std_msgs::msg::dds_::Float64MultiArray_", ros2::command_reader_qos()));
+  }
+  if (has_commandable_joints(r.spec)) {
+    const std::string joints = host.topic_name(robot, "joint_command");
+    add(Input::Kind::joints, joints,
+        dds_->create_reader(ros2::dds_topic_name(joints), "sensor_msgs::msg::dds_::JointState_", ros2::command_reader_qos()));
+  }
+  if (!r.spec.flipper_joints.empty()) {
+    const std::string flippers = host.topic_name(robot, "flippers/command");
+    add(Input::Kind::flippers, flippers,
+        dds_->create_reader(ros2::dds_topic_name(flippers), "std_msgs::msg::dds_::Float64MultiArray_", ros2::command_reader_qos()));
+  }
+}
+
+void Ros2Bridge::on_layout() {
+  std::lock_guard lock(layout_mutex_);
+  bool changed = false;
+  // writers: for topics new since the last change or advertised again; none for retired ones
+  for (const Topic& t : host_->bus().topics()) {
+    const auto id = static_cast<std::size_t>(t.id);
+    if (id >= out_.size()) {
+      add_writer(t);
+      changed = true;
+      continue;
+    }
+    Out& o = out_[id];
+    if (t.retired && o.writer >= 0) {
+      std::erase(node_.writers, dds_->writer_guid(o.writer));
+      dds_->delete_writer(o.writer);
+      o.writer = -1;
+      listened_[id].store(false, std::memory_order_relaxed);
+      changed = true;
+    } else if (!t.retired && o.writer < 0 && o.bridgeable) {
+      add_writer(t);
+      changed = true;
+    }
+  }
+  // command readers follow their robots by name: gone with them, moved down with them
+  const World& world = host_->world();
+  std::map<std::string, int> index;
+  for (std::size_t r = 0; r < world.robots.size(); ++r) index[world.robots[r].name] = static_cast<int>(r);
+  std::set<std::string> served;
+  for (auto it = inputs_.begin(); it != inputs_.end();) {
+    if (it->robot_name.empty()) {
+      ++it;
+      continue;
+    }
+    const auto found = index.find(it->robot_name);
+    if (found == index.end()) {
+      std::erase(node_.readers, dds_->reader_guid(it->reader));
+      dds_->delete_reader(it->reader);
+      it = inputs_.erase(it);
+      changed = true;
+      continue;
+    }
+    it->robot = found->second;
+    served.insert(it->robot_name);
+    ++it;
+  }
+  for (const auto& [name, r] : index) {
+    if (served.count(name)) continue;
+    add_robot_readers(r);
+    changed = true;
+  }
+  if (changed) {
+    discovery_dirty_ = true;
+    dds_->wake();
+  }
+}
+
+void Ros2Bridge::send(TopicId topic, const Bus::SharedMessage& message, std::vector<std::uint8_t>& buffer) {
+  // under the layout lock: a deleted robot's writer goes only between rounds
+  std::lock_guard lock(layout_mutex_);
+  const int writer = out_[static_cast<std::size_t>(topic)].writer;
+  if (writer < 0) return;  // retired after it was queued
   const msg::Message& m = *message;
   // a large message's bytes are encoded once for every CDR bridge (bridges/common/shared_cdr.h);
   // the distro adaptations touch only small messages, so those are what this bridge encodes
@@ -299,13 +394,16 @@ void Ros2Bridge::send(int writer, const Bus::SharedMessage& message, std::vector
   ++failed_;
   std::uint64_t held = 0;
   if (write_warning_.allow(&held)) {
-    log::warn("ROS 2 bridge: cannot publish on {}: {} ({} more failures held back)", writer_topic_[static_cast<std::size_t>(writer)],
-              error, held);
+    log::warn("ROS 2 bridge: cannot publish on {}: {} ({} more failures held back)", host_->bus().topic(topic).name, error, held);
   }
 }
 
 bool Ros2Bridge::publish_discovery(std::string* error) {
-  ros2::NodeEntities node = node_;
+  ros2::NodeEntities node;
+  {
+    std::lock_guard lock(layout_mutex_);
+    node = node_;
+  }
   if (services_) {
     for (const ros2::Guid& g : services_->reader_guids()) node.readers.push_back(g);
     for (const ros2::Guid& g : services_->writer_guids()) node.writers.push_back(g);
@@ -318,8 +416,11 @@ void Ros2Bridge::receive_loop() {
   while (receiving_.load()) {
     // sooner than the usual 200 ms when a service reply waits for its client's reader to match
     dds_->wait(services_->poll_within(std::chrono::milliseconds(200)));
-    for (Input& in : inputs_) {
-      dds_->take(in.reader, [&](std::span<const std::uint8_t> bytes) { receive(in, bytes); });
+    {
+      std::lock_guard lock(layout_mutex_);
+      for (Input& in : inputs_) {
+        dds_->take(in.reader, [&](std::span<const std::uint8_t> bytes) { receive(in, bytes); });
+      }
     }
     services_->poll();
     if (discovery_dirty_.exchange(false)) {

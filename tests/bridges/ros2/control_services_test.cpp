@@ -178,6 +178,24 @@ TEST_F(ControlServicesTest, StateStepsResetAndEntitiesOverTheWire) {
   const SpawnEntityResponse sp = call<iface::SpawnEntity>("/spawn_entity", spawn);
   EXPECT_EQ(sp.result.result, code::kNoResource);
   EXPECT_NE(sp.result.error_message.find("/nowhere/p3at.urdf"), std::string::npos) << sp.result.error_message;
+  // a built-in box 2 m above the robot's start: spawned, listed as DYNAMIC_OBJECT, then deleted
+  spawn.name = "crate";
+  spawn.uri = "box";
+  spawn.pose = Pose3{session_->sim().world().robots[0].X_W_start.p + Vec3(0, 0, 2), Quat::Identity()};
+  const SpawnEntityResponse crate = call<iface::SpawnEntity>("/spawn_entity", spawn);
+  ASSERT_TRUE(crate.result.is_ok()) << crate.result.error_message;
+  EXPECT_EQ(crate.entity_name, "crate");
+  EntityFilters dynamic;
+  dynamic.filter = "^crate$";
+  dynamic.categories = {category::kDynamicObject};
+  EXPECT_EQ(call<iface::GetEntities>("/get_entities", dynamic).entities, std::vector<std::string>{"crate"});
+  EXPECT_EQ(call<iface::SpawnEntity>("/spawn_entity", spawn).result.result, code::kNameNotUnique);
+  EXPECT_TRUE(call<iface::DeleteEntity>("/delete_entity", {"crate"}).is_ok());
+  EXPECT_TRUE(call<iface::GetEntities>("/get_entities", dynamic).entities.empty());
+  EXPECT_EQ(call<iface::DeleteEntity>("/delete_entity", {"robot"}).result, code::kOperationFailed);
+  const GetSpawnablesResponse spawnables = call<iface::GetSpawnables>("/get_spawnables", {});
+  ASSERT_TRUE(spawnables.result.is_ok());
+  EXPECT_TRUE(std::any_of(spawnables.spawnables.begin(), spawnables.spawnables.end(), [](const Spawnable& s) { return s.uri == "rescue_robot"; }));
   const WorldResponse w = call<iface::GetCurrentWorld>("/get_current_world", {});
   EXPECT_TRUE(w.result.is_ok());
   EXPECT_EQ(w.world.name, session_->scenario().name);
