@@ -22,6 +22,8 @@
 #include "support/command.h"
 #include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
+#include "support/free_spot.h"
+#include "msgs/serialize.h"
 #include <nlohmann/json.hpp>
 
 namespace rescuesim {
@@ -401,16 +403,54 @@ TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
   body.clear();
   encode_request<iface::StepSimulation>({100}, WireVersion::v1, body);
   EXPECT_TRUE(result_of(call("/step_simulation", "simulation_interfaces/srv/StepSimulation", body)).is_ok());
+
+  // a rescue robot spawned where the default scenario's floor is clear: its odometry is on the
+  // wire under /p3at as soon as steps are taken (checked after the run has ended, so that a
+  // failure here still ends it)
+  const ModelMap models = builtin_models();
+  const Scenario scenario = default_scenario(models);
+  const World world = compile_scenario(scenario, build_world(scenario), models);
+  const auto spot = testing::free_spot(world, initial_state(world), 0.45, {world.robots[0].X_W_start.p.head<2>()});
+  EXPECT_TRUE(spot);
+  SpawnRequest spawn;
+  spawn.name = "p3at";
+  spawn.uri = "rescue_robot";
+  if (spot) spawn.pose = Pose3{Vec3(spot->x(), spot->y(), 0), Quat::Identity()};
+  body.clear();
+  encode_request<iface::SpawnEntity>(spawn, WireVersion::v1, body);
+  const auto spawned = decode_response<iface::SpawnEntity>(call("/spawn_entity", "simulation_interfaces/srv/SpawnEntity", body), WireVersion::v1);
+  EXPECT_TRUE(spawned.value && spawned.value->result.is_ok()) << (spawned.value ? spawned.value->result.error_message : spawned.problem);
+  const int odom = client.create_reader("rt/p3at/odom", "nav_msgs::msg::dds_::Odometry_", {});
+  const auto matched_by = std::chrono::steady_clock::now() + 20s;
+  while (client.matched_writers(odom) == 0 && std::chrono::steady_clock::now() < matched_by) std::this_thread::sleep_for(20ms);
+  EXPECT_GT(client.matched_writers(odom), 0) << "no writer on rt/p3at/odom";
+  // 10 steps (0.05 s, 2 or 3 odometry messages at 50 Hz) at a time until they arrive: the bridge
+  // sends a topic once it has noticed its reader (within 0.1 s of matching)
+  std::vector<std::string> frames;
+  int steps = 0;
+  body.clear();
+  encode_request<iface::StepSimulation>({10}, WireVersion::v1, body);
+  for (int i = 0; i < 100 && frames.empty(); ++i) {
+    EXPECT_TRUE(result_of(call("/step_simulation", "simulation_interfaces/srv/StepSimulation", body)).is_ok());
+    steps += 10;
+    std::this_thread::sleep_for(50ms);
+    client.take(odom, [&](std::span<const std::uint8_t> bytes) {
+      frames.push_back(std::get<msg::Odometry>(msg::from_cdr(*msg::find_type("nav_msgs/Odometry"), bytes)).header.frame_id);
+    });
+  }
+
   body.clear();
   encode_request<iface::SetSimulationState>({RunState::quitting}, WireVersion::v1, body);
   const auto quit = decode_response<iface::SetSimulationState>(call("/set_simulation_state", "simulation_interfaces/srv/SetSimulationState", body), WireVersion::v1);
   EXPECT_TRUE(quit.value && quit.value->is_ok());
   sim.join();
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  ASSERT_FALSE(frames.empty()) << "no odometry from the spawned robot\n" << run.out << run.err;
+  EXPECT_EQ(frames.back(), "p3at/odom");
   const auto summary = nlohmann::json::parse(testing::slurp(dir / "out" / "summary.json"), nullptr, false);
   ASSERT_FALSE(summary.is_discarded()) << run.out << run.err;
   EXPECT_EQ(summary["stop_reason"], "quit by request");
-  EXPECT_DOUBLE_EQ(summary["sim_time_s"].get<double>(), 0.5);
+  EXPECT_NEAR(summary["sim_time_s"].get<double>(), 0.5 + 0.005 * steps, 1e-9);
 }
 
 }  // namespace
