@@ -11,9 +11,15 @@
 /// pushes out an image or a latched message, and a byte budget over all of them); the scene is
 /// no Bus message: only its newest snapshot waits (`pending_scene_`), an older one is replaced.
 ///
-/// Locking: `mutex_` guards channels and clients; it may be held while queueing frames on the
-/// server (whose own locks are inner), never the other way round. `scene_mutex_` and the
-/// outbox's lock are leaves. A ServiceLink's mutex is held while posting a task to the server
+/// Robots spawned and deleted while running: a Bus layout watcher (on_layout, on the simulation
+/// thread) announces the channels of new topics, unadvertises those of retired topics (ending
+/// every subscription to them), rebuilds the per-robot command topics and points each client
+/// channel at its robot's index now (none: a deleted robot's, refused until one of that name
+/// is back).
+///
+/// Locking: `mutex_` guards channels, clients and the per-robot command topics; it may be held
+/// while queueing frames on the server (whose own locks are inner), never the other way round.
+/// `scene_mutex_` and the outbox's lock are leaves. A ServiceLink's mutex is held while posting a task to the server
 /// (whose locks are inner), and never with `mutex_`.
 
 #include <algorithm>
@@ -25,6 +31,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -76,7 +83,7 @@ struct ChannelState {
 struct CommandTarget {
   enum class Kind { twist, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
   Kind kind = Kind::twist;
-  int robot = 0;                            ///< -1: none (no target, or a host input of no robot)
+  int robot = 0;                            ///< -1: none (no target, a host input of no robot, or the robot was deleted)
   std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
   const msg::TypeSupport* type = nullptr;   ///< Kind::host: the input's message type
   ClientChannel channel;
@@ -136,6 +143,16 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   void on_bus(const Topic& topic, const Bus::SharedMessage& m);
   /// Adds a Bus topic's channel (call with mutex_ held, or before the threads start).
   void add_topic(const Topic& t, std::vector<Channel>* added);
+  /// Channels for topics advertised since the last call and for retired topics advertised
+  /// again (with mutex_ held).
+  void add_new_topics(std::vector<Channel>* added);
+  /// The Bus layout changed (robots spawned or deleted): see the file comment.
+  void on_layout();
+  /// The per-robot command topics of `world` (with mutex_ held, or before the threads start).
+  void set_command_topics(const World& world);
+  /// The per-robot command topics of the host's world now, and every client channel's robot
+  /// index by its topic's name (with mutex_ held).
+  void refresh_commands();
   SceneState scene_state() const;
   // serialiser thread
   void run();
@@ -155,6 +172,9 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   void unsubscribe(ClientId client, const Unsubscribe& u);
   void client_advertise(ClientId client, const ClientAdvertise& a);
   void client_unadvertise(ClientId client, const ClientUnadvertise& u);
+  /// The robot command topic `topic` is (cmd_vel, head/command, ...): sets target.kind and
+  /// target.robot and returns true, or false when no robot takes it now (with mutex_ held).
+  bool robot_command(const std::string& topic, CommandTarget& target) const;
   void apply(ClientId client, const CommandTarget& target, std::span<const std::uint8_t> payload);
   void reply(ClientId client, StatusLevel level, const std::string& message);
   void reject(ClientId client, const std::string& message);
@@ -173,6 +193,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   BridgeHost* host_ = nullptr;
   bool started_ = false, stopped_ = false;
   SubscriptionId bus_handle_ = kNoSubscription;
+  SubscriptionId layout_handle_ = kNoSubscription;  ///< Bus::watch_layout
   TopicId clock_topic_ = kNoTopic;
   std::unique_ptr<WsServer> server_;
   std::string server_info_;
@@ -183,6 +204,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
 
   // simulation thread
   std::size_t known_topics_ = 0;
+  std::set<TopicId> gone_;  ///< retired topics whose channel was unadvertised (a channel again once advertised again)
   SimTime next_scene_;
   SimTime scene_period_;
   std::unique_ptr<std::atomic<int>[]> wanted_{new std::atomic<int>[kMaxTopics]()};  ///< subscriptions per Bus topic
@@ -203,7 +225,8 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::map<std::uint32_t, ChannelState> channels_;
   std::map<ClientId, ClientState> clients_;
 
-  std::vector<std::string> twist_topics_, head_topics_, joint_topics_, flipper_topics_;  ///< per robot
+  // per robot now (rebuilt when the layout changes), under mutex_
+  std::vector<std::string> twist_topics_, head_topics_, joint_topics_, flipper_topics_;
   std::vector<std::size_t> flipper_sizes_;
   std::vector<std::size_t> head_sizes_;
   std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive

@@ -193,20 +193,7 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
       }
       CommandTarget target;
       target.channel = ch;
-      bool found = false;
-      for (std::size_t r = 0; r < twist_topics_.size() && !found; ++r) {
-        const bool twist = ch.topic == twist_topics_[r];
-        const bool head = ch.topic == head_topics_[r] && head_sizes_[r] > 0;
-        const bool joints = ch.topic == joint_topics_[r];
-        const bool flippers = ch.topic == flipper_topics_[r] && flipper_sizes_[r] > 0;
-        if (!twist && !head && !joints && !flippers) continue;
-        target.kind = twist      ? CommandTarget::Kind::twist
-                      : head     ? CommandTarget::Kind::head
-                      : flippers ? CommandTarget::Kind::flippers
-                                 : CommandTarget::Kind::joints;
-        target.robot = static_cast<int>(r);
-        found = true;
-      }
+      bool found = robot_command(ch.topic, target);
       for (std::size_t i = 0; i < host_inputs_.size() && !found; ++i) {
         if (ch.topic != host_inputs_[i].topic) continue;
         target.type = msg::find_type(host_inputs_[i].type);
@@ -223,7 +210,10 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
       // a robot whose moving joints are all driven otherwise (wheels, head) or not at all
       if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[static_cast<std::size_t>(target.robot)]) {
         const auto robot = static_cast<std::size_t>(target.robot);
-        errors.push_back(where + "robot '" + host_->world().robots[robot].name +
+        // the world may be a step ahead of the command topics (a robot deleted, the layout
+        // watchers not called yet)
+        const World& world = host_->world();
+        errors.push_back(where + "robot '" + (robot < world.robots.size() ? world.robots[robot].name : ch.topic) +
                          "' has no joints that joint_command can drive (drive wheels take cmd_vel, head joints head/command; fixed, "
                          "passive and mimic joints take nothing); it takes " + accepted_topics(robot));
         continue;
@@ -237,6 +227,23 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
     }
   }
   for (const auto& e : errors) reply(client, StatusLevel::error, e);
+}
+
+bool FoxgloveBridge::robot_command(const std::string& topic, CommandTarget& target) const {
+  for (std::size_t r = 0; r < twist_topics_.size(); ++r) {
+    const bool twist = topic == twist_topics_[r];
+    const bool head = topic == head_topics_[r] && head_sizes_[r] > 0;
+    const bool joints = topic == joint_topics_[r];
+    const bool flippers = topic == flipper_topics_[r] && flipper_sizes_[r] > 0;
+    if (!twist && !head && !joints && !flippers) continue;
+    target.kind = twist      ? CommandTarget::Kind::twist
+                  : head     ? CommandTarget::Kind::head
+                  : flippers ? CommandTarget::Kind::flippers
+                             : CommandTarget::Kind::joints;
+    target.robot = static_cast<int>(r);
+    return true;
+  }
+  return false;
 }
 
 void FoxgloveBridge::client_unadvertise(ClientId client, const ClientUnadvertise& u) {
@@ -265,17 +272,25 @@ void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> by
   if (const auto* call = std::get_if<ServiceCallRequest>(&frame)) return service_call(client, *call);
   const ClientMessage& m = std::get<ClientMessage>(frame);
   std::optional<CommandTarget> target;
+  std::string gone;
   {
+    // the robot's index as the last layout change left it (on_layout); a layout change between
+    // here and the host taking the command is not covered: the host moves only commands
+    // already queued
     std::lock_guard lock(mutex_);
     const auto cit = clients_.find(client);
     if (cit == clients_.end()) return;
     const auto it = cit->second.publishers.find(m.channel);
     if (it != cit->second.publishers.end()) target = it->second;
+    if (target && target->kind != CommandTarget::Kind::host && target->robot < 0) {
+      gone = target->channel.topic + ": rescuesim does not take this topic now (its robot was deleted); it takes " + accepted_topics();
+    }
   }
   if (!target) {
     reject(client, "client message data on unknown channel id " + std::to_string(m.channel) + " (advertise the channel first)");
     return;
   }
+  if (!gone.empty()) return reject(client, gone);
   apply(client, *target, m.payload);
 }
 

@@ -73,15 +73,7 @@ void FoxgloveBridge::start(BridgeHost& host) {
   }
 
   // what clients may publish: each robot's cmd_vel, head command and joint command
-  for (std::size_t r = 0; r < world.robots.size(); ++r) {
-    twist_topics_.push_back(host.topic_name(static_cast<int>(r), "cmd_vel"));
-    head_topics_.push_back(host.topic_name(static_cast<int>(r), "head/command"));
-    head_sizes_.push_back(world.robots[r].spec.head_joints.size());
-    joint_topics_.push_back(host.topic_name(static_cast<int>(r), "joint_command"));
-    flipper_topics_.push_back(host.topic_name(static_cast<int>(r), "flippers/command"));
-    flipper_sizes_.push_back(world.robots[r].spec.flipper_joints.size());
-    joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
-  }
+  set_command_topics(world);
   // and what the host takes beyond them (a mission's reports, datagrams, relay drops, map)
   host_inputs_ = host.inputs();
 
@@ -116,12 +108,15 @@ void FoxgloveBridge::start(BridgeHost& host) {
   started_ = true;
   worker_ = start_named_thread("fox-serialise", [this] { run(); });
   bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) { on_bus(t, m); });
+  // robots spawned and deleted while running
+  layout_handle_ = host.bus().watch_layout([this] { on_layout(); });
 }
 
 void FoxgloveBridge::stop() {
   if (!started_ || stopped_) return;
   stopped_ = true;
   host_->bus().unsubscribe(bus_handle_);
+  host_->bus().unsubscribe(layout_handle_);
   // the serialiser sends what is queued (and the pending scene), then ends
   resume_serialiser();
   outbox_.close();
@@ -172,14 +167,18 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
     std::lock_guard lock(scene_mutex_);
     pending_scene_ = std::move(pending);
   }
-  // topics advertised after start become new channels, announced to every client at once
-  // (rare, so the simulation thread takes the lock itself rather than risk a dropped item)
-  const auto& topics = host_->bus().topics();
-  if (known_topics_ < topics.size()) {
+  // topics advertised after start (and retired ones advertised again: a robot spawned again,
+  // whose latched description comes before the layout watchers are called) become new
+  // channels, announced to every client at once (rare, so the simulation thread takes the lock
+  // itself rather than risk a dropped item)
+  if (known_topics_ < host_->bus().topics().size() || (!gone_.empty() && gone_.count(topic.id) > 0)) {
     std::vector<Channel> added;
     std::lock_guard lock(mutex_);
-    while (known_topics_ < topics.size()) add_topic(topics[known_topics_++], &added);
+    add_new_topics(&added);
     if (!added.empty()) {
+      // a spawned robot's topics may come before the layout watchers are called (its latched
+      // description, /tf_static): its command topics are taken before clients hear of it
+      refresh_commands();
       const std::string text = advertise(added);
       for (const auto& [id, c] : clients_) server_->send_control(id, text);
     }
@@ -192,6 +191,94 @@ void FoxgloveBridge::on_bus(const Topic& topic, const Bus::SharedMessage& m) {
   const auto id = static_cast<std::size_t>(topic.id);
   if (!topic.latched && id < kMaxTopics && wanted_[id].load(std::memory_order_relaxed) <= 0) return;
   outbox_.push(topic.id, now, m, topic.latched ? 0 : Outbox::approx_bytes(*m));
+}
+
+void FoxgloveBridge::add_new_topics(std::vector<Channel>* added) {
+  const Bus& bus = host_->bus();
+  const auto& topics = bus.topics();
+  while (known_topics_ < topics.size()) {
+    const Topic& t = topics[known_topics_++];
+    if (t.retired) {
+      gone_.insert(t.id);
+    } else {
+      add_topic(t, added);
+    }
+  }
+  for (auto it = gone_.begin(); it != gone_.end();) {
+    const Topic& t = bus.topic(*it);
+    if (t.retired) {
+      ++it;
+      continue;
+    }
+    add_topic(t, added);
+    it = gone_.erase(it);
+  }
+}
+
+void FoxgloveBridge::on_layout() {
+  // on the simulation thread, between steps, the Bus locked (read only)
+  const Bus& bus = host_->bus();
+  std::vector<std::uint32_t> removed;
+  std::vector<Channel> added;
+  std::lock_guard lock(mutex_);
+  // retired topics' channels go, and every subscription to them (the client is told below)
+  for (const Topic& t : bus.topics()) {
+    if (!t.retired || static_cast<std::size_t>(t.id) >= known_topics_) continue;
+    const auto it = channels_.find(channel_of(t.id));
+    if (it == channels_.end()) continue;
+    for (const auto& [client, sub] : it->second.subscribers) {
+      const auto c = clients_.find(client);
+      if (c != clients_.end()) c->second.subscriptions.erase(sub);
+      if (static_cast<std::size_t>(t.id) < kMaxTopics) --wanted_[static_cast<std::size_t>(t.id)];
+    }
+    removed.push_back(it->first);
+    channels_.erase(it);
+    gone_.insert(t.id);
+  }
+  // new topics (a spawned robot's, before their first message) and topics back again
+  add_new_topics(&added);
+  refresh_commands();
+  if (removed.empty() && added.empty()) return;
+  const std::string gone_text = removed.empty() ? std::string() : unadvertise(removed);
+  const std::string added_text = added.empty() ? std::string() : advertise(added);
+  for (const auto& [id, c] : clients_) {
+    if (!gone_text.empty()) server_->send_control(id, gone_text);
+    if (!added_text.empty()) server_->send_control(id, added_text);
+  }
+}
+
+void FoxgloveBridge::refresh_commands() {
+  // the robots' command topics now, and each client channel pointed at its robot's index now,
+  // by name (none when no robot takes it any more: its messages are refused)
+  set_command_topics(host_->world());
+  for (auto& [id, client] : clients_) {
+    for (auto& [channel, target] : client.publishers) {
+      if (target.kind == CommandTarget::Kind::host) continue;  // the host's inputs are fixed
+      CommandTarget now;
+      const bool found = robot_command(target.channel.topic, now) && now.kind == target.kind &&
+                         (now.kind != CommandTarget::Kind::joints || joints_commandable_[static_cast<std::size_t>(now.robot)]);
+      target.robot = found ? now.robot : -1;
+    }
+  }
+}
+
+void FoxgloveBridge::set_command_topics(const World& world) {
+  twist_topics_.clear();
+  head_topics_.clear();
+  joint_topics_.clear();
+  flipper_topics_.clear();
+  head_sizes_.clear();
+  flipper_sizes_.clear();
+  joints_commandable_.clear();
+  for (std::size_t r = 0; r < world.robots.size(); ++r) {
+    twist_topics_.push_back(host_->topic_name(static_cast<int>(r), "cmd_vel"));
+    head_topics_.push_back(host_->topic_name(static_cast<int>(r), "head/command"));
+    head_sizes_.push_back(world.robots[r].spec.head_joints.size());
+    joint_topics_.push_back(host_->topic_name(static_cast<int>(r), "joint_command"));
+    flipper_topics_.push_back(host_->topic_name(static_cast<int>(r), "flippers/command"));
+    flipper_sizes_.push_back(world.robots[r].spec.flipper_joints.size());
+    joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
+  }
 }
 
 // ---- serialiser thread ----
@@ -299,7 +386,9 @@ void FoxgloveBridge::handle(const OutboxItem& item) {
   std::vector<std::pair<ClientId, std::uint32_t>> subs;
   {
     std::lock_guard lock(mutex_);
-    ChannelState& c = channels_.at(channel);
+    const auto it = channels_.find(channel);
+    if (it == channels_.end()) return;  // unadvertised meanwhile (its robot was deleted)
+    ChannelState& c = it->second;
     if (c.latched) {
       c.last = payload;
       c.last_stamp = stamp;

@@ -104,6 +104,10 @@ std::string advertise(const std::vector<Channel>& channels) {
   return json{{"op", "advertise"}, {"channels", list}}.dump();
 }
 
+std::string unadvertise(const std::vector<std::uint32_t>& channel_ids) {
+  return json{{"op", "unadvertise"}, {"channelIds", channel_ids}}.dump();
+}
+
 std::string status(StatusLevel level, const std::string& message) {
   // replace invalid UTF-8 (a client's bytes may be echoed in messages) instead of throwing
   return json{{"op", "status"}, {"level", static_cast<int>(level)}, {"message", message}}.dump(-1, ' ', false,

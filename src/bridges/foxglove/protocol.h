@@ -39,6 +39,8 @@ std::string server_info(const std::string& name, const std::vector<std::string>&
                         const std::string& session_id);
 /// {"op":"advertise","channels":[...]}.
 std::string advertise(const std::vector<Channel>& channels);
+/// {"op":"unadvertise","channelIds":[...]}: those channels are gone (with every subscription to them).
+std::string unadvertise(const std::vector<std::uint32_t>& channel_ids);
 /// {"op":"status","level":..,"message":..}.
 std::string status(StatusLevel level, const std::string& message);
 
