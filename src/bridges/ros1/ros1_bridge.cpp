@@ -23,10 +23,15 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "bridges/common/commands.h"
 #include "bridges/common/outbox.h"
@@ -92,29 +97,42 @@ class Ros1Bridge final : public Bridge {
     std::string name;
     bool latched = false;
     const msg::TypeSupport* type = nullptr;  ///< nullptr: no ROS 1 serialiser, not published
-    ros::Publisher pub;                      ///< made on start, used by both threads (roscpp locks inside)
+    ros::Publisher pub;                      ///< made on start or by the layout watcher, used by every thread (roscpp locks inside)
+    bool retired = false;                    ///< its Bus topic is retired (or not yet advertised to ROS): no publisher
   };
   /// A command topic of a robot.
   struct Input {
     enum class Kind { velocity, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
     std::string topic;
-    int robot = 0;
+    int robot = 0;                            ///< index into world().robots; the layout watcher keeps it current
     Kind kind = Kind::velocity;
     const msg::TypeSupport* type = nullptr;
-    ros::Subscriber sub;                      ///< spinner thread only (after start)
+    ros::Subscriber sub;                      ///< like every field, under inputs_mutex_ after start
     int unconnected_checks = 0;               ///< master checks in a row that found publishers it could not connect to
     std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
     // Kind::velocity (spinner thread): a roscpp subscription of MD5 "*" takes on the MD5 of the
     // first publisher it connects to, and publishers of the other type then refuse it
     bool adopted = false;                     ///< connected since it was made: its type is set
     std::string connected_type{};             ///< the type of the last message received
+    std::string robot_name{};                 ///< the robot's name (RobotInstance::name), which follows it when its index changes; "" for Kind::host
   };
   /// The type a command subscription asks its publishers for: "*" for cmd_vel (either type).
   static std::string subscribed_type(const Input& in) { return in.kind == Input::Kind::velocity ? "*" : in.type->ros1_name; }
 
+  /// The Output of a Bus topic, not yet advertised to ROS (warns when it has no serialiser).
+  static Output make_output(const Topic& t);
+  /// Appends world.robots[robot]'s command inputs to inputs_ (not yet subscribed); inputs_mutex_ held or no other thread yet.
+  void add_robot_inputs(const World& world, int robot);
+  void advertise(Output& o);
   void advertise_all();
   void set_parameters();
-  void subscribe(std::size_t input);
+  /// (Re)makes the subscription of inputs_[key]; inputs_mutex_ held or no other thread yet.
+  void subscribe(std::uint64_t key, Input& in);
+  /// The layout watcher (simulation thread, Bus locked): publishers and command subscriptions
+  /// follow the topics and robots that came and went (follow_layout); what roscpp throws is
+  /// logged, not passed to the simulation.
+  void on_layout();
+  void follow_layout();
   bool register_again();
   void publish_loop();
   void publish(const OutboxItem& item);
@@ -122,8 +140,8 @@ class Ros1Bridge final : public Bridge {
   void spin_loop();
   void watch_master();
   void check_input_publishers();
-  void on_command(std::size_t input, const RawMessage& raw);
-  void on_velocity(std::size_t input, const ros::M_string& connection, const RawMessage& raw);
+  void on_command(std::uint64_t key, const RawMessage& raw);
+  void on_velocity(std::uint64_t key, const ros::M_string& connection, const RawMessage& raw);
   /// Counts a command refused here rather than by the gate, and warns as the gate does.
   void refuse(const std::string& topic, const char* kind, const std::string& why);
   void shut_down();
@@ -133,12 +151,29 @@ class Ros1Bridge final : public Bridge {
   std::unique_ptr<CommandGate> gate_;
   Ros1Endpoint endpoint_;
   SubscriptionId bus_handle_ = kNoSubscription;
+  SubscriptionId layout_handle_ = kNoSubscription;
   bool started_ = false;
 
   Outbox outbox_;  ///< per topic, queue_size each; its sequence numbers are Header.seq + 1
+  /// outputs_ and wanted_ grow, and outputs_' entries change, only on the simulation thread (the
+  /// layout watcher), under this lock; the publisher and spinner threads read them under it, the
+  /// simulation thread's Bus callback without it.
+  std::mutex outputs_mutex_;
   std::vector<Output> outputs_;  ///< by Bus topic id
-  std::unique_ptr<std::atomic<bool>[]> wanted_;  ///< by Bus topic id: someone subscribes, or latched
-  std::vector<Input> inputs_;
+  std::deque<std::atomic<bool>> wanted_;  ///< by Bus topic id: someone subscribes, or latched (a deque: entries stay put as it grows)
+  /// Simulation thread only: the last message of latched topics that have no publisher yet (a
+  /// spawned robot's robot_description is published before the layout watcher is called)
+  std::map<std::size_t, Bus::SharedMessage> early_latched_;
+  /// inputs_ is read and changed on the spinner thread (subscription callbacks, master checks) and
+  /// changed by the layout watcher on the simulation thread: under this lock. Never held while a
+  /// subscription is shut down (roscpp then waits for its callback, which may wait for the lock).
+  std::mutex inputs_mutex_;
+  std::map<std::uint64_t, Input> inputs_;  ///< by a key that never changes (callbacks carry it), in the order made
+  std::uint64_t next_input_ = 0;
+  /// The robot_description parameter (name, text) of each spawned robot that has one, by robot
+  /// name: set by the layout watcher, set again by the spinner thread when a master comes back
+  std::mutex params_mutex_;
+  std::map<std::string, std::pair<std::string, std::string>> spawned_params_;
   std::unique_ptr<ros::NodeHandle> nh_;
   ros::CallbackQueue callbacks_;
   std::thread publisher_, spinner_;
@@ -193,28 +228,14 @@ void Ros1Bridge::start(BridgeHost& host) {
     nh_->setCallbackQueue(&callbacks_);
 
     // every Bus topic goes out under its own name and type
-    for (const Topic& t : host.bus().topics()) {
-      Output o;
-      o.name = t.name;
-      o.latched = t.latched;
-      o.type = msg::find_type(t.type);
-      if (!o.type) log::warn("ROS 1: {} has type {}, which has no ROS 1 serialiser: not published", t.name, t.type);
-      outputs_.push_back(std::move(o));
-    }
+    for (const Topic& t : host.bus().topics()) outputs_.push_back(make_output(t));
     // commands: each robot's cmd_vel and head/command, and joint_command when it has joints to command
     for (int r = 0; r < static_cast<int>(host.world().robots.size()); ++r) {
-      Input v{host.topic_name(r, "cmd_vel"), r, Input::Kind::velocity, msg::find_type("geometry_msgs/Twist"), {}};
-      Input h{host.topic_name(r, "head/command"), r, Input::Kind::head, msg::find_type("std_msgs/Float64MultiArray"), {}};
-      RS_DEMAND(v.type && h.type, "the serialiser lacks geometry_msgs/Twist or std_msgs/Float64MultiArray");
-      inputs_.push_back(std::move(v));
-      inputs_.push_back(std::move(h));
-      if (has_commandable_joints(host.world().robots[static_cast<std::size_t>(r)].spec)) {
-        Input j{host.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
-        RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
-        inputs_.push_back(std::move(j));
-      }
-      if (!host.world().robots[static_cast<std::size_t>(r)].spec.flipper_joints.empty()) {
-        inputs_.push_back(Input{host.topic_name(r, "flippers/command"), r, Input::Kind::flippers, msg::find_type("std_msgs/Float64MultiArray"), {}});
+      add_robot_inputs(host.world(), r);
+      // (robots spawned before the bridge started: their description parameter as the watcher keeps it)
+      const RobotInstance& robot = host.world().robots[static_cast<std::size_t>(r)];
+      if (robot.spawned && !robot.spec.description.empty()) {
+        spawned_params_[robot.name] = {host.topic_name(r, "robot_description"), robot.spec.description};
       }
     }
     // the host's own inputs (a mission's reports, datagrams, relay drops)
@@ -223,7 +244,7 @@ void Ros1Bridge::start(BridgeHost& host) {
       Input in{host_inputs[i].topic, host_inputs[i].robot, Input::Kind::host, msg::find_type(host_inputs[i].type), {}};
       in.host_input = i;
       if (!in.type) throw Error("ROS 1: input " + in.topic + " has type " + host_inputs[i].type + ", which has no ROS 1 serialiser");
-      inputs_.push_back(std::move(in));
+      inputs_.emplace(next_input_++, std::move(in));
     }
     advertise_all();
     set_parameters();
@@ -244,18 +265,25 @@ void Ros1Bridge::start(BridgeHost& host) {
   // the simulation thread only queues the shared message (no copy) in the outbox, and only what
   // someone listens to; serialising happens on the publisher thread. The outbox's sequence per
   // topic counts every message the simulation produced (Header.seq).
-  wanted_ = std::make_unique<std::atomic<bool>[]>(outputs_.size());
-  for (std::size_t i = 0; i < outputs_.size(); ++i) wanted_[i] = outputs_[i].type && outputs_[i].latched;
+  for (const Output& o : outputs_) wanted_.emplace_back(o.type && o.latched);
   bus_handle_ = host.bus().subscribe_shared("", [this](const Topic& t, const Bus::SharedMessage& m) {
     sim_now_ns_.store(host_->time().ns, std::memory_order_relaxed);
-    // a topic advertised after start has no ROS publisher: it is not bridged, so not even queued
-    if (static_cast<std::size_t>(t.id) >= outputs_.size()) return;
-    if (wanted_[static_cast<std::size_t>(t.id)].load(std::memory_order_relaxed)) {
+    // a topic advertised after start, or brought back, has no ROS publisher until the layout
+    // watcher makes one: not queued; a latched one's message waits for it. (Only this thread
+    // changes outputs_: read without the lock.)
+    const auto id = static_cast<std::size_t>(t.id);
+    if (id >= outputs_.size() || outputs_[id].retired) {
+      if (t.latched) early_latched_[id] = m;
+      return;
+    }
+    if (wanted_[id].load(std::memory_order_relaxed)) {
       outbox_.push(t.id, host_->time(), m, 0);
     } else {
       outbox_.skip(t.id);
     }
   });
+  // robots spawned and deleted while running: publishers and command subscriptions follow them
+  layout_handle_ = host.bus().watch_layout([this] { on_layout(); });
   publisher_ = start_named_thread("ros1-send", [this] { publish_loop(); });
   spinner_ = start_named_thread("ros1-spin", [this] { spin_loop(); });
   started_ = true;
@@ -264,19 +292,152 @@ void Ros1Bridge::start(BridgeHost& host) {
             services_->size());
 }
 
-void Ros1Bridge::advertise_all() {
-  for (Output& o : outputs_) {
-    if (!o.type) continue;
-    ros::AdvertiseOptions ao(o.name, kRosPublishQueue, o.type->ros1_md5, o.type->ros1_name, o.type->ros1_definition);
-    ao.latch = o.latched;
-    ao.callback_queue = &callbacks_;
-    o.pub = nh_->advertise(ao);
-  }
-  for (std::size_t i = 0; i < inputs_.size(); ++i) subscribe(i);
+Ros1Bridge::Output Ros1Bridge::make_output(const Topic& t) {
+  Output o;
+  o.name = t.name;
+  o.latched = t.latched;
+  o.type = msg::find_type(t.type);
+  if (!o.type) log::warn("ROS 1: {} has type {}, which has no ROS 1 serialiser: not published", t.name, t.type);
+  return o;
 }
 
-void Ros1Bridge::subscribe(std::size_t i) {
-  Input& in = inputs_[i];
+void Ros1Bridge::add_robot_inputs(const World& world, int r) {
+  const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+  const BridgeHost& host = *host_;
+  const auto add = [&](Input in) {
+    in.robot_name = robot.name;
+    inputs_.emplace(next_input_++, std::move(in));
+  };
+  Input v{host.topic_name(r, "cmd_vel"), r, Input::Kind::velocity, msg::find_type("geometry_msgs/Twist"), {}};
+  Input h{host.topic_name(r, "head/command"), r, Input::Kind::head, msg::find_type("std_msgs/Float64MultiArray"), {}};
+  RS_DEMAND(v.type && h.type, "the serialiser lacks geometry_msgs/Twist or std_msgs/Float64MultiArray");
+  add(std::move(v));
+  add(std::move(h));
+  if (has_commandable_joints(robot.spec)) {
+    Input j{host.topic_name(r, "joint_command"), r, Input::Kind::joints, msg::find_type("sensor_msgs/JointState"), {}};
+    RS_DEMAND(j.type, "the serialiser lacks sensor_msgs/JointState");
+    add(std::move(j));
+  }
+  if (!robot.spec.flipper_joints.empty()) {
+    add(Input{host.topic_name(r, "flippers/command"), r, Input::Kind::flippers, msg::find_type("std_msgs/Float64MultiArray"), {}});
+  }
+}
+
+void Ros1Bridge::advertise(Output& o) {
+  if (!o.type) return;
+  ros::AdvertiseOptions ao(o.name, kRosPublishQueue, o.type->ros1_md5, o.type->ros1_name, o.type->ros1_definition);
+  ao.latch = o.latched;
+  ao.callback_queue = &callbacks_;
+  o.pub = nh_->advertise(ao);
+}
+
+void Ros1Bridge::advertise_all() {
+  for (Output& o : outputs_) advertise(o);
+  for (auto& [key, in] : inputs_) subscribe(key, in);
+}
+
+void Ros1Bridge::on_layout() {
+  try {
+    follow_layout();
+  } catch (const std::exception& e) {
+    log::error("ROS 1: following the robots spawned or deleted: {}", e.what());
+  }
+}
+
+void Ros1Bridge::follow_layout() {
+  const Bus& bus = host_->bus();
+  // publishers for the topics that appeared or came back (a latched one's message, published
+  // before this call, goes out on it at once); none for those retired
+  {
+    std::lock_guard lock(outputs_mutex_);
+    for (const Topic& t : bus.topics()) {
+      const auto id = static_cast<std::size_t>(t.id);
+      if (id >= outputs_.size()) {
+        outputs_.push_back(make_output(t));
+        outputs_.back().retired = true;  // advertised just below
+        wanted_.emplace_back(false);
+      }
+      Output& o = outputs_[id];
+      if (t.retired && !o.retired) {
+        o.pub.shutdown();
+        o.pub = ros::Publisher();
+        o.retired = true;
+        wanted_[id] = false;
+        early_latched_.erase(id);
+      } else if (!t.retired && o.retired) {
+        advertise(o);
+        o.retired = false;
+        wanted_[id] = o.type && o.latched;
+        const auto early = early_latched_.find(id);
+        if (early != early_latched_.end()) {
+          if (o.type) outbox_.push(t.id, host_->time(), early->second, 0);
+          early_latched_.erase(early);
+        }
+      }
+    }
+  }
+  // command subscriptions follow the robots by name: the gone lose theirs, those after them
+  // move down an index, the new get theirs
+  const World& world = host_->world();
+  std::map<std::string, int> index_of;
+  for (int r = 0; r < static_cast<int>(world.robots.size()); ++r) index_of[world.robots[static_cast<std::size_t>(r)].name] = r;
+  std::vector<ros::Subscriber> gone;
+  std::vector<int> added;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    std::set<std::string> served;
+    for (auto it = inputs_.begin(); it != inputs_.end();) {
+      Input& in = it->second;
+      if (in.kind == Input::Kind::host) {
+        ++it;
+        continue;
+      }
+      const auto r = index_of.find(in.robot_name);
+      if (r == index_of.end()) {
+        gone.push_back(std::move(in.sub));
+        it = inputs_.erase(it);
+        continue;
+      }
+      in.robot = r->second;
+      served.insert(in.robot_name);
+      ++it;
+    }
+    const std::uint64_t first_new = next_input_;
+    for (const auto& [name, r] : index_of) {
+      if (served.count(name) == 0) added.push_back(r);
+    }
+    std::sort(added.begin(), added.end());
+    for (const int r : added) add_robot_inputs(world, r);
+    for (auto it = inputs_.lower_bound(first_new); it != inputs_.end(); ++it) subscribe(it->first, it->second);
+  }
+  // outside the lock: roscpp waits for a callback of the subscription under way, which may be
+  // waiting for the lock
+  for (ros::Subscriber& s : gone) s.shutdown();
+  // a spawned robot's description also goes to its parameter, as the scenario's do
+  std::vector<std::string> unset;
+  std::vector<std::pair<std::string, std::string>> set;
+  {
+    std::lock_guard lock(params_mutex_);
+    for (auto it = spawned_params_.begin(); it != spawned_params_.end();) {
+      if (index_of.count(it->first) == 0) {
+        unset.push_back(it->second.first);
+        it = spawned_params_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    for (const int r : added) {
+      const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+      if (robot.spec.description.empty()) continue;
+      set.emplace_back(host_->topic_name(r, "robot_description"), robot.spec.description);
+      spawned_params_[robot.name] = set.back();
+    }
+  }
+  for (const std::string& param : unset) ros::param::del(param);
+  for (const auto& [param, description] : set) ros::param::set(param, description);
+}
+
+void Ros1Bridge::subscribe(std::uint64_t i, Input& in) {
   in.sub.shutdown();
   if (in.kind == Input::Kind::velocity) {
     // cmd_vel takes geometry_msgs/Twist or TwistStamped: MD5 and type "*" let publishers of any
@@ -315,11 +476,21 @@ void Ros1Bridge::set_parameters() {
   if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
   // robot_state_publisher and RViz's RobotModel read a robot's URDF from the parameter server
   // (the same text is on the latched robot_description topic)
+  // (the scenario's robots come first and never move; spawned ones, which may be going while this
+  // runs on the spinner thread, as the layout watcher recorded them)
   const BridgeHost& host = *host_;
-  for (int r = 0; r < static_cast<int>(host.world().robots.size()); ++r) {
-    const std::string& description = host.world().robots[static_cast<std::size_t>(r)].spec.description;
-    if (!description.empty()) ros::param::set(host.topic_name(r, "robot_description"), description);
+  const World& world = host.world();
+  for (int r = 0; r < static_cast<int>(world.robots.size()); ++r) {
+    const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+    if (robot.spawned) continue;
+    if (!robot.spec.description.empty()) ros::param::set(host.topic_name(r, "robot_description"), robot.spec.description);
   }
+  std::vector<std::pair<std::string, std::string>> spawned;
+  {
+    std::lock_guard lock(params_mutex_);
+    for (const auto& [name, param] : spawned_params_) spawned.push_back(param);
+  }
+  for (const auto& [param, description] : spawned) ros::param::set(param, description);
 }
 
 bool Ros1Bridge::register_again() {
@@ -338,13 +509,16 @@ bool Ros1Bridge::register_again() {
     return ros::master::execute(method, args, result, payload, false);
   };
   XmlRpc::XmlRpcValue payload;
-  for (const Output& o : outputs_) {
-    if (o.type && !call("registerPublisher", o.name, o.type->ros1_name, payload)) return false;
+  {
+    std::lock_guard lock(outputs_mutex_);
+    for (const Output& o : outputs_) {
+      if (o.type && !o.retired && !call("registerPublisher", o.name, o.type->ros1_name, payload)) return false;
+    }
   }
   // roscpp's own log topic
   if (!call("registerPublisher", "/rosout", "rosgraph_msgs/Log", payload)) return false;
-  for (std::size_t i = 0; i < inputs_.size(); ++i) {
-    const Input& in = inputs_[i];
+  std::lock_guard lock(inputs_mutex_);
+  for (auto& [key, in] : inputs_) {
     if (!call("registerSubscriber", in.topic, in.type->ros1_name, payload)) return false;
     // publishers that found the new master first are only named in this answer (the master
     // tells subscribers of later ones): subscribing anew connects to them
@@ -352,7 +526,7 @@ bool Ros1Bridge::register_again() {
     for (int i = 0; payload.getType() == XmlRpc::XmlRpcValue::TypeArray && i < payload.size(); ++i) {
       if (std::string(payload[i]) != api) others = true;
     }
-    if (others) subscribe(i);
+    if (others) subscribe(key, in);
   }
   return !services_ || services_->register_again();
 }
@@ -373,7 +547,10 @@ void Ros1Bridge::publish_loop() {
 
 void Ros1Bridge::publish(const OutboxItem& item) {
   const msg::Message& message = *item.message;
-  Output& o = outputs_[static_cast<std::size_t>(item.topic)];
+  // held while publishing: the layout watcher must not shut the publisher down meanwhile
+  std::lock_guard lock(outputs_mutex_);
+  if (static_cast<std::size_t>(item.topic) >= outputs_.size()) return;
+  const Output& o = outputs_[static_cast<std::size_t>(item.topic)];
   if (!o.type) return;
   if (message.index() != o.type->variant_index) {
     if (mismatch_reported_.insert(item.topic).second) {
@@ -418,9 +595,10 @@ void Ros1Bridge::spin_loop() {
 
 void Ros1Bridge::refresh_wanted() {
   // a topic nobody subscribes to costs the simulation thread nothing (not even a copy)
+  std::lock_guard lock(outputs_mutex_);
   for (std::size_t i = 0; i < outputs_.size(); ++i) {
     const Output& o = outputs_[i];
-    if (o.type && !o.latched) wanted_[i].store(o.pub.getNumSubscribers() > 0, std::memory_order_relaxed);
+    if (o.type && !o.latched && !o.retired) wanted_[i].store(o.pub.getNumSubscribers() > 0, std::memory_order_relaxed);
   }
 }
 
@@ -457,9 +635,18 @@ void Ros1Bridge::watch_master() {
   }
   master_pid_ = *pid;
   connected_ = true;
-  const auto topics = std::count_if(outputs_.begin(), outputs_.end(), [](const Output& o) { return o.type != nullptr; });
+  std::ptrdiff_t topics = 0;
+  {
+    std::lock_guard lock(outputs_mutex_);
+    topics = std::count_if(outputs_.begin(), outputs_.end(), [](const Output& o) { return o.type != nullptr && !o.retired; });
+  }
+  std::size_t inputs = 0;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    inputs = inputs_.size();
+  }
   log::warn("ROS 1 master at {} {}: reconnected; registered {} topics and {} command subscriptions again", endpoint_.master_uri,
-            restarted ? "was restarted" : "is back", topics, inputs_.size());
+            restarted ? "was restarted" : "is back", topics, inputs);
 }
 
 void Ros1Bridge::check_input_publishers() {
@@ -476,8 +663,8 @@ void Ros1Bridge::check_input_publishers() {
   if (ros::master::execute("getTopicTypes", args, result, types, false) && types.getType() == XmlRpc::XmlRpcValue::TypeArray) {
     for (int i = 0; i < types.size(); ++i) registered_type[std::string(types[i][0])] = std::string(types[i][1]);
   }
-  for (std::size_t index = 0; index < inputs_.size(); ++index) {
-    Input& in = inputs_[index];
+  std::lock_guard lock(inputs_mutex_);
+  for (auto& [key, in] : inputs_) {
     std::vector<std::string> nodes;
     for (int i = 0; i < publishers.size(); ++i) {
       if (std::string(publishers[i][0]) != in.topic) continue;
@@ -499,7 +686,7 @@ void Ros1Bridge::check_input_publishers() {
       if (connected > 0) in.adopted = true;
       if (connected == 0 && (in.adopted || missing)) {
         const int checks = in.unconnected_checks;
-        subscribe(index);
+        subscribe(key, in);
         in.unconnected_checks = checks;
       }
     }
@@ -523,8 +710,19 @@ void Ros1Bridge::check_input_publishers() {
   }
 }
 
-void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
-  const Input& in = inputs_[input];
+void Ros1Bridge::on_command(std::uint64_t key, const RawMessage& raw) {
+  // what the message is for, as of now (the layout watcher moves and removes inputs)
+  Input in;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    const auto it = inputs_.find(key);
+    if (it == inputs_.end()) return;  // its robot is gone
+    in.topic = it->second.topic;
+    in.robot = it->second.robot;
+    in.kind = it->second.kind;
+    in.type = it->second.type;
+    in.host_input = it->second.host_input;
+  }
   try {
     const msg::Message m = msg::from_ros1(*in.type, raw.bytes);
     switch (in.kind) {
@@ -539,31 +737,45 @@ void Ros1Bridge::on_command(std::size_t input, const RawMessage& raw) {
   }
 }
 
-void Ros1Bridge::on_velocity(std::size_t input, const ros::M_string& connection, const RawMessage& raw) {
-  Input& in = inputs_[input];
-  const auto header = [&](const char* key) {
-    const auto it = connection.find(key);
+void Ros1Bridge::on_velocity(std::uint64_t key, const ros::M_string& connection, const RawMessage& raw) {
+  const auto header = [&](const char* name) {
+    const auto it = connection.find(name);
     return it == connection.end() ? std::string() : it->second;
   };
   // which of the two types this publisher sends, by its connection header
+  const std::string connected_type = header("type");
+  std::string topic;
+  int robot = 0;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    const auto it = inputs_.find(key);
+    if (it == inputs_.end()) return;  // its robot is gone
+    Input& in = it->second;
+    in.connected_type = connected_type;
+    in.adopted = true;
+    topic = in.topic;
+    robot = in.robot;
+  }
   std::string why;
-  in.connected_type = header("type");
-  in.adopted = true;
-  const std::optional<ros1_wire::VelocityType> type = ros1_wire::velocity_type(in.connected_type, header("md5sum"), &why);
-  if (!type) return refuse(in.topic, "type", why);
+  const std::optional<ros1_wire::VelocityType> type = ros1_wire::velocity_type(connected_type, header("md5sum"), &why);
+  if (!type) return refuse(topic, "type", why);
   ros1_wire::VelocityCommand command;
   try {
     command = ros1_wire::decode_velocity(*type, raw.bytes);
   } catch (const std::exception& e) {
-    return gate_->malformed(in.topic, e.what());
+    return gate_->malformed(topic, e.what());
   }
   // a stamp ahead of the simulation (a publisher on wall-clock time, say) is refused; NaN and the
   // drive's limits are the gate's, as for every velocity command
-  if (command.stamped) {
-    gate_->velocity_stamped(in.robot, in.topic, command.stamp, SimTime{sim_now_ns_.load(std::memory_order_relaxed)}, command.twist);
-    return;
+  try {
+    if (command.stamped) {
+      gate_->velocity_stamped(robot, topic, command.stamp, SimTime{sim_now_ns_.load(std::memory_order_relaxed)}, command.twist);
+      return;
+    }
+    gate_->velocity(robot, topic, command.twist);
+  } catch (const std::out_of_range&) {
+    // the robot went between the look-up above and the gate's (a deletion under way): dropped
   }
-  gate_->velocity(in.robot, in.topic, command.twist);
 }
 
 void Ros1Bridge::refuse(const std::string& topic, const char* kind, const std::string& why) {
@@ -582,6 +794,7 @@ void Ros1Bridge::stop() {
   if (!started_) return;
   // the Bus belongs to the simulation thread, which calls stop()
   host_->bus().unsubscribe(bus_handle_);
+  host_->bus().unsubscribe(layout_handle_);
   shut_down();
 }
 
@@ -593,8 +806,16 @@ void Ros1Bridge::shut_down() {
   if (publisher_.joinable()) publisher_.join();
   stopping_ = true;
   if (spinner_.joinable()) spinner_.join();
-  for (Output& o : outputs_) o.pub.shutdown();
-  for (Input& in : inputs_) in.sub.shutdown();
+  {
+    std::lock_guard lock(outputs_mutex_);
+    for (Output& o : outputs_) o.pub.shutdown();
+  }
+  std::vector<ros::Subscriber> subs;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    for (auto& [key, in] : inputs_) subs.push_back(in.sub);
+  }
+  for (ros::Subscriber& s : subs) s.shutdown();
   // calls in progress end with an error ("stopping") rather than wait for a simulation that stops
   if (services_) services_->stop();
   nh_.reset();
