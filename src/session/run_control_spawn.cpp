@@ -276,6 +276,12 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
       o.X_WO.p.z() = std::max(o.X_WO.p.z(), 0.002 - lowest);
       sim.add_body(std::move(o));
     } else {
+      // without a camera service (no cameras in the run, or --no-cameras) its cameras are off too
+      if (!session_.renders_cameras()) {
+        for (SensorSpec& sensor : what.robot->sensors) {
+          if (sensor.is_camera()) sensor.enabled = false;
+        }
+      }
       RobotInstance r = place_robot(name, std::move(*what.robot), X_W);
       r.spawned = true;
       r.ns = *ns;

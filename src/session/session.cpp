@@ -51,7 +51,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   so.physics.groups = scenario_.physics_groups;
   sim_ = std::make_unique<Simulation>(std::move(world), so);
   if (any_camera) {
-    CameraServiceOptions co;
+    CameraServiceOptions& co = camera_options_;
     co.quality = scenario_.render_quality == "high" ? Quality::high : scenario_.render_quality == "medium" ? Quality::medium : Quality::low;
     co.latency = scenario_.render_latency;
     try {
@@ -61,6 +61,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
                   std::string(e.what()) + "\n(the cameras need OpenGL 4.5 through EGL; run without them with --no-cameras)");
     }
     sim_->set_camera_service(cameras_.get());
+    sim_->set_world_changed([this] { rebuild_cameras(); });
   }
   // victim detection, picked once: in the thermal images when cameras render and a robot has
   // a thermal camera, else by line of sight (the Simulation's default)
@@ -216,6 +217,21 @@ bool Session::world_has_no_thermal() const {
     if (cameras_->detects_victims(static_cast<int>(r))) return false;
   }
   return true;
+}
+
+void Session::rebuild_cameras() {
+  // robots spawned or deleted: the renderer draws the world it was made with, so it is made
+  // again (its frames in flight were published already, its last frames start afresh)
+  const bool thermal = sim_->victim_detector().name() == "thermal images";
+  sim_->set_camera_service(nullptr);
+  cameras_.reset();
+  cameras_ = std::make_unique<RenderCameraService>(sim_->world(), camera_options_);
+  sim_->set_camera_service(cameras_.get());
+  if (thermal) {
+    std::vector<bool> rendered(sim_->world().robots.size());
+    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(static_cast<int>(r));
+    sim_->set_victim_detector(std::make_unique<ThermalImageDetector>(rendered));
+  }
 }
 
 std::string Session::render_device() const { return cameras_ ? cameras_->device() : std::string(); }

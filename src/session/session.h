@@ -13,13 +13,12 @@
 
 #include "autonomy/explorer.h"
 #include "mission/mission.h"
+#include "sensors/camera/render_camera_service.h"
 #include "session/run_control.h"
 #include "sim/simulation.h"
 #include "world/scenario/scenario.h"
 
 namespace rescuesim {
-
-class RenderCameraService;  // sensors/camera/render_camera_service.h (rs_sensors_camera)
 
 /// How a victim fared.
 struct VictimResult {
@@ -102,6 +101,8 @@ class Session {
   const WorldSpec& world_spec() const { return spec_; }
   /// The GL device rendering the cameras, or "" when there are none.
   std::string render_device() const;
+  /// True when camera sensors render (a camera service runs): a robot spawned with cameras gets images.
+  bool renders_cameras() const { return cameras_ != nullptr; }
   /// Warnings from importing the world.
   const Diagnostics& diagnostics() const { return diagnostics_; }
 
@@ -169,6 +170,9 @@ class Session {
   /// picture of a built-in report), or nothing when its thermal camera does not render.
   std::optional<msg::Image> victim_picture(int robot) const;
   bool world_has_no_thermal() const;
+  /// The camera service, built afresh for the world now (robots spawned or deleted), and the
+  /// victim detector that reads its thermal images.
+  void rebuild_cameras();
 
   Scenario scenario_;
   WorldSpec spec_;
@@ -176,6 +180,7 @@ class Session {
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<Controllers> controllers_;
   std::unique_ptr<Mission> mission_;             ///< after sim_ (it refers to it), before the controllers use it
+  CameraServiceOptions camera_options_;
   std::unique_ptr<RenderCameraService> cameras_;  ///< attached to sim_ (not owned there); detached in ~Session
   std::unique_ptr<RunControl> control_;           ///< attached to sim_ (not owned there); detached in ~Session
   SessionOptions options_;

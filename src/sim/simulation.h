@@ -125,6 +125,11 @@ class Simulation : public BridgeHost {
   /// the service must not be used by two simulations. Session owns its RenderCameraService
   /// and detaches it in its destructor.
   void set_camera_service(CameraService* service) { cameras_ = service; }
+  /// Called when the world changes while running (add_robot, remove_robot, ...), after the
+  /// camera frames in flight were published and the new world made current, before the new
+  /// robots' sensors are set up: the owner of the camera service builds it afresh for world()
+  /// here (a camera service draws the world it was made with).
+  void set_world_changed(std::function<void()> callback) { world_changed_ = std::move(callback); }
   /// The control surface bridges offer (bus/sim_control.h); not owned. Session sets its
   /// RunControl here; without one, control() is null and bridges offer no services.
   void set_control(control::SimControl* control) { control_ = control; }
@@ -137,12 +142,12 @@ class Simulation : public BridgeHost {
   void flush_cameras();
 
   // ---- robots and loose bodies added and removed while running (SpawnEntity, DeleteEntity) ----
-  // On the stepping thread, between steps. Each change rebuilds the physics engine and the ray
-  // scene from the new world and restores the State into them (Physics::restore: the canonical
-  // form a snapshot also takes), advertises the new robot's topics (a spawned robot's are under
-  // its namespace: RobotInstance::ns), retires a removed robot's, and tells the Bus's layout
-  // watchers (the bridges). Cameras of a spawned robot are off, and the render thread keeps
-  // the scene it was built with (docs/ros.md, "Spawning"); a spawned robot has no /lights input.
+  // On the stepping thread, between steps. Each change publishes the camera frames in flight,
+  // rebuilds the physics engine and the ray scene from the new world and restores the State
+  // into them (Physics::restore: the canonical form a snapshot also takes), lets the camera
+  // service's owner build it afresh (set_world_changed), advertises the new robot's topics (a
+  // spawned robot's are under its namespace: RobotInstance::ns), retires a removed robot's, and
+  // tells the Bus's layout watchers (the bridges). A spawned robot has no /lights input.
 
   /// Adds a robot, placed (world/world.h: place_robot) and with `spawned` and `ns` set, its
   /// name unused; it starts at rest at its X_W_start, its sensors due at once. Returns its index.
@@ -217,6 +222,7 @@ class Simulation : public BridgeHost {
   bool rays_current_ = false;          ///< the ray scene shows state_ (a cache: restore clears it)
   std::vector<SensorInstance> sensors_;
   control::SimControl* control_ = nullptr;  ///< not owned (Session's RunControl)
+  std::function<void()> world_changed_;
   CameraService* cameras_ = nullptr;  ///< not owned (set_camera_service says how long it must live)
   std::unique_ptr<VictimDetector> victim_detector_ = std::make_unique<LineOfSightDetector>();
   TopicId clock_topic_ = kNoTopic, tf_topic_ = kNoTopic, tf_static_topic_ = kNoTopic;

@@ -27,10 +27,6 @@ std::vector<int> map_without(std::size_t count, int removed) {
 int Simulation::add_robot(RobotInstance robot) {
   RS_DEMAND(robot.spawned && !robot.ns.empty(), "Simulation::add_robot: a spawned robot with a namespace");
   RS_DEMAND(robot_index(robot.name) < 0, "Simulation::add_robot: the name is in use");
-  // cameras render through the render thread's scene, which is built once: off for now
-  for (auto& s : robot.spec.sensors) {
-    if (s.is_camera()) s.enabled = false;
-  }
   auto next = std::make_unique<World>(world());
   next->robots.push_back(std::move(robot));
   add_robot_materials(*next);
@@ -123,7 +119,10 @@ void Simulation::adopt(const World* next, State next_state, const std::vector<in
     if (r < robot_map.size() && robot_map[r] < 0) bus_.retire(t.id);
   }
   const std::vector<SensorInstance> old_sensors = sensors_;
+  // frames in flight were rendered for the world now: out before it changes
+  flush_cameras();
   switch_world(next, robot_map);
+  if (world_changed_) world_changed_();
   physics_ = std::move(physics);
   rays_ = std::move(rays);
   rays_current_ = false;

@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <map>
 
+#include "raycast/ray_scene.h"
 #include "robots/rescue_robot.h"
 #include "session/run_control.h"
 #include "session/session.h"
@@ -216,6 +219,68 @@ TEST(RunControlSpawn, BadRequestsGetTheirCodesAndSayWhy) {
   EXPECT_EQ(session->sim().world().robots.size(), 1u);
   EXPECT_EQ(session->sim().world().dynamics.size(), session->sim().base_bodies());
   EXPECT_EQ(session->sim().bus().layout_version(), 0u);
+}
+
+
+TEST(RunControlSpawnCameras, ASpawnedRobotsDepthCameraSeesTheWallTheRaysSee) {
+  // one 6 m maze cell, nothing in it but the scenario's robot in the middle
+  const ModelMap models = builtin_models();
+  Scenario s = parse_scenario(
+      "world: {maze: {cols: 1, rows: 1, cell_size: 6.0, victims: 0, rubble: 0, raised_fraction: 0, terrain_fraction: 0}}\n"
+      "robots: [{name: robot, controller: none}]\n",
+      "cell.yaml", models);
+  s.duration = 1e9;
+  SessionOptions o;
+  o.control = true;
+  Session session(s, models, o);
+  if (session.render_device().empty()) GTEST_SKIP() << "no renderer (EGL)";
+  RunControl& c = *session.control();
+  std::map<std::string, std::vector<msg::Image>> images;
+  session.sim().bus().subscribe("", [&](const Topic& t, const msg::Message& m) {
+    if (t.name.ends_with("depth/image_raw")) images[t.name].push_back(std::get<msg::Image>(m));
+  });
+  session.step_until(SimTime::from_seconds(0.5));
+  const std::size_t before = images["/camera/depth/image_raw"].size();
+  EXPECT_GT(before, 0u);
+
+  // a second rescue robot 1 m west of the first, facing west (yaw 180 degrees): the wall ahead
+  const Vec3 p0 = session.sim().state().robots[0].base.X_WB.p;
+  SpawnRequest r;
+  r.name = "p3at";
+  r.uri = "rescue_robot";
+  r.pose = Pose3{Vec3(p0.x() - 1.0, p0.y(), 0), Quat(0, 0, 0, 1)};
+  std::string name;
+  const Result ok = c.spawn(r, name);
+  ASSERT_TRUE(ok.is_ok()) << ok.error_message;
+  session.step_until(SimTime::from_seconds(1.5));
+  const auto& depth = images["/p3at/camera/depth/image_raw"];
+  ASSERT_GE(depth.size(), 5u);  // 10 Hz for a second, less the first frame's latency
+  EXPECT_EQ(depth.back().header.frame_id, "p3at/camera_depth_optical_frame");
+  // the scenario robot's camera went on through the renderer's rebuild: 10 more frames a second
+  EXPECT_GE(images["/camera/depth/image_raw"].size(), before + 9);
+
+  // the centre pixel's depth is the distance along the optical axis to the wall, as a ray from
+  // the camera finds it (the robot stands still: the newest frame shows it where it is now)
+  const World& world = session.sim().world();
+  const RobotSpec& spec = world.robots[1].spec;
+  const SensorSpec& cam = *spec.find_sensor("depth_camera");
+  const Pose3 X_WC = session.sim().state().robots[1].X_WL[static_cast<std::size_t>(spec.link_index(cam.link))] * cam.X_LS;
+  const RayScene& rays = session.sim().ray_scene();
+  std::vector<Ray> ray{{X_WC.p, X_WC.q * Vec3::UnitX(), 20.0f}};
+  std::vector<RayHit> hit(1);
+  rays.cast(ray, hit, 1);
+  ASSERT_TRUE(std::isfinite(hit[0].distance));
+  const msg::Image& img = depth.back();
+  float z = 0;
+  std::memcpy(&z, &img.data[(img.height / 2 * img.width + img.width / 2) * 4], 4);
+  EXPECT_NEAR(z, hit[0].distance, 0.03) << "wall at " << hit[0].distance << " m";
+
+  // deleted: its camera stops, the first robot's goes on
+  ASSERT_TRUE(c.remove("p3at").is_ok());
+  const std::size_t spawned_frames = depth.size(), first_frames = images["/camera/depth/image_raw"].size();
+  session.step_until(SimTime::from_seconds(2.5));
+  EXPECT_EQ(images["/p3at/camera/depth/image_raw"].size(), spawned_frames);
+  EXPECT_GE(images["/camera/depth/image_raw"].size(), first_frames + 9);
 }
 
 }  // namespace
