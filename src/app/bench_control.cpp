@@ -40,6 +40,7 @@
 #include "bridges/ros2/dds_participant.h"
 #include "bridges/ros2/dds_services.h"
 #include "bridges/ros2/ros2_bridge.h"
+#include "raycast/free_spot.h"
 #include "bridges/ros2/ros2_conventions.h"
 #endif
 
@@ -194,7 +195,11 @@ double process_cpu_seconds() {
 /// the action's figures.
 json client_side(int domain, const BenchControlOptions& o, Channel& sim) {
   ros2::DdsParticipant dds(domain, ros2::participant_user_data());
-  if (sim.receive(std::chrono::seconds(300)) != "ready") throw Error("bench control: the simulation process did not start");
+  // "ready <x> <y>": where the floor is clear for a spawned robot
+  double spot_x = 0, spot_y = 0;
+  if (std::sscanf(sim.receive(std::chrono::seconds(300)).c_str(), "ready %lf %lf", &spot_x, &spot_y) != 2) {
+    throw Error("bench control: the simulation process did not start");
+  }
   Caller reset(dds, "/reset_simulation", iface::ResetSimulation::id);
   Caller step(dds, "/step_simulation", iface::StepSimulation::id);
   ros2::ActionClient action(dds, ros2::action_topics("/simulate_steps", "simulation_interfaces/action/SimulateSteps"));
@@ -269,6 +274,30 @@ json client_side(int domain, const BenchControlOptions& o, Channel& sim) {
     }
     same_hash = same_hash && same == 1;
   }
+  // SpawnEntity of a built-in rescue robot, then DeleteEntity, from PAUSED (round 0: warm-up)
+  std::fprintf(stderr, "bench: control: %d SpawnEntity and DeleteEntity round trips ...\n", o.spawns);
+  demand_ok(reset.call<iface::ResetSimulation>({scope::kDefault}), "ResetSimulation");
+  Caller spawn(dds, "/spawn_entity", iface::SpawnEntity::id);
+  Caller remove(dds, "/delete_entity", iface::DeleteEntity::id);
+  std::vector<double> spawns, deletes;
+  for (int k = 0; k <= o.spawns; ++k) {
+    SpawnRequest r;
+    r.name = "bench_robot";
+    r.uri = "rescue_robot";
+    r.pose = Pose3{Vec3(spot_x, spot_y, 0), Quat::Identity()};
+    auto t0 = Clock::now();
+    const auto answer = spawn.call<iface::SpawnEntity>(r);
+    const double spawn_s = since(t0);
+    demand_ok(answer.result, "SpawnEntity");
+    t0 = Clock::now();
+    demand_ok(remove.call<iface::DeleteEntity>({"bench_robot"}), "DeleteEntity");
+    if (k > 0) {
+      spawns.push_back(spawn_s);
+      deletes.push_back(since(t0));
+    }
+  }
+  out["spawn_s"] = spawns;
+  out["delete_s"] = deletes;
   out["action_s"] = by_action;
   out["lockstep_s"] = lockstep;
   out["action_cpu_s"] = action_cpu;
@@ -366,7 +395,9 @@ json measure(const Scenario& def, const ModelMap& models, const BenchControlOpti
   };
 
   // the client's calls, and the lockstep runs it asks for between its goals
-  channel.send("ready");
+  const auto spot = free_spot(run.sim().world(), run.sim().state(), 0.45, {run.sim().world().robots[0].X_W_start.p.head<2>()});
+  if (!spot) throw Error("bench control: no free spot for a robot in the default scenario");
+  channel.send("ready " + std::to_string(spot->x()) + " " + std::to_string(spot->y()));
   json wire;
   double cpu_mark = 0;
   const auto number = [](double v) {
@@ -447,6 +478,57 @@ json measure(const Scenario& def, const ModelMap& models, const BenchControlOpti
     f["target_ms"] = 1.0;
     f["meets_target"] = t.value("calls", 0) > 0 && p50 < 1.0;
     j["step_simulation"] = f;
+  }
+  // SpawnEntity and DeleteEntity beside Simulation::add_robot and remove_robot in-process, and
+  // the same in a run that renders cameras (its renderer is built afresh for each change)
+  {
+    std::fprintf(stderr, "bench: control: %d robots added and removed in-process ...\n", o.spawns);
+    const auto robot = [&] {
+      RobotInstance r = place_robot("bench_robot", models.at("rescue_robot"), Pose3{Vec3(spot->x(), spot->y(), 0), Quat::Identity()});
+      r.spawned = true;
+      r.ns = r.name;
+      return r;
+    };
+    const auto add_remove = [&](Simulation& sim, std::vector<double>& adds, std::vector<double>& removes, int n) {
+      for (int k = 0; k < n; ++k) {
+        auto t0 = Clock::now();
+        const int index = sim.add_robot(robot());
+        adds.push_back(since(t0));
+        t0 = Clock::now();
+        sim.remove_robot(index);
+        removes.push_back(since(t0));
+      }
+    };
+    plain.restore(start);
+    std::vector<double> adds, removes;
+    add_remove(plain.sim(), adds, removes, o.spawns);
+    const json t = spread_ms(seconds_of("spawn_s")), d = spread_ms(seconds_of("delete_s")), b = spread_ms(adds), br = spread_ms(removes);
+    json f = ratio_figure(t.value("p50_ms", 0.0), "ms (round trip, p50)", b.value("p50_ms", 0.0),
+                          "Simulation::add_robot of the same robot in-process, no camera renderer (p50)");
+    f["round_trip"] = t;
+    f["delete_round_trip"] = d;
+    f["add_robot"] = b;
+    f["remove_robot"] = br;
+    // no target in the issue: Gazebo's spawn service takes a few hundred ms for a robot; ours, tens
+    f["target_ms"] = 50.0;
+    f["meets_target"] = t.value("calls", 0) > 0 && t.value("p50_ms", 0.0) < 50.0;
+    f["what"] = "a built-in rescue_robot (laser, sonars, IMU, cameras) spawned at a clear spot of the default world, then deleted; "
+                "the world versions, Bullet and Embree rebuilt each time";
+    // with cameras: the run's renderer (EGL) made again for each change
+    try {
+      SessionOptions co = plain_options;
+      co.cameras = true;
+      Session cams(s, models, co);
+      if (cams.render_device().empty()) throw Error("no renderer");
+      std::vector<double> cadds, cremoves;
+      add_remove(cams.sim(), cadds, cremoves, 5);
+      f["add_robot_with_cameras"] = spread_ms(cadds);
+      f["remove_robot_with_cameras"] = spread_ms(cremoves);
+      f["render_device"] = cams.render_device();
+    } catch (const std::exception& e) {
+      f["add_robot_with_cameras"] = std::string("skipped: ") + e.what();
+    }
+    j["spawn_entity"] = f;
   }
   // SimulateSteps beside the same steps lockstep
   {

@@ -562,7 +562,7 @@ void add_bench_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_flag("--reset-only", o->reset_only, "measure only the reset figure (snapshot restore beside a rebuild)");
   cmd->add_flag("--control-only", o->control_only,
-                "measure only the control figures (ResetSimulation and StepSimulation round trips, the SimulateSteps action, "
+                "measure only the control figures (ResetSimulation, StepSimulation, SpawnEntity and DeleteEntity round trips, the SimulateSteps action, "
                 "over ROS 2 on loopback, each beside the same in-process)");
   cmd->add_option("--control-resets", o->control_options.resets, "timed ResetSimulation calls of the control figures")
       ->capture_default_str()->check(CLI::PositiveNumber);
@@ -572,6 +572,8 @@ void add_bench_command(CLI::App& app, Action& action) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--control-rounds", o->control_options.action_rounds,
                   "SimulateSteps goals and lockstep runs, alternating (the medians count)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--control-spawns", o->control_options.spawns, "timed SpawnEntity and DeleteEntity pairs of the control figures")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--lidar-only", o->lidar_only, "measure only the lidar figures (rays beside bare Embree, the laser sampler, the laser in smoke)");
   cmd->add_flag("--cameras-only", o->cameras_only, "measure only the camera figures (frames/s beside a bare GL loop, and through smoke)");

@@ -1,4 +1,4 @@
-// `rescuesim bench --control-only`, short: 3 resets, 3 single steps and one 200-step goal over
+// `rescuesim bench --control-only`, short: 3 resets, 3 single steps, one 200-step goal and 2 spawns over
 // ROS 2 on loopback. Which figures it reports and how many calls each counts, and that the
 // goal's 200 steps leave the run in the state 200 lockstep steps give; no speed.
 
@@ -14,12 +14,12 @@ using nlohmann::json;
 
 TEST(BenchControl, ReportsEachFigureBesideItsBaseline) {
   const testing::CommandResult r = testing::rescuesim(
-      "bench --control-only --control-resets 3 --control-steps 3 --control-action-steps 200 --control-rounds 1");
+      "bench --control-only --control-resets 3 --control-steps 3 --control-action-steps 200 --control-rounds 1 --control-spawns 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = json::parse(r.out)["control"];
   if (j.contains("skipped")) GTEST_SKIP() << j["skipped"];
   ASSERT_FALSE(j.contains("error")) << j["error"];
-  for (const char* key : {"reset_simulation", "step_simulation", "simulate_steps"}) {
+  for (const char* key : {"reset_simulation", "step_simulation", "simulate_steps", "spawn_entity"}) {
     ASSERT_TRUE(j.contains(key)) << key;
     for (const char* field : {"value", "unit", "baseline", "baseline_is", "ratio", "meets_target"}) {
       EXPECT_TRUE(j[key].contains(field)) << key << "." << field;
@@ -41,6 +41,12 @@ TEST(BenchControl, ReportsEachFigureBesideItsBaseline) {
   EXPECT_EQ(action["target_ratio"], 0.9);
   // 200 steps from PAUSED are 200 lockstep steps, bitwise (issue 37)
   EXPECT_EQ(action["same_state_hash"], true);
+  // 2 spawns and deletes over the wire (after a warm-up pair), 2 in-process
+  const json& spawn = j["spawn_entity"];
+  EXPECT_EQ(spawn["round_trip"]["calls"], 2);
+  EXPECT_EQ(spawn["delete_round_trip"]["calls"], 2);
+  EXPECT_EQ(spawn["add_robot"]["calls"], 2);
+  EXPECT_EQ(spawn["remove_robot"]["calls"], 2);
   EXPECT_GT(j["peak_memory_mb"].get<double>(), 0.0);
   EXPECT_GT(j["client_peak_memory_mb"].get<double>(), 0.0);
 }

@@ -22,7 +22,7 @@
 #include "support/command.h"
 #include "bridges/ros2/dds_loopback.h"
 #include "support/dds_domain.h"
-#include "support/free_spot.h"
+#include "raycast/free_spot.h"
 #include "msgs/serialize.h"
 #include <nlohmann/json.hpp>
 
@@ -410,7 +410,7 @@ TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
   const ModelMap models = builtin_models();
   const Scenario scenario = default_scenario(models);
   const World world = compile_scenario(scenario, build_world(scenario), models);
-  const auto spot = testing::free_spot(world, initial_state(world), 0.45, {world.robots[0].X_W_start.p.head<2>()});
+  const auto spot = free_spot(world, initial_state(world), 0.45, {world.robots[0].X_W_start.p.head<2>()});
   EXPECT_TRUE(spot);
   SpawnRequest spawn;
   spawn.name = "p3at";

@@ -1,7 +1,8 @@
 #pragma once
-// Test support: a place on the floor where a robot fits, found by looking down at the world:
-// every ray cast straight down over a square around the spot, from 3 m, must reach the floor
-// (z = 0) without touching anything else (walls, rubble, victims, raised areas, robots).
+/// A place on the floor where a robot fits, found by looking down at the world: every ray cast
+/// straight down over a square around the spot, from 3 m, must reach the floor (z = 0) without
+/// touching anything else (walls, rubble, victims, raised areas, robots). Where tests and the
+/// bench spawn robots into a world they did not draw.
 
 #include <optional>
 #include <vector>
@@ -10,7 +11,7 @@
 #include "world/state.h"
 #include "world/world.h"
 
-namespace rescuesim::testing {
+namespace rescuesim {
 
 /// The first free spot on a `step` grid over the floor (row by row from its south-west corner)
 /// whose square of half-side `half` is clear, also at least `half` plus 0.3 m from each point
@@ -41,4 +42,4 @@ inline std::optional<Vec2> free_spot(const World& world, const State& state, dou
   return std::nullopt;
 }
 
-}  // namespace rescuesim::testing
+}  // namespace rescuesim
