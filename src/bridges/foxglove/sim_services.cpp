@@ -109,6 +109,17 @@ std::vector<Definition> definitions() {
                object({{"features", object({{"features", array_of(typed("integer"))},
                                             {"spawn_formats", array_of(typed("string"))},
                                             {"custom_info", typed("string")}})}})});
+  d.push_back({"/spawn_entity", "simulation_interfaces/srv/SpawnEntity",
+               object({{"name", typed("string", "unique; names its topics' namespace unless entity_namespace is given")},
+                       {"allow_renaming", typed("boolean")},
+                       {"uri", typed("string", "a built-in robot (rescue_robot, tracked_robot) or body (box, brick, cylinder, "
+                                               "sphere), or a URDF, SDF or YAML robot file (path, file://, package://, model://)")},
+                       {"resource_string", typed("string", "URDF or SDF text, or a robot entry in YAML, when uri is empty")},
+                       {"entity_namespace", typed("string")},
+                       {"initial_pose", object({{"header", header()}, {"pose", pose()}}, "frame_id: empty, world or map, or an entity")}}),
+               object({{"result", result()}, {"entity_name", typed("string")}})});
+  d.push_back({"/delete_entity", "simulation_interfaces/srv/DeleteEntity", object({{"entity", typed("string")}}),
+               object({{"result", result()}})});
   return d;
 }
 
@@ -369,6 +380,34 @@ SimRequest decode(SimService s, const json& j) {
     case SimService::get_simulator_features:
       Object(j, "", {});
       return GetSimulatorFeaturesRequest{};
+    case SimService::spawn_entity: {
+      const Object o(j, "", {"name", "allow_renaming", "uri", "resource_string", "resource", "entity_namespace", "initial_pose"});
+      SpawnEntityRequest r;
+      r.spawn.name = string_field(o, "name", false);
+      r.spawn.allow_renaming = bool_field(o, "allow_renaming").value_or(false);
+      r.spawn.uri = string_field(o, "uri", false);
+      r.spawn.resource_string = string_field(o, "resource_string", false);
+      if (const json* res = o.find("resource")) {
+        const Object ores(*res, "resource", {"uri", "resource_string"});
+        r.spawn.uri = string_field(ores, "uri", false);
+        r.spawn.resource_string = string_field(ores, "resource_string", false);
+      }
+      r.spawn.entity_namespace = string_field(o, "entity_namespace", false);
+      if (const json* ip = o.find("initial_pose")) {
+        const Object op(*ip, "initial_pose", {"header", "pose"});
+        if (const json* h = op.find("header")) {
+          control::EntityState hs;
+          header_value(*h, op.path("header"), hs);
+          r.spawn.frame_id = hs.frame_id;
+        }
+        if (const json* p = op.find("pose")) r.spawn.pose = pose_value(*p, op.path("pose"));
+      }
+      return r;
+    }
+    case SimService::delete_entity: {
+      const Object o(j, "", {"entity"});
+      return DeleteEntityRequest{string_field(o, "entity", true)};
+    }
   }
   throw Error("unknown service");
 }
@@ -449,6 +488,10 @@ std::string encode_sim_response(const SimResponse& r) {
       j["result"] = result_json(r.result);
       j["state"] = entity_state_json(r.entity_state);
       break;
+    case SimService::spawn_entity:
+      j["result"] = result_json(r.result);
+      j["entity_name"] = r.entity_name;
+      break;
     case SimService::get_simulator_features:
       // GetSimulatorFeatures has no Result: only the features
       j["features"] = {{"features", r.features.features}, {"spawn_formats", r.features.spawn_formats}, {"custom_info", r.features.custom_info}};
@@ -490,6 +533,10 @@ void run_sim_request(const SimRequest& request, control::SimControl& c, std::fun
           r.result = c.entity_state(q.entity, r.entity_state);
         } else if constexpr (std::is_same_v<T, SetEntityStateRequest>) {
           r.result = c.set_entity_state(q.entity, q.state, q.set_pose, q.set_twist, q.set_acceleration);
+        } else if constexpr (std::is_same_v<T, SpawnEntityRequest>) {
+          r.result = c.spawn(q.spawn, r.entity_name);
+        } else if constexpr (std::is_same_v<T, DeleteEntityRequest>) {
+          r.result = c.remove(q.entity);
         } else {
           r.features = c.features();
         }

@@ -1,7 +1,7 @@
 #pragma once
 /// The ROS 2 Simulation Interfaces (bus/sim_control.h) as services of the Foxglove WebSocket
-/// protocol, in the `json` encoding, so that Foxglove's Service Call panel resets, pauses and
-/// steps a run: the services advertised (root-level ROS 2 names and types, with JSON Schemas of
+/// protocol, in the `json` encoding, so that Foxglove's Service Call panel resets, pauses,
+/// steps a run and spawns and deletes robots in it: the services advertised (root-level ROS 2 names and types, with JSON Schemas of
 /// their requests and responses), the decoding of a request, what it does on the simulation
 /// thread, and the encoding of the response. Field names are the standard's
 /// (ros-simulation/simulation_interfaces `srv/*.srv`, `msg/*.msg`); the panel sends what its user
@@ -30,8 +30,10 @@ enum class SimService : std::uint8_t {
   get_entity_state,
   set_entity_state,
   get_simulator_features,
+  spawn_entity,
+  delete_entity,
 };
-inline constexpr std::size_t kSimServiceCount = 8;
+inline constexpr std::size_t kSimServiceCount = 10;
 
 /// The advertised services, one per SimService in order, with ids 1..kSimServiceCount: name
 /// "/reset_simulation", type "simulation_interfaces/srv/ResetSimulation", request and response
@@ -68,8 +70,17 @@ struct SetEntityStateRequest {
   bool set_pose = false, set_twist = false, set_acceleration = false;
 };
 struct GetSimulatorFeaturesRequest {};
+/// SpawnEntity: the 1.x fields (uri, resource_string) or 2.x's `resource: {uri, resource_string}`;
+/// initial_pose is a PoseStamped (its header.frame_id: the world, or an entity).
+struct SpawnEntityRequest {
+  control::SpawnRequest spawn;
+};
+struct DeleteEntityRequest {
+  std::string entity;
+};
 using SimRequest = std::variant<ResetRequest, GetSimulationStateRequest, SetSimulationStateRequest, StepRequest,
-                                GetEntitiesRequest, GetEntityStateRequest, SetEntityStateRequest, GetSimulatorFeaturesRequest>;
+                                GetEntitiesRequest, GetEntityStateRequest, SetEntityStateRequest, GetSimulatorFeaturesRequest,
+                                SpawnEntityRequest, DeleteEntityRequest>;
 
 /// Decodes a request of `s` from its JSON payload (an object; an empty payload reads as `{}`).
 /// Throws rescuesim::Error naming the service and the field ("/set_simulation_state:
@@ -86,6 +97,7 @@ struct SimResponse {
   std::vector<std::string> entities;                     ///< get_entities
   control::EntityState entity_state;                     ///< get_entity_state
   control::SimulatorFeatures features;                   ///< get_simulator_features
+  std::string entity_name;                               ///< spawn_entity: the name it got
 };
 
 /// The response's JSON text with the standard's field names (`result: {result, error_message}`,

@@ -148,8 +148,16 @@ class FakeControl final : public control::SimControl {
   control::Result spawnables(const std::vector<std::string>&, std::vector<control::Spawnable>&) const override {
     return unsupported("spawnables");
   }
-  control::Result spawn(const control::SpawnRequest&, std::string&) override { return unsupported("spawn"); }
-  control::Result remove(const std::string&) override { return unsupported("remove"); }
+  /// Spawns nothing: records the request ("spawn <name> <uri> <frame_id> <x>") and names it <name>_1.
+  control::Result spawn(const control::SpawnRequest& r, std::string& name) override {
+    note("spawn " + r.name + " " + r.uri + " " + r.frame_id + " " + std::to_string(static_cast<int>(r.pose.p.x())));
+    name = r.name + "_1";
+    return control::Result::ok();
+  }
+  control::Result remove(const std::string& name) override {
+    note("remove " + name);
+    return control::Result::ok();
+  }
   control::Result available_worlds(const std::vector<std::string>&, std::vector<control::WorldResource>&) const override {
     return unsupported("available_worlds");
   }

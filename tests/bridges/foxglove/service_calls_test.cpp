@@ -84,7 +84,7 @@ TEST_F(FoxgloveServices, PanelCallsPauseStepReadAndTeleportThroughSimControl) {
   EXPECT_NE(std::find(caps.begin(), caps.end(), "services"), caps.end()) << caps;
   const auto& encodings = d["serverInfo"]["supportedEncodings"];
   EXPECT_NE(std::find(encodings.begin(), encodings.end(), "json"), encodings.end());
-  ASSERT_EQ(d["services"].size(), 8u) << d["services"];
+  ASSERT_EQ(d["services"].size(), 10u) << d["services"];
   const std::vector<std::string> names = {"/reset_simulation", "/get_simulation_state", "/set_simulation_state", "/step_simulation",
                                           "/get_entities",     "/get_entity_state",     "/set_entity_state",     "/get_simulator_features"};
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -133,7 +133,7 @@ TEST_F(FoxgloveServices, PanelCallsPauseStepReadAndTeleportThroughSimControl) {
       {"wrongShape", "/set_simulation_state: state: expected an object {\"state\": N} (a SimulationState), got 2"},
       {"unknownField", "/step_simulation: request: unknown field 'stepz' (fields: steps)"},
       {"unknownId", "unknown service id 99 (offered: 1 /reset_simulation, 2 /get_simulation_state, 3 /set_simulation_state, "
-                    "4 /step_simulation, 5 /get_entities, 6 /get_entity_state, 7 /set_entity_state, 8 /get_simulator_features)"},
+                    "4 /step_simulation, 5 /get_entities, 6 /get_entity_state, 7 /set_entity_state, 8 /get_simulator_features, 9 /spawn_entity, 10 /delete_entity)"},
       {"wrongEncoding", "/get_simulation_state: encoding 'cdr' is not supported (its requests are json)"},
       {"truncated", "service call request: encoding length 4294967295 runs past the end (2 bytes left)"},
   };

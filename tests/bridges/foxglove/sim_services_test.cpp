@@ -67,7 +67,9 @@ TEST(FoxgloveSimServices, AdvertisedWithRootLevelRos2NamesTypesAndJsonSchemas) {
       {"/reset_simulation", "ResetSimulation"},   {"/get_simulation_state", "GetSimulationState"},
       {"/set_simulation_state", "SetSimulationState"}, {"/step_simulation", "StepSimulation"},
       {"/get_entities", "GetEntities"},           {"/get_entity_state", "GetEntityState"},
-      {"/set_entity_state", "SetEntityState"},    {"/get_simulator_features", "GetSimulatorFeatures"}};
+      {"/set_entity_state", "SetEntityState"},    {"/get_simulator_features", "GetSimulatorFeatures"},
+      {"/spawn_entity", "SpawnEntity"},           {"/delete_entity", "DeleteEntity"}};
+  ASSERT_EQ(want.size(), kSimServiceCount);
   for (std::size_t i = 0; i < services.size(); ++i) {
     const Service& s = services[i];
     EXPECT_EQ(s.id, i + 1);
@@ -83,7 +85,7 @@ TEST(FoxgloveSimServices, AdvertisedWithRootLevelRos2NamesTypesAndJsonSchemas) {
     }
   }
   EXPECT_FALSE(sim_service_of(0));
-  EXPECT_FALSE(sim_service_of(9));
+  EXPECT_FALSE(sim_service_of(11));
   // the standard's field names, e.g. SetEntityState's request and GetEntityState's response
   const json set = json::parse(services[6].request.schema)["properties"];
   EXPECT_TRUE(set.contains("entity") && set.contains("state") && set.contains("set_pose"));
@@ -267,6 +269,44 @@ TEST(FoxgloveSimServices, CallsRunOnTheControlAndStepsAnswerWhenDone) {
   EXPECT_EQ(replies.size(), 9u);
   EXPECT_EQ(fake.calls, (std::vector<std::string>{"start_steps 3", "set_run_state 2", "start_steps 3", "entity_state robot", "entity_state nobody",
                                                   "run_state", "reset 2", "features", "set_entity_state robot twist"}));
+}
+
+
+TEST(FoxgloveSimServices, SpawnTakesBothWireVersionsAndDeleteNamesItsEntity) {
+  const auto bytes = [](const std::string& text) { return std::vector<std::uint8_t>(text.begin(), text.end()); };
+  // 1.x: uri at the top; a PoseStamped whose frame is an entity
+  const SimRequest one = decode_sim_request(
+      SimService::spawn_entity,
+      bytes(R"({"name": "p3at", "uri": "rescue_robot", "allow_renaming": true, "entity_namespace": "/team/p3at",)"
+            R"( "initial_pose": {"header": {"frame_id": "robot"}, "pose": {"position": {"x": 3.0, "y": 1.0}}}})"));
+  const control::SpawnRequest& a = std::get<SpawnEntityRequest>(one).spawn;
+  EXPECT_EQ(a.name, "p3at");
+  EXPECT_EQ(a.uri, "rescue_robot");
+  EXPECT_TRUE(a.allow_renaming);
+  EXPECT_EQ(a.entity_namespace, "/team/p3at");
+  EXPECT_EQ(a.frame_id, "robot");
+  EXPECT_EQ(a.pose.p, Vec3(3, 1, 0));
+  EXPECT_EQ(a.pose.q.w(), 1.0);  // the orientation left out is the identity
+  // 2.x: a Resource
+  const SimRequest two = decode_sim_request(SimService::spawn_entity, bytes(R"({"name": "b", "resource": {"resource_string": "<robot/>"}})"));
+  EXPECT_EQ(std::get<SpawnEntityRequest>(two).spawn.resource_string, "<robot/>");
+  EXPECT_TRUE(std::get<SpawnEntityRequest>(two).spawn.uri.empty());
+  try {
+    decode_sim_request(SimService::spawn_entity, bytes(R"({"name": "b", "pose": {}})"));
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/spawn_entity: request: unknown field 'pose'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(decode_sim_request(SimService::delete_entity, bytes("{}")), Error);
+
+  testing::FakeControl fake;
+  std::vector<SimResponse> replies;
+  run_sim_request(one, fake, [&](SimResponse r) { replies.push_back(std::move(r)); });
+  run_sim_request(DeleteEntityRequest{"p3at_1"}, fake, [&](SimResponse r) { replies.push_back(std::move(r)); });
+  ASSERT_EQ(replies.size(), 2u);
+  EXPECT_EQ(fake.calls, (std::vector<std::string>{"spawn p3at rescue_robot robot 3", "remove p3at_1"}));
+  EXPECT_EQ(json::parse(encode_sim_response(replies[0])), json::parse(R"({"result": {"result": 1, "error_message": ""}, "entity_name": "p3at_1"})"));
+  EXPECT_EQ(json::parse(encode_sim_response(replies[1])), json::parse(R"({"result": {"result": 1, "error_message": ""}})"));
 }
 
 }  // namespace
