@@ -3,25 +3,14 @@
 // it and prints one JSON object.
 // Usage: node late_topic_client.js ws://127.0.0.1:PORT TOPIC
 "use strict";
-const { FoxgloveClient } = require("@foxglove/ws-protocol");
-const { WebSocket } = require("ws");
+const { startClient } = require("./client_support");
 const { parse } = require("@foxglove/rosmsg");
 const { MessageReader } = require("@foxglove/rosmsg2-serialization");
 
 const [url, topic] = process.argv.slice(2);
 const out = { channelsAtConnect: null, advertisedLater: false, channel: null, message: null, errors: [] };
-const finish = (code) => {
-  process.stdout.write(JSON.stringify(out) + "\n");
-  process.exit(code);
-};
-setTimeout(() => {
-  out.errors.push("timed out");
-  finish(1);
-}, 20000);
-
-const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
+const { client, finish } = startClient(url, out, 20000);
 let reader = null;
-client.on("error", (e) => out.errors.push(String(e && e.message ? e.message : e)));
 let wanted = null;
 client.on("advertise", (channels) => {
   if (out.channelsAtConnect === null) {

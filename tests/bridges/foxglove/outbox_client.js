@@ -5,8 +5,7 @@
 // prints one JSON object.
 // Usage: node outbox_client.js ws://127.0.0.1:PORT LAST_X LAST_MARKER
 "use strict";
-const { FoxgloveClient } = require("@foxglove/ws-protocol");
-const { WebSocket } = require("ws");
+const { startClient } = require("./client_support");
 const { parse } = require("@foxglove/rosmsg");
 const { MessageReader } = require("@foxglove/rosmsg2-serialization");
 
@@ -14,17 +13,7 @@ const [url, lastXArg, lastMarkerArg] = process.argv.slice(2);
 const lastX = Number(lastXArg);
 const lastMarker = Number(lastMarkerArg);
 const out = { bursts: [], images: [], probes: 0, errors: [] };
-const finish = (code) => {
-  process.stdout.write(JSON.stringify(out) + "\n");
-  process.exit(code);
-};
-setTimeout(() => {
-  out.errors.push("timed out");
-  finish(1);
-}, 60000);
-
-const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
-client.on("error", (e) => out.errors.push(String(e && e.message ? e.message : e)));
+const { client, finish } = startClient(url, out, 60000);
 const subs = new Map();  // subscription id -> { topic, reader }
 let subscribed = false;
 client.on("advertise", (channels) => {

@@ -8,8 +8,7 @@
 // Usage: node spawn_channels_client.js ws://127.0.0.1:PORT STATUS NS
 "use strict";
 const fs = require("fs");
-const { FoxgloveClient } = require("@foxglove/ws-protocol");
-const { WebSocket } = require("ws");
+const { startClient } = require("./client_support");
 const { parse } = require("@foxglove/rosmsg");
 const { MessageReader } = require("@foxglove/rosmsg2-serialization");
 
@@ -25,17 +24,7 @@ const writeStatus = () => {
   fs.writeFileSync(statusFile + ".tmp", JSON.stringify(status));
   fs.renameSync(statusFile + ".tmp", statusFile);
 };
-const finish = (code) => {
-  process.stdout.write(JSON.stringify(out) + "\n");
-  process.exit(code);
-};
-setTimeout(() => {
-  out.errors.push("timed out");
-  finish(1);
-}, 60000);
-
-const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
-client.on("error", (e) => out.errors.push(String(e && e.message ? e.message : e)));
+const { client, finish } = startClient(url, out, 60000);
 client.on("status", (s) => out.errors.push("status: " + s.message));
 let scan = null, description = null;  // { id, subscription, reader }
 const subscribeTo = (c) => ({ id: c.id, reader: new MessageReader(parse(c.schema, { ros2: true })), subscription: client.subscribe(c.id) });

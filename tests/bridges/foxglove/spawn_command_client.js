@@ -5,22 +5,11 @@
 // it, then prints one JSON object.
 // Usage: node spawn_command_client.js ws://127.0.0.1:PORT
 "use strict";
-const { FoxgloveClient } = require("@foxglove/ws-protocol");
-const { WebSocket } = require("ws");
+const { startClient } = require("./client_support");
 
 const [url] = process.argv.slice(2);
 const out = { sent: [], refusals: [], errors: [] };
-const finish = (code) => {
-  process.stdout.write(JSON.stringify(out) + "\n");
-  process.exit(code);
-};
-setTimeout(() => {
-  out.errors.push("timed out");
-  finish(1);
-}, 60000);
-
-const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
-client.on("error", (e) => out.errors.push(String(e && e.message ? e.message : e)));
+const { client, finish } = startClient(url, out, 60000);
 const channelOf = {};  // topic -> server channel id
 let cmd = null;
 const send = (x) => {
