@@ -68,6 +68,11 @@ SessionSnapshot Session::snapshot() {
 
 void Session::restore(const SessionSnapshot& snapshot) {
   const SessionExtras& x = *snapshot.extras;
+  // a snapshot from before anything was spawned: what was spawned goes first, so that the
+  // renderer is made again for the snapshot's world before its frames in flight come back
+  if (snapshot.state.robots.size() == sim_->base_robots() && snapshot.state.dynamics.size() == sim_->base_bodies()) {
+    sim_->remove_spawned();
+  }
   // frames in flight first: none of them may be delivered into the restored state
   if (cameras_) cameras_->restore(x.cameras);
   sim_->restore(snapshot.state);

@@ -242,6 +242,7 @@ TEST(RunControlSpawnCameras, ASpawnedRobotsDepthCameraSeesTheWallTheRaysSee) {
   session.step_until(SimTime::from_seconds(0.5));
   const std::size_t before = images["/camera/depth/image_raw"].size();
   EXPECT_GT(before, 0u);
+  const SessionSnapshot at_half = session.snapshot();  // a frame of the first robot is in flight
 
   // a second rescue robot 1 m west of the first, facing west (yaw 180 degrees): the wall ahead
   const Vec3 p0 = session.sim().state().robots[0].base.X_WB.p;
@@ -281,6 +282,26 @@ TEST(RunControlSpawnCameras, ASpawnedRobotsDepthCameraSeesTheWallTheRaysSee) {
   session.step_until(SimTime::from_seconds(2.5));
   EXPECT_EQ(images["/p3at/camera/depth/image_raw"].size(), spawned_frames);
   EXPECT_GE(images["/camera/depth/image_raw"].size(), first_frames + 9);
+
+  // spawned again, then the snapshot from before the first spawn restored: the renderer is the
+  // snapshot's world's again and the frame that was in flight then is delivered, so the first
+  // robot's frames from 0.5 to 1.5 s carry the stamps they carried the first time
+  ASSERT_TRUE(c.spawn(r, name).is_ok());
+  session.step_until(SimTime::from_seconds(2.7));
+  const auto stamps = [&](std::size_t from) {
+    std::vector<std::int64_t> out;
+    const auto& all = images["/camera/depth/image_raw"];
+    for (std::size_t i = from; i < all.size(); ++i) {
+      if (all[i].header.stamp.ns <= SimTime::from_seconds(1.5).ns) out.push_back(all[i].header.stamp.ns);
+    }
+    return out;
+  };
+  const std::vector<std::int64_t> first_pass = stamps(before);
+  session.restore(at_half);
+  EXPECT_EQ(session.sim().world().robots.size(), 1u);
+  const std::size_t restored_from = images["/camera/depth/image_raw"].size();
+  session.step_until(SimTime::from_seconds(1.6));  // the frame of 1.5 s is delivered one period later
+  EXPECT_EQ(stamps(restored_from), first_pass);
 }
 
 }  // namespace
