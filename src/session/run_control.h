@@ -102,6 +102,8 @@ class RunControl final : public control::SimControl {
     std::string name;
   };
   const Entity* find(const std::string& name) const;
+  /// Why a pose is no pose (not finite, not a unit quaternion), or "": INVALID_POSE's message.
+  static std::string pose_problem(const Pose3& X);
   /// entities_ from the world now (after a spawn, a delete, a reset).
   void rebuild_entities();
   void run_tasks();

@@ -16,18 +16,6 @@ using namespace control;
 
 namespace {
 
-/// The pose problem that makes it no pose, or "" (INVALID_POSE's message).
-std::string pose_problem(const Pose3& X) {
-  if (!X.p.allFinite()) return "the position is not finite";
-  const Eigen::Vector4d q(X.q.x(), X.q.y(), X.q.z(), X.q.w());
-  if (!q.allFinite()) return "the orientation is not finite";
-  // ROS tools write quaternions with a few digits; 1e-3 accepts those and refuses real mistakes
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
-    return "the orientation quaternion is not a unit quaternion (norm " + std::to_string(q.norm()) + ")";
-  }
-  return "";
-}
-
 /// Every corner of a shape's bounding box, or its vertices, in the frame `X` puts it in.
 void add_points(const Geometry& g, const Pose3& X, Vec3& lo, Vec3& hi) {
   const auto take = [&](const Vec3& p) {
@@ -44,6 +32,17 @@ void add_points(const Geometry& g, const Pose3& X, Vec3& lo, Vec3& hi) {
 }
 
 }  // namespace
+
+std::string RunControl::pose_problem(const Pose3& X) {
+  if (!X.p.allFinite()) return "the position is not finite";
+  const Eigen::Vector4d q(X.q.x(), X.q.y(), X.q.z(), X.q.w());
+  if (!q.allFinite()) return "the orientation is not finite";
+  // ROS tools write quaternions with a few digits; 1e-3 accepts those and refuses real mistakes
+  if (std::abs(q.norm() - 1.0) > 1e-3) {
+    return "the orientation quaternion is not a unit quaternion (norm " + std::to_string(q.norm()) + ")";
+  }
+  return "";
+}
 
 const RunControl::Entity* RunControl::find(const std::string& name) const {
   for (const Entity& e : entities_) {

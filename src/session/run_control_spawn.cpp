@@ -38,25 +38,6 @@ std::vector<BuiltinBody> builtin_bodies() {
           {"sphere", "a loose ball, 0.1 m radius, 0.5 kg", Geometry::sphere(0.1), 0.5}};
 }
 
-/// Principal moments of inertia of a solid shape of `mass` about its centre.
-Vec3 solid_inertia(const Geometry& g, double mass) {
-  const Vec3& s = g.size;
-  switch (g.type) {
-    case Geometry::Type::sphere: {
-      const double r = s.x() / 2;
-      return Vec3::Constant(0.4 * mass * r * r);
-    }
-    case Geometry::Type::cylinder: {
-      const double r = s.x() / 2, h = s.z();
-      const double side = mass * (3 * r * r + h * h) / 12;
-      return Vec3(side, side, 0.5 * mass * r * r);
-    }
-    default:
-      return Vec3(mass * (s.y() * s.y() + s.z() * s.z()) / 12, mass * (s.x() * s.x() + s.z() * s.z()) / 12,
-                  mass * (s.x() * s.x() + s.y() * s.y()) / 12);
-  }
-}
-
 /// A ROS name token: a letter, then letters, digits and underscores (what names topics).
 bool is_token(const std::string& s) {
   if (s.empty() || !std::isalpha(static_cast<unsigned char>(s[0]))) return false;
@@ -182,10 +163,7 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
   }
   // the pose, in the world or relative to an entity
   Pose3 X_W = request.pose;
-  if (!X_W.p.allFinite() || !Eigen::Vector4d(X_W.q.x(), X_W.q.y(), X_W.q.z(), X_W.q.w()).allFinite() ||
-      std::abs(X_W.q.norm() - 1.0) > 1e-3) {
-    return Result::fail(code::kSpawnInvalidPose, "the initial pose is not finite, or its orientation is not a unit quaternion");
-  }
+  if (const std::string why = pose_problem(X_W); !why.empty()) return Result::fail(code::kSpawnInvalidPose, "initial_pose: " + why);
   X_W.q.normalize();
   if (!request.frame_id.empty() && request.frame_id != "world" && request.frame_id != "map") {
     EntityState parent;

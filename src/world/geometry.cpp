@@ -56,6 +56,22 @@ Geometry Geometry::triangles(TriangleMesh mesh) {
   return g;
 }
 
+Vec3 solid_inertia(const Geometry& g, double mass) {
+  const double x = g.size.x(), y = g.size.y(), z = g.size.z();
+  switch (g.type) {
+    case Geometry::Type::cylinder: {
+      const double rad = 0.5 * x;
+      return Vec3(mass * (3 * rad * rad + z * z) / 12, mass * (3 * rad * rad + z * z) / 12, mass * rad * rad / 2);
+    }
+    case Geometry::Type::sphere: {
+      const double rad = 0.5 * x;
+      return Vec3::Constant(0.4 * mass * rad * rad);
+    }
+    default:
+      return mass / 12.0 * Vec3(y * y + z * z, x * x + z * z, x * x + y * y);
+  }
+}
+
 TriangleMesh mesh_of(const Geometry& g, int segments) {
   TriangleMesh m;
   switch (g.type) {

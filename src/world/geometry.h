@@ -47,6 +47,11 @@ struct Geometry {
 /// The triangles of any geometry; round shapes use `segments` around.
 TriangleMesh mesh_of(const Geometry& g, int segments = 24);
 
+/// Principal moments of inertia (kg m^2) of a solid, uniform body of `mass` in the shape of `g`
+/// about its centre: box, cylinder (about its z axis), sphere; a convex or mesh shape as its
+/// bounding box.
+Vec3 solid_inertia(const Geometry& g, double mass);
+
 /// A planar polygon (counter-clockwise) extruded from z0 to z1, closed with caps.
 TriangleMesh extrude(const std::vector<Vec2>& polygon, double z0, double z1);
 

@@ -103,15 +103,15 @@ void add_robot_materials(World& world) {
 
 namespace {
 
-/// The lowest point of a robot's collision shapes in its base frame, at its initial joint
-/// positions (0 when every point is above the base frame's origin).
-double lowest_point(const RobotSpec& spec) {
+/// The lowest z of a robot's collision shapes with its base frame at `X_W`, at its initial
+/// joint positions; +infinity when it has no collision shape.
+double lowest_point(const RobotSpec& spec, const Pose3& X_W) {
   const auto X_BL = link_poses(spec, initial_positions(spec));
-  double lowest = 0;
+  double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t l = 0; l < spec.links.size(); ++l) {
     for (const auto& shape : spec.links[l].shapes) {
       if (!shape.collides) continue;
-      for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_BL[l] * (shape.X_LG * v)).z());
+      for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_W * (X_BL[l] * (shape.X_LG * v))).z());
     }
   }
   return lowest;
@@ -125,14 +125,7 @@ RobotInstance place_robot(std::string name, RobotSpec spec, const Pose3& X_W) {
   r.X_W_start = X_W;
   // the lowest point at this pose, in the world: raise the robot when it is below the floor
   const double floor_gap = 0.002;
-  const auto X_BL = link_poses(spec, initial_positions(spec));
-  double lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t l = 0; l < spec.links.size(); ++l) {
-    for (const auto& shape : spec.links[l].shapes) {
-      if (!shape.collides) continue;
-      for (const auto& v : mesh_of(shape.geometry, 16).vertices) lowest = std::min(lowest, (X_W * (X_BL[l] * (shape.X_LG * v))).z());
-    }
-  }
+  const double lowest = lowest_point(spec, X_W);
   if (std::isfinite(lowest) && lowest < floor_gap) r.X_W_start.p.z() += floor_gap - lowest;
   r.spec = std::move(spec);
   return r;
@@ -206,21 +199,14 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     DynamicObject d;
     d.name = "rubble_" + std::to_string(i);
     d.mass = r.mass;
-    const double x = r.size.x(), y = r.size.y(), z = r.size.z();
-    if (r.shape == RubbleSpec::Shape::box) {
-      d.geometry = Geometry::box(r.size);
-      d.inertia = r.mass / 12.0 * Vec3(y * y + z * z, x * x + z * z, x * x + y * y);
-    } else {
-      const double rad = 0.5 * x;
-      d.geometry = Geometry::cylinder(rad, z);
-      d.inertia = Vec3(r.mass * (3 * rad * rad + z * z) / 12, r.mass * (3 * rad * rad + z * z) / 12, r.mass * rad * rad / 2);
-    }
+    d.geometry = r.shape == RubbleSpec::Shape::box ? Geometry::box(r.size) : Geometry::cylinder(0.5 * r.size.x(), r.size.z());
+    d.inertia = solid_inertia(d.geometry, r.mass);
     // resting on the ground: the floor, or the top of a platform under its centre
     double ground = 0;
     for (const auto& ra : spec.raised_areas) {
       if (contains(ra.outline, r.pose.position())) ground = std::max(ground, ra.height);
     }
-    d.X_WO = pose_at(r.pose.position(), ground + z / 2, r.pose.yaw);
+    d.X_WO = pose_at(r.pose.position(), ground + r.size.z() / 2, r.pose.yaw);
     d.material = w.material_index(r.material);
     w.dynamics.push_back(std::move(d));
   }
@@ -297,7 +283,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     r.name = placement.name;
     r.spec = it->second;
     // stand the robot on the floor: its lowest point at the start pose touches z = 0
-    r.X_W_start = Pose3::from_pose2(placement.start, placement.height - lowest_point(r.spec) + 0.002);
+    r.X_W_start = Pose3::from_pose2(placement.start, placement.height - std::min(0.0, lowest_point(r.spec, Pose3{})) + 0.002);
     w.robots.push_back(std::move(r));
   }
   add_robot_materials(w);
