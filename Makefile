@@ -6,7 +6,7 @@ JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 RUN_ARGS ?=
 
-.PHONY: all deps configure build cli run test test-asan fuzz-smoke check-includes bench clean install deb wheel
+.PHONY: all deps configure build cli run test test-asan test-tsan fuzz-smoke lint check-includes bench clean install deb wheel
 
 all: build
 
@@ -50,13 +50,13 @@ run: cli
 # the bridge tests drive reference npm clients (tests/js), installed into $(BUILD)/js
 test: build
 	scripts/install-test-js.sh $(BUILD)/js
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	RESCUESIM_REQUIRE_GL=1 ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 # the unit suites under AddressSanitizer + UBSan (Debug, in build-asan); ROS, Python, the
 # benchmarks and the GL-bound render suite are left out. LSan's suppressions name third-party
 # libraries only (scripts/lsan.supp).
 ASAN_BUILD ?= build-asan
-ASAN_SUITES ?= core world msgs viz physics raycast robots sensors sim autonomy
+ASAN_SUITES ?= core world import msgs viz physics raycast robots sensors sim autonomy
 ASAN_JOBS ?= $(JOBS)
 # Mesa's DRI driver is dlopen'ed by EGL for the camera tests and dlclose'd at eglTerminate; what
 # it keeps in its own globals then looks leaked ("<unknown module>" frames, which no suppression
@@ -73,15 +73,44 @@ test-asan: deps
 	LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp:print_suppressions=0 \
 	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(ASAN_JOBS) -L '^($(subst $() $(),|,$(ASAN_SUITES)))$$'
 
+# the suites that run threads under ThreadSanitizer (RelWithDebInfo, build-tsan): the worker
+# pool (core), the bus, the bridges' shared parts, the camera renderer (EGL on llvmpipe), the
+# simulation, and the session (the camera render thread, RunControl's posted tasks). Under TSan
+# the pool runs on std::threads and Embree builds on the calling thread (docs/building.md), and
+# llvmpipe rasterises on the calling thread (LP_NUM_THREADS=0), so every hand-over TSan checks
+# is ours; its suppressions name third-party frames only (scripts/tsan.supp). A GL test without
+# a context fails here instead of skipping (RESCUESIM_REQUIRE_GL=1).
+TSAN_BUILD ?= build-tsan
+TSAN_SUITES ?= core bus bridges_common sensors_camera sim session
+TSAN_JOBS ?= $(JOBS)
+test-tsan: deps
+	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESCUESIM_TSAN=ON -DRESCUESIM_PCH=OFF \
+	  -DRESCUESIM_ROS1=OFF -DRESCUESIM_ROS2=OFF -DRESCUESIM_PYTHON=OFF -DRESCUESIM_BENCH=OFF \
+	  -DPython_EXECUTABLE=/usr/bin/python3 $(CMAKE_FLAGS)
+	cmake --build $(TSAN_BUILD) -j $(TSAN_JOBS) --target $(addsuffix _tests,$(TSAN_SUITES))
+	LP_NUM_THREADS=0 RESCUESIM_REQUIRE_GL=1 \
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp \
+	  ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^($(subst $() $(),|,$(TSAN_SUITES)))$$'
+
 # every fuzz target for 20 s (clang + libFuzzer, in build-fuzz); FUZZ_SECONDS to change
 FUZZ_SECONDS ?= 20
 fuzz-smoke: deps
 	scripts/fuzz.sh --smoke $(FUZZ_SECONDS)
 
+# the formatter and linter (.clang-format, .clang-tidy) on the lines a change touches, and no
+# line over 140 columns anywhere (scripts/lint.sh says what "a change" is; LINT_BASE=<commit>
+# sets where it starts). clang-tidy reads $(BUILD)/compile_commands.json, hence the configure.
+LINT_BASE ?=
+lint: deps $(BUILD)/CMakeCache.txt
+	LINT_BASE=$(LINT_BASE) BUILD=$(BUILD) LINT_JOBS=$(JOBS) scripts/lint.sh
+
 # the include direction of docs/architecture.md section 3 (also a ctest test, label checks)
 check-includes:
 	scripts/check-includes.sh
 
+# every benchmark figure into $(BUILD)/bench.json. The benchmarks are their own program,
+# rescuesim-bench (src/bench), which `rescuesim bench` runs; `build` builds it with what the
+# report also times (the Python API, the batch runner), while `cli` (make run) leaves it out
 bench: build
 	$(BUILD)/bin/rescuesim bench --out $(BUILD)/bench.json
 

@@ -10,9 +10,9 @@
 
 #include "core/parallel.h"
 #include "core/rng.h"
+#include "import/maze/maze.h"
 #include "raycast/ray_scene.h"
 #include "sensors/lidar.h"
-#include "world/maze/maze.h"
 #include "world/world.h"
 
 namespace rescuesim {

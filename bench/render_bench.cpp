@@ -8,9 +8,9 @@
 
 #include <memory>
 
+#include "import/maze/maze.h"
 #include "render/bench/render_bench.h"
 #include "render/renderer.h"
-#include "world/maze/maze.h"
 
 namespace rescuesim {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "world/maze/maze.h"
-#include "world/svg/svg_world.h"
+#include "import/maze/maze.h"
+#include "import/svg/svg_world.h"
 
 namespace rescuesim {
 namespace {

@@ -1,5 +1,6 @@
 # What `cmake --install` (make install) puts where (docs/install.md):
 #   bin/rescuesim                          the CLI
+#   bin/rescuesim-bench                    the benchmarks (`rescuesim bench` runs it)
 #   lib/rescuesim/                         the demonstrations' programs (slam_node, route_node, ...:
 #                                          generic names, kept out of bin/ as ROS keeps a package's nodes)
 #   share/rescuesim/{worlds,examples}      the shipped worlds (with their robots, meshes and licences)
@@ -9,9 +10,14 @@
 set(RESCUESIM_INSTALL_DATA_DIR ${CMAKE_INSTALL_DATADIR}/rescuesim)
 
 install(TARGETS rescuesim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
-# the CLI looks for its data relative to itself first, then in the source tree when it runs from
-# this build folder, then at the prefix it was configured for
-target_compile_definitions(rescuesim PRIVATE
+# the benchmarks' program beside the CLI, which runs it for `rescuesim bench` (src/bench)
+if(TARGET rescuesim-bench)
+  install(TARGETS rescuesim-bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+endif()
+# the CLI (and rescuesim-bench) look for their data relative to themselves first, then in the
+# source tree when they run from this build folder, then at the prefix it was configured for
+# (app/data_dir.cpp, in rs_app_support)
+target_compile_definitions(rs_app_support PRIVATE
   RESCUESIM_SOURCE_DATA_DIR="${RESCUESIM_SOURCE_DIR}"
   RESCUESIM_BUILD_DIR="${CMAKE_BINARY_DIR}"
   RESCUESIM_INSTALL_DATA_DIR="${CMAKE_INSTALL_FULL_DATADIR}/rescuesim")

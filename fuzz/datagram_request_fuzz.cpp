@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "mission/datagram_json.h"
+#include "team/team_datagrams.h"
 
 namespace {
 

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/error.h"
+#include "import/scenario/scenario.h"
 #include "robots/rescue_robot.h"
-#include "world/scenario/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace rescuesim;

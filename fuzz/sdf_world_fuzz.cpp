@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <string>
 
-#include "world/sdf/sdf_import.h"
+#include "import/sdf/sdf_import.h"
 
 namespace {
 

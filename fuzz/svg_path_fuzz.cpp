@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "world/svg/svg_parse.h"
+#include "import/svg/svg_parse.h"
 
 namespace {
 

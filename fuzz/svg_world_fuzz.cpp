@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "import/svg/svg_world.h"
 #include "world/media.h"
-#include "world/svg/svg_world.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace rescuesim;

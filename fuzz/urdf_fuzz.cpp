@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "world/urdf/urdf_import.h"
+#include "import/urdf/urdf_import.h"
 
 namespace {
 

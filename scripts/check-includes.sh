@@ -34,6 +34,7 @@ LIBRARIES = {
     "tinyxml2": [r"tinyxml2\.h$"],
     "urdfdom": [r"urdf_model/", r"urdf_parser/", r"urdf_world/", r"urdf_sensor/", r"console_bridge/"],
     "assimp": [r"assimp/"],
+    "sdformat": [r"sdf/"],
     "pybind11": [r"pybind11/"],
     "libpng": [r"png\.h$", r"libpng\d*/"],
 }

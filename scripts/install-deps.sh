@@ -8,6 +8,8 @@ packages=(
   # toolchain and test tools
   build-essential cmake ninja-build pkg-config git ca-certificates
   libgtest-dev libgmock-dev libbenchmark-dev clang
+  # make lint: the formatter (with git-clang-format) and the linter, version 14 as Debian 12 has
+  clang-format-14 clang-tidy-14
   # core, world authoring, CLI
   libeigen3-dev libtinyxml2-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libspdlog-dev libfmt-dev libpng-dev zlib1g-dev

@@ -47,7 +47,8 @@ void bind_batch(py::module_& m) {
       py::arg("options"), "the batch's identity: trials of different batches never mix in one results file");
   m.def("trial_seed", &trial_seed, py::arg("base_seed"), py::arg("trial"), "run seed of a trial: base_seed + trial");
   m.def(
-      "shard_trials", [](int trials, const std::string& shard) { return shard_trials(trials, shard.empty() ? Shard{} : parse_shard(shard)); },
+      "shard_trials",
+      [](int trials, const std::string& shard) { return shard_trials(trials, shard.empty() ? Shard{} : parse_shard(shard)); },
       py::arg("trials"), py::arg("shard") = "", "the trials of shard 'K/M' (every M-th from K) among `trials`");
   m.def(
       "run_trial",

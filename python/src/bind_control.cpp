@@ -115,7 +115,8 @@ void add_control_methods(py::class_<EnvCore>& cls) {
             r.name = name;
             r.uri = uri;
             r.resource_string = resource_string;
-            r.pose = Pose3{Vec3(position[0], position[1], position[2]), Quat(orientation[3], orientation[0], orientation[1], orientation[2])};
+            r.pose =
+                Pose3{Vec3(position[0], position[1], position[2]), Quat(orientation[3], orientation[0], orientation[1], orientation[2])};
             r.entity_namespace = ns;
             r.allow_renaming = allow_renaming;
             std::string given;

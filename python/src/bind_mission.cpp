@@ -48,13 +48,15 @@ void add_mission_methods(py::class_<EnvCore>& cls) {
          "report",
          [](EnvCore& e, double x, double y, double z, const py::object& image) {
            Mission& m = mission_of(e);
-           const ReportReply r = image.is_none() ? m.report(e.robot_index(), {x, y, z})
-                                                 : m.report(e.robot_index(), {x, y, z},
-                                                            picture_of(image.cast<py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>>()));
+           const ReportReply r =
+               image.is_none() ? m.report(e.robot_index(), {x, y, z})
+                               : m.report(e.robot_index(), {x, y, z},
+                                          picture_of(image.cast<py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>>()));
            py::dict d;
            d["id"] = r.id;
            d["outcome"] = std::string(report_outcome_name(r.outcome));
-           d["victim"] = or_none(r.victim >= 0, r.victim >= 0 ? py::str(m.referee().victims()[static_cast<std::size_t>(r.victim)].name) : py::str());
+           d["victim"] =
+               or_none(r.victim >= 0, r.victim >= 0 ? py::str(m.referee().victims()[static_cast<std::size_t>(r.victim)].name) : py::str());
            d["distance"] = or_none(r.distance_m >= 0, py::float_(r.distance_m));
            d["score_change"] = r.score_change;
            d["score"] = r.score;

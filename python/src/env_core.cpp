@@ -53,7 +53,9 @@ EnvCore::EnvCore(Scenario scenario, ModelMap models, EnvOptions options)
     switch (s.type) {
       case SensorSpec::Type::lidar:
         // planar lasers publish LaserScan; multi-layer ones publish point clouds, not offered here
-        if (s.lidar.layers == 1) fields_.push_back({s.name, "float32", {static_cast<std::size_t>(s.lidar.samples)}, 4, ObsField::Kind::lidar, {si}, {}});
+        if (s.lidar.layers == 1) {
+          fields_.push_back({s.name, "float32", {static_cast<std::size_t>(s.lidar.samples)}, 4, ObsField::Kind::lidar, {si}, {}});
+        }
         break;
       case SensorSpec::Type::sonar:
         sonar.sensors.push_back(si);
@@ -66,7 +68,8 @@ EnvCore::EnvCore(Scenario scenario, ModelMap models, EnvOptions options)
         break;
       case SensorSpec::Type::color_camera:
         if (options_.cameras) {
-          fields_.push_back({s.name, "uint8", {std::size_t(s.camera.height), std::size_t(s.camera.width), 3}, 1, ObsField::Kind::color, {si}, {}});
+          fields_.push_back(
+              {s.name, "uint8", {std::size_t(s.camera.height), std::size_t(s.camera.width), 3}, 1, ObsField::Kind::color, {si}, {}});
         }
         break;
       case SensorSpec::Type::depth_camera:
@@ -78,7 +81,8 @@ EnvCore::EnvCore(Scenario scenario, ModelMap models, EnvOptions options)
         break;
       case SensorSpec::Type::thermal_camera:
         if (options_.cameras) {
-          fields_.push_back({s.name, "uint16", {std::size_t(s.camera.height), std::size_t(s.camera.width)}, 2, ObsField::Kind::thermal, {si}, {}});
+          fields_.push_back(
+              {s.name, "uint16", {std::size_t(s.camera.height), std::size_t(s.camera.width)}, 2, ObsField::Kind::thermal, {si}, {}});
         }
         break;
       default:
@@ -97,7 +101,8 @@ EnvCore::EnvCore(Scenario scenario, ModelMap models, EnvOptions options)
       if (it == fields_.end()) {
         std::string known;
         for (const auto& f : fields_) known += (known.empty() ? "" : ", ") + f.key;
-        throw Error("rescuesim.Env: no observation '" + key + "' (available: " + known + (options_.cameras ? "" : "; cameras are off") + ")");
+        throw Error("rescuesim.Env: no observation '" + key + "' (available: " + known + (options_.cameras ? "" : "; cameras are off") +
+                    ")");
       }
       chosen.push_back(*it);
     }

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/pose.h"
+#include "import/scenario/scenario.h"
 #include "msgs/messages.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim {
 

@@ -78,10 +78,10 @@ void bind_environments(py::module_& m) {
       .def_readwrite("observations", &EnvOptions::observations);
 
   py::class_<EnvCore> env(m, "EnvCore", "One simulation stepped a control period at a time (use rescuesim.Env).");
-  env
-      .def(py::init([](const BatchScenario& s, const EnvOptions& o) { return std::make_unique<EnvCore>(s.scenario, builtin_models(), o); }),
-           py::arg("scenario"), py::arg("options"))
-      .def("fields", [](const EnvCore& e) { return field_list(e.fields()); }, "[(key, dtype, shape)] of the observations")
+  env.def(py::init([](const BatchScenario& s, const EnvOptions& o) { return std::make_unique<EnvCore>(s.scenario, builtin_models(), o); }),
+          py::arg("scenario"), py::arg("options"))
+      .def(
+          "fields", [](const EnvCore& e) { return field_list(e.fields()); }, "[(key, dtype, shape)] of the observations")
       .def(
           "observation_arrays",
           [](py::object self) {
@@ -105,7 +105,8 @@ void bind_environments(py::module_& m) {
           py::arg("linear"), py::arg("angular"), "-> (reward, terminated, truncated)")
       .def("info", [](const EnvCore& e) { return info_dict(e.info()); })
       .def_property_readonly("done", &EnvCore::done)
-      .def_property_readonly("builds", &EnvCore::builds, "how many times the simulation was built (a reset with the same seed restores instead)")
+      .def_property_readonly("builds", &EnvCore::builds,
+                             "how many times the simulation was built (a reset with the same seed restores instead)")
       .def_property_readonly("max_linear", &EnvCore::max_linear)
       .def_property_readonly("max_angular", &EnvCore::max_angular)
       .def(
@@ -173,6 +174,7 @@ PYBIND11_MODULE(_rescuesim, m) {
   python::bind_scenarios(m);
   python::bind_environments(m);
   python::bind_batch(m);
-  m.def("set_ray_threads", &set_worker_threads, py::arg("n"),
-        "limit the worker threads of this process (ray casting, sensors, physics groups; 0 = all cores; 1 when running one trial per core)");
+  m.def(
+      "set_ray_threads", &set_worker_threads, py::arg("n"),
+      "limit the worker threads of this process (ray casting, sensors, physics groups; 0 = all cores; 1 when running one trial per core)");
 }

@@ -12,13 +12,14 @@
 #endif
 #ifdef RESCUESIM_HAS_MCAP
 #include "bridges/mcap/mcap_bridge.h"
-#include "bridges/mcap/run_record.h"
+#include "run_record/run_record.h"
 #endif
 
 namespace rescuesim::app {
 
 void add_bridge_flags(CLI::App* cmd, BridgeFlags& f) {
-  cmd->add_flag("--ros1", f.ros1, "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
+  cmd->add_flag("--ros1", f.ros1,
+                "be a ROS 1 node: register with ROS_MASTER_URI, publish sensors, /tf, /clock; take cmd_vel (docs/ros.md)");
   cmd->add_flag("--ros2", f.ros2, "be a ROS 2 participant on ROS_DOMAIN_ID (Cyclone DDS, ROS 2 wire conventions; docs/ros.md)");
   cmd->add_flag("--use-sim-time", f.use_sim_time, "ROS 1: set the /use_sim_time parameter so nodes follow /clock");
   cmd->add_option("--ros2-distro", f.ros2_distro,
@@ -31,16 +32,19 @@ void add_bridge_flags(CLI::App* cmd, BridgeFlags& f) {
                   "/reset_simulation, as Isaac Sim and O3DE; /gzserver puts them where Gazebo does; docs/ros.md)");
   cmd->add_option("--ros-domain", f.ros_domain, "ROS 2 domain id (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
   cmd->add_option("--foxglove", f.foxglove,
-                  "serve Foxglove/Lichtblick on ws://HOST:PORT (default port 8765; 0 picks a free one, logged at --log-level info; docs/foxglove.md)")
+                  "serve Foxglove/Lichtblick on ws://HOST:PORT (default port 8765; 0 picks a free one, logged at --log-level info; "
+                  "docs/foxglove.md)")
       ->expected(0, 1)
       ->default_str("8765")
       ->check(CLI::Range(0, 65535));
-  cmd->add_option("--foxglove-host", f.foxglove_host, "interface the Foxglove server listens on (default 127.0.0.1; 0.0.0.0 for every one)");
+  cmd->add_option("--foxglove-host", f.foxglove_host,
+                  "interface the Foxglove server listens on (default 127.0.0.1; 0.0.0.0 for every one)");
   cmd->add_option("--record", f.record,
                   "record every topic to this MCAP file (ros2 profile, zstd chunks, indexed: open it in Foxglove or "
                   "'rescuesim replay' it; docs/recording.md)");
   cmd->add_flag("--lockstep", f.lockstep, "with a ROS or Foxglove bridge: step as fast as possible instead of realtime");
-  cmd->add_flag("--keep-controllers", f.keep_controllers, "with a ROS or Foxglove bridge: keep the scenario's built-in controllers driving");
+  cmd->add_flag("--keep-controllers", f.keep_controllers,
+                "with a ROS or Foxglove bridge: keep the scenario's built-in controllers driving");
 }
 
 std::vector<std::unique_ptr<Bridge>> make_bridges(const BridgeFlags& f, [[maybe_unused]] const RunContext& run) {

@@ -7,8 +7,8 @@
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
+#include "import/svg/svg_world.h"
 #include "viz/world_plot.h"
-#include "world/svg/svg_world.h"
 #include "world/terrain.h"
 
 namespace rescuesim::app {
@@ -37,8 +37,9 @@ int run_arena(const ArenaCommand& c) {
   problems.throw_if_errors();
   const fs::path svg = c.out;
   write_file_atomic(svg, world_to_svg(world));
-  std::printf("%s: %zu %s of %.2f m, %.2f x %.2f m\n", svg.string().c_str(), world.terrain.size(), o.figure_eight ? "figure-8 lanes" : "lanes", o.lane_width,
-              world.floor_max.x() - world.floor_min.x(), world.floor_max.y() - world.floor_min.y());
+  std::printf("%s: %zu %s of %.2f m, %.2f x %.2f m\n", svg.string().c_str(), world.terrain.size(),
+              o.figure_eight ? "figure-8 lanes" : "lanes", o.lane_width, world.floor_max.x() - world.floor_min.x(),
+              world.floor_max.y() - world.floor_min.y());
   for (std::size_t i = 0; i < world.terrain.size(); ++i) {
     const TerrainSpec& t = world.terrain[i];
     std::printf("  lane %zu  %-15s %.2f m long, from y = %s to %s m\n", i, TerrainSpec::kind_name(t.kind), t.length,

@@ -137,10 +137,11 @@ int run_batch(const BatchCommand& c) {
   if (terrain && c.terrain.lane.empty()) throw Error("batch: --trial-terrain needs --lane (an element's name or a kind, e.g. stairs)");
   // a terrain batch's scenario is its arena: the SVG by its absolute path, so child processes and
   // reruns from another folder find it; its text is part of the fingerprint like a scenario's
-  const BatchScenario bs = terrain ? parse_batch_scenario("name: " + fs::path(c.terrain_world).stem().string() + "\nseed: 1\nworld:\n  svg: \"" +
-                                                              fs::absolute(c.terrain_world).lexically_normal().string() + "\"\n",
-                                                          "<built-in>", models)
-                                   : load_batch_scenario(c.scenario, models);
+  const BatchScenario bs =
+      terrain ? parse_batch_scenario("name: " + fs::path(c.terrain_world).stem().string() + "\nseed: 1\nworld:\n  svg: \"" +
+                                         fs::absolute(c.terrain_world).lexically_normal().string() + "\"\n",
+                                     "<built-in>", models)
+              : load_batch_scenario(c.scenario, models);
   TrialOptions to;
   to.duration = c.duration;
   to.controller = c.controller;
@@ -153,16 +154,20 @@ int run_batch(const BatchCommand& c) {
     const WorldSpec world = build_world(bs.scenario);
     validate(world).throw_if_errors();
     const TerrainSpec* lane = find_terrain_lane(world, c.terrain.lane);
-    if (!lane) throw Error({c.terrain_world, 0, "--lane"}, "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
+    if (!lane)
+      throw Error({c.terrain_world, 0, "--lane"},
+                  "no lane '" + c.terrain.lane + "' in " + c.terrain_world + " (expected a terrain element's name or kind)");
     check_terrain_pattern(*lane, to.terrain->pattern);
-    if (!models.count(c.terrain.robot)) throw Error("batch: unknown robot '" + c.terrain.robot + "' (expected tracked_robot or rescue_robot)");
+    if (!models.count(c.terrain.robot))
+      throw Error("batch: unknown robot '" + c.terrain.robot + "' (expected tracked_robot or rescue_robot)");
   }
   const std::string fingerprint = batch_fingerprint(bs.text, to);
   const std::uint64_t base_seed = c.seed ? *c.seed : bs.scenario.seed;
   const Shard shard = c.shard.empty() ? Shard{} : parse_shard(c.shard);
   // a bad time limit is an error of the command, not of every trial
   const double duration = to.duration ? *to.duration : bs.scenario.duration;
-  if (!terrain && (!std::isfinite(duration) || duration <= 0)) throw Error({bs.file, 0, "duration"}, "a batch needs a finite time limit per trial: give --duration");
+  if (!terrain && (!std::isfinite(duration) || duration <= 0))
+    throw Error({bs.file, 0, "duration"}, "a batch needs a finite time limit per trial: give --duration");
   const fs::path out = c.out.empty() ? fs::path("batches") / bs.scenario.name : fs::path(c.out);
   const int jobs = c.jobs > 0 ? c.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
@@ -197,8 +202,9 @@ int run_batch(const BatchCommand& c) {
     std::printf("  terrain trials: lane '%s', %s, %d %s at %.2f m/s\n", c.terrain.lane.c_str(), c.terrain.robot.c_str(), c.terrain.laps,
                 terrain_pattern_reps(to.terrain->pattern), c.terrain.speed);
   }
-  std::printf("  %zu already recorded in %s, %zu to run, %d at a time in %s%s\n", mine.size() - todo.size(), results.path().string().c_str(),
-              todo.size(), jobs, c.threads ? "threads" : "child processes", c.cameras ? ", cameras on" : ", no cameras");
+  std::printf("  %zu already recorded in %s, %zu to run, %d at a time in %s%s\n", mine.size() - todo.size(),
+              results.path().string().c_str(), todo.size(), jobs, c.threads ? "threads" : "child processes",
+              c.cameras ? ", cameras on" : ", no cameras");
   std::fflush(stdout);
 
   g_stop = false;
@@ -210,7 +216,8 @@ int run_batch(const BatchCommand& c) {
   ro.isolation = c.threads ? Isolation::thread : Isolation::process;
   ro.stop = &g_stop;
   if (!c.quiet) ro.progress = [tty](const BatchProgress& p) { print_progress(p, tty); };
-  const BatchRunStats stats = todo.empty() ? BatchRunStats{} : run_batch_trials(bs.scenario, models, todo, base_seed, to, fingerprint, results, ro);
+  const BatchRunStats stats =
+      todo.empty() ? BatchRunStats{} : run_batch_trials(bs.scenario, models, todo, base_seed, to, fingerprint, results, ro);
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (!c.quiet && tty && !todo.empty()) std::fprintf(stderr, "\n");
@@ -228,7 +235,8 @@ int run_batch(const BatchCommand& c) {
   }
   std::printf("wrote %s/{results.jsonl, summary.json, summary.csv, summary.png}\n", out.string().c_str());
   if (stats.interrupted) {
-    std::fprintf(stderr, "batch interrupted: %zu trials not recorded; run the same command again to finish\n", todo.size() - stats.recorded);
+    std::fprintf(stderr, "batch interrupted: %zu trials not recorded; run the same command again to finish\n",
+                 todo.size() - stats.recorded);
     return kExitFailure;
   }
   int failed = 0;
@@ -274,7 +282,9 @@ void add_batch_command(CLI::App& app, Action& action) {
       "\"terrain\" section (repetition rate, falls, stuck) beside the success rate.\n\n"
       "Exit codes: 0 all trials recorded and none failed, 1 some failed or the batch was\n"
       "interrupted, 2 bad input. See docs/batch.md (Slurm arrays, Dask).");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
+  cmd->add_option("scenario", c->scenario,
+                  "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")
+      ->transform(data_file());
   cmd->add_option("--trials,-n", c->trials, "number of trials in the batch (required)")->check(CLI::Range(1, 100000000));
   cmd->add_option("--jobs,-j", c->jobs, "trials at once (default: one per core)")->check(CLI::Range(1, 1024));
   cmd->add_option("--seed", c->seed, "base seed S: trial i uses S+i (default: the scenario's seed)");
@@ -293,13 +303,16 @@ void add_batch_command(CLI::App& app, Action& action) {
                              ->check(CLI::ExistingFile);
   cmd->add_option("--lane", c->terrain.lane, "terrain trials: the element's name (its SVG id), or a kind: the first element of that kind")
       ->needs(terrain);
-  cmd->add_option("--robot", c->terrain.robot, "terrain trials: built-in model, tracked_robot or rescue_robot")->capture_default_str()->needs(terrain);
+  cmd->add_option("--robot", c->terrain.robot, "terrain trials: built-in model, tracked_robot or rescue_robot")
+      ->capture_default_str()
+      ->needs(terrain);
   cmd->add_option("--laps", c->terrain.laps, "terrain trials: laps (crossings back and forth, figure-eights) per trial")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000))
       ->needs(terrain);
   cmd->add_option("--pattern", c->pattern,
-                  "terrain trials: laps (each from the start line), back-and-forth (end to end without a reset) or figure-eight (around two pylons, stepfields and crossing ramps)")
+                  "terrain trials: laps (each from the start line), back-and-forth (end to end without a reset) or figure-eight (around "
+                  "two pylons, stepfields and crossing ramps)")
       ->capture_default_str()
       ->check(CLI::IsMember({"laps", "back-and-forth", "figure-eight"}))
       ->needs(terrain);

@@ -6,12 +6,12 @@
 
 #include "app/commands.h"
 #include "app/data_dir.h"
+#include "import/scenario/scenario.h"
+#include "import/sdf/sdf_import.h"
+#include "import/svg/svg_world.h"
+#include "import/urdf/urdf_import.h"
 #include "robots/rescue_robot.h"
-#include "world/scenario/scenario.h"
 #include "world/robot_lumping.h"
-#include "world/sdf/sdf_import.h"
-#include "world/svg/svg_world.h"
-#include "world/urdf/urdf_import.h"
 
 namespace rescuesim::app {
 
@@ -77,7 +77,8 @@ bool check_urdf(const std::string& file, const CheckOptions& o) {
     }
   }
   for (const auto& s : r.sensors) {
-    std::printf("  sensor %-20s %-13s on %-16s %6.4g Hz  topic %s\n", s.name.c_str(), sensor_type_name(s.type), s.link.c_str(), s.rate, s.topic.c_str());
+    std::printf("  sensor %-20s %-13s on %-16s %6.4g Hz  topic %s\n", s.name.c_str(), sensor_type_name(s.type), s.link.c_str(), s.rate,
+                s.topic.c_str());
   }
   if (r.drive.left_wheels.empty()) {
     std::printf("  drive: none (give one in the scenario: drive: {type: diff_drive, left: [...], right: [...]})\n");
@@ -127,7 +128,8 @@ bool check_sdf(const std::string& file, const CheckOptions& o) {
   }
   for (const auto& m : w.meshes) {
     std::string texture;
-    if (!m.texture.empty()) texture = "; texture " + m.texture + (m.texture_drawn ? " (drawn)" : " (not drawn: missing, or on a convex shape)");
+    if (!m.texture.empty())
+      texture = "; texture " + m.texture + (m.texture_drawn ? " (drawn)" : " (not drawn: missing, or on a convex shape)");
     std::printf("  mesh  %s (%s::%s): %s, %d triangles%s%s\n", m.uri.c_str(), m.model.c_str(), m.link.c_str(),
                 m.collision ? "collision" : "visual", m.triangles, m.collision ? (m.exact ? ", exact triangle mesh" : ", convex") : "",
                 texture.c_str());
@@ -181,7 +183,8 @@ bool check_one(const std::string& file, const CheckOptions& o) {
   const Diagnostics problems = validate(world);
   diag.append(problems);
   const bool ok = !diag.has_errors();
-  std::printf("%s: %s (%s)\n%s%s", file.c_str(), ok ? "ok" : "has errors", scale_note.c_str(), world_summary(world).c_str(), mission.c_str());
+  std::printf("%s: %s (%s)\n%s%s", file.c_str(), ok ? "ok" : "has errors", scale_note.c_str(), world_summary(world).c_str(),
+              mission.c_str());
   if (!diag.items().empty()) {
     std::fflush(stdout);
     std::fprintf(stderr, "  %d error(s), %d warning(s):\n", diag.error_count(), diag.warning_count());
@@ -194,7 +197,8 @@ bool check_one(const std::string& file, const CheckOptions& o) {
 
 void add_check_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<CheckOptions>();
-  CLI::App* cmd = app.add_subcommand("check", "Read SVG worlds, scenario YAML, SDF worlds or URDF robots and print what they contain, or their errors");
+  CLI::App* cmd =
+      app.add_subcommand("check", "Read SVG worlds, scenario YAML, SDF worlds or URDF robots and print what they contain, or their errors");
   cmd->footer(
       "For worlds: the size in metres and counts of walls, obstacles, raised areas, victims,\n"
       "rubble and robot starts. For URDF robots: links with masses, joints, meshes with their\n"

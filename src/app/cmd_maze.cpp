@@ -8,10 +8,10 @@
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
+#include "import/maze/maze.h"
+#include "import/svg/svg_world.h"
 #include "viz/world_plot.h"
 #include "world/terrain.h"
-#include "world/maze/maze.h"
-#include "world/svg/svg_world.h"
 
 namespace rescuesim::app {
 
@@ -50,8 +50,8 @@ int run_maze(const MazeCommand& c) {
       po.title = stem + "  " + std::to_string(o.cols) + "x" + std::to_string(o.rows) + " cells, seed " + std::to_string(o.seed);
       plot_world(world, po).write_png(fs::path(c.out) / (stem + ".png"));
     }
-    std::printf("[%d/%d] %s: %dx%d cells, %d openings, %zu walls, %zu victims, %zu raised areas, %zu terrain cells, %zu rubble\n", k + 1, c.count,
-                svg.string().c_str(), o.cols, o.rows, maze.opening_count(), world.walls.size(), world.victims.size(),
+    std::printf("[%d/%d] %s: %dx%d cells, %d openings, %zu walls, %zu victims, %zu raised areas, %zu terrain cells, %zu rubble\n", k + 1,
+                c.count, svg.string().c_str(), o.cols, o.rows, maze.opening_count(), world.walls.size(), world.victims.size(),
                 world.raised_areas.size(), world.terrain.size(), world.rubble.size());
     std::fflush(stdout);
   }

@@ -45,7 +45,8 @@ int recover(const RecoverCommand& c) {
               static_cast<unsigned long long>(r.schemas), static_cast<unsigned long long>(r.chunks_read),
               static_cast<unsigned long long>(r.metadata), static_cast<unsigned long long>(r.attachments));
   if (r.messages > 0) {
-    std::printf("  time range    %.3f .. %.3f s of log (sim) time\n", 1e-9 * static_cast<double>(r.start_time), 1e-9 * static_cast<double>(r.end_time));
+    std::printf("  time range    %.3f .. %.3f s of log (sim) time\n", 1e-9 * static_cast<double>(r.start_time),
+                1e-9 * static_cast<double>(r.end_time));
   }
   for (const auto& [topic, n] : r.messages_per_topic) std::printf("    %-32s %8llu\n", topic.c_str(), static_cast<unsigned long long>(n));
   if (r.finished) {

@@ -18,6 +18,7 @@
 #include "robots/rescue_robot.h"
 #ifdef RESCUESIM_HAS_MCAP
 #include "bridges/mcap/mcap_player.h"
+#include "run_record/run_record.h"
 #endif
 
 namespace rescuesim::app {
@@ -37,9 +38,8 @@ struct ReplayCommand {
 #ifdef RESCUESIM_HAS_MCAP
 
 /// What the recording holds: where it came from, how long, which topics.
-void print_recording(const McapPlayer& player) {
+void print_recording(const McapPlayer& player, const RecordedRun& run) {
   const mcap::McapReader& r = player.reader();
-  const RecordedRun& run = player.run();
   std::printf("recording %s (%.1f MB, %zu chunks, written by %s)\n", r.path().string().c_str(), static_cast<double>(r.file_size()) / 1e6,
               r.chunk_count(), r.header().library.c_str());
   std::printf("  scenario      %s (seed %llu), world %s\n", run.scenario.name.c_str(), static_cast<unsigned long long>(run.scenario.seed),
@@ -59,13 +59,14 @@ void print_recording(const McapPlayer& player) {
 
 int replay(const ReplayCommand& c) {
   const ModelMap models = builtin_models();
-  McapPlayer player(c.file, models);
+  RecordedRun run;
+  McapPlayer player(c.file, rebuild_into(run, models));
   // a recording made of a replay is paced, so it is bounded (drop oldest) rather than lossless
-  Scenario paced = player.run().scenario;
+  Scenario paced = run.scenario;
   paced.realtime = true;
-  const auto cameras = std::find_if(player.run().info.begin(), player.run().info.end(), [](const auto& kv) { return kv.first == "cameras"; });
-  auto bridges = make_bridges(c.bridges, {&paced, &player.run().spec, cameras == player.run().info.end() || cameras->second != "off"});
-  print_recording(player);
+  const auto cameras = std::find_if(run.info.begin(), run.info.end(), [](const auto& kv) { return kv.first == "cameras"; });
+  auto bridges = make_bridges(c.bridges, {&paced, &run.spec, cameras == run.info.end() || cameras->second != "off"});
+  print_recording(player, run);
   for (auto& b : bridges) {
     b->start(player.host());
     std::printf("  bridge        %s started\n", b->name().c_str());
@@ -87,7 +88,8 @@ int replay(const ReplayCommand& c) {
     // nothing is simulated: the host discards the commands that bridges take in
     for (const auto& b : bridges) {
       if (!told_commands && player.host().discarded() > 0 && b->stats().received > 0) {
-        std::fprintf(stderr, "%sreplay: commands received through %s are ignored (a replay re-publishes a recording; nothing is simulated)\n",
+        std::fprintf(stderr,
+                     "%sreplay: commands received through %s are ignored (a replay re-publishes a recording; nothing is simulated)\n",
                      tty ? "\n" : "", b->name().c_str());
         told_commands = true;
       }

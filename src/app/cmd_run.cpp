@@ -56,8 +56,9 @@ void print_progress(const RunResult& r, double duration, bool tty) {
   const int filled = static_cast<int>(f * 30);
   for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '-';
   bar[30] = 0;
-  const std::string score = r.mission ? fmt::format("  score {:g} ({}/{} reported)", r.mission->score, r.mission->victims_found, r.mission->victims)
-                                      : std::string();
+  const std::string score =
+      r.mission ? fmt::format("  score {:g} ({}/{} reported)", r.mission->score, r.mission->victims_found, r.mission->victims)
+                : std::string();
   std::fprintf(stderr, "%s[%s] %6.1f/%.0f s  %5.1fx real time  victims %d/%zu  collisions %d%s%s", tty ? "\r" : "", bar, r.sim_time,
                duration, r.real_time_factor, r.victims_found, r.victims.size(), r.collisions, score.c_str(), tty ? "  " : "\n");
   std::fflush(stderr);
@@ -96,7 +97,8 @@ int run(const RunCommand& c) {
               pacing_name(mode.pacing), forever ? "until Ctrl-C" : fmt::format("{:.0f} s", s.duration).c_str(),
               w.name.c_str(), world_summary(w).c_str());
   if (s.mission) std::printf("%s", mission_summary(*s.mission, w).c_str());
-  if (!session.render_device().empty()) std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
+  if (!session.render_device().empty())
+    std::printf("  cameras on    %s, %s quality\n", session.render_device().c_str(), s.render_quality.c_str());
   if (!so.controllers) std::printf("  controllers   off (robots wait for cmd_vel)\n");
   for (auto& b : bridges) {
     b->start(session.sim());
@@ -140,7 +142,8 @@ int run(const RunCommand& c) {
   std::signal(SIGTERM, SIG_DFL);
   for (SubscriptionId id : first_scan) session.sim().bus().unsubscribe(id);
   if (session.sync_timeouts() > 0) {
-    std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()), mode.sync_timeout);
+    std::printf("sync: %llu scans got no cmd_vel within %g s\n", static_cast<unsigned long long>(session.sync_timeouts()),
+                mode.sync_timeout);
   }
   for (auto& b : bridges) {
     b->stop();
@@ -156,7 +159,8 @@ int run(const RunCommand& c) {
   session.write_outputs(out, r);
   std::printf("%.1f s simulated in %.2f s (%.1fx real time); stopped: %s\n", r.sim_time, r.wall_time, r.real_time_factor,
               r.stop_reason.c_str());
-  if (first_scan_s >= 0) std::printf("cold start: first scan (%s) %.2f s after the process started\n", first_scan_topic.c_str(), first_scan_s);
+  if (first_scan_s >= 0)
+    std::printf("cold start: first scan (%s) %.2f s after the process started\n", first_scan_topic.c_str(), first_scan_s);
   std::printf("victims found %d/%zu", r.victims_found, r.victims.size());
   for (const auto& v : r.victims) {
     if (v.found) std::printf(", %s at %.1f s", v.name.c_str(), v.time);
@@ -208,8 +212,11 @@ void add_run_command(CLI::App& app, Action& action) {
       "  rescuesim run --foxglove --keep-controllers     then open ws://127.0.0.1:8765\n"
       "  rescuesim run --record runs/default.mcap        lockstep, lossless, byte-identical per seed\n"
       "  rescuesim recover runs/default.mcap.part        a killed recording, indexed again up to its last chunk");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
-  cmd->add_option("--world", c->world, "use this world instead of the scenario's: an SVG drawing, or an SDF world (.sdf, .world)")->transform(data_file());
+  cmd->add_option("scenario", c->scenario,
+                  "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")
+      ->transform(data_file());
+  cmd->add_option("--world", c->world, "use this world instead of the scenario's: an SVG drawing, or an SDF world (.sdf, .world)")
+      ->transform(data_file());
   cmd->add_option("--resource-path", c->resource_paths,
                   "a folder where package:// and model:// URIs are looked for first (repeatable; then the scenario's resource_paths, "
                   "then ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and, for model://, GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, "

@@ -100,7 +100,9 @@ int snapshot(const SnapshotCommand& c) {
 
   // the sensor panels: the last published images (a camera that is off shows as such)
   const auto name = [](const SensorSpec* spec, const char* what) {
-    return spec == nullptr ? fmt::format("no {}", what) : !spec->enabled ? fmt::format("{} off", what) : fmt::format("{} {}x{}", what, spec->camera.width, spec->camera.height);
+    return spec == nullptr  ? fmt::format("no {}", what)
+           : !spec->enabled ? fmt::format("{} off", what)
+                            : fmt::format("{} {}x{}", what, spec->camera.width, spec->camera.height);
   };
   in.color_caption = name(color, "colour camera");
   if (!color_msg.data.empty()) in.color = color_image_of(color_msg);
@@ -122,8 +124,9 @@ int snapshot(const SnapshotCommand& c) {
   }
   in.scan = scan;
   in.laser_radius = laser != nullptr ? std::min(5.0, laser->lidar.max_range) : 5.0;
-  in.laser_caption = laser != nullptr ? fmt::format("laser {:.0f} deg, 1 m rings", (laser->lidar.max_angle - laser->lidar.min_angle) * 180 / M_PI)
-                                      : std::string("no laser");
+  in.laser_caption = laser != nullptr
+                         ? fmt::format("laser {:.0f} deg, 1 m rings", (laser->lidar.max_angle - laser->lidar.min_angle) * 180 / M_PI)
+                         : std::string("no laser");
 
   int found = 0;
   for (const VictimState& v : state.victims) found += v.first_seen.ns >= 0;
@@ -157,7 +160,9 @@ void add_snapshot_command(CLI::App& app, Action& action) {
       "  rescuesim snapshot --time 30 --out fig2.png\n"
       "  rescuesim snapshot worlds/arena.yaml --seed 3 --quality high --width 2400\n"
       "  xvfb-run -a rescuesim view            the same picture, live, in a window");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
+  cmd->add_option("scenario", c->scenario,
+                  "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")
+      ->transform(data_file());
   cmd->add_option("--time,-t", c->time, "sim time to run to, in seconds")->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--out,-o", c->out, "PNG file to write (atomically)")->capture_default_str();
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");

@@ -6,9 +6,9 @@
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
+#include "import/svg/svg_world.h"
 #include "robots/rescue_robot.h"
 #include "session/terrain_trial.h"
-#include "world/svg/svg_world.h"
 
 namespace rescuesim::app {
 
@@ -31,7 +31,10 @@ int run_trial(TrialCommand c) {
               terrain_pattern_reps(c.trial.pattern), c.trial.speed);
   const TerrainTrialResult r = run_terrain_trial(loaded.world, models, c.trial, [&c](const TerrainLap& l) {
     std::printf("  lap %2d  %-7s %-9s %6.1f s  %5.2f m along  pitch up to %3.0f deg  roll up to %3.0f deg\n", l.lap,
-                l.reverse ? "back" : c.trial.pattern == TerrainPattern::figure_eight ? "eight" : "forward", l.outcome.c_str(), l.time, l.progress, l.max_pitch, l.max_roll);
+                l.reverse                                         ? "back"
+                : c.trial.pattern == TerrainPattern::figure_eight ? "eight"
+                                                                  : "forward",
+                l.outcome.c_str(), l.time, l.progress, l.max_pitch, l.max_roll);
     std::fflush(stdout);
   });
   const fs::path dir = c.out;
@@ -82,9 +85,12 @@ void add_trial_terrain_command(CLI::App& app, Action& action) {
   cmd->add_option("world", c->world, "the arena (an SVG world with terrain elements, e.g. from rescuesim arena)")->required();
   cmd->add_option("--lane", c->trial.lane, "the element's name (its SVG id), or a kind: the first element of that kind")->required();
   cmd->add_option("--robot", c->trial.robot, "built-in model: tracked_robot or rescue_robot")->capture_default_str();
-  cmd->add_option("--laps", c->trial.laps, "attempts (laps), or crossings (back-and-forth) or figure-eights wanted")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_option("--laps", c->trial.laps, "attempts (laps), or crossings (back-and-forth) or figure-eights wanted")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
   cmd->add_option("--pattern", c->pattern,
-                  "laps: each from the start line; back-and-forth: end to end and back without a reset; figure-eight: around two pylons without a reset")
+                  "laps: each from the start line; back-and-forth: end to end and back without a reset; figure-eight: around two pylons "
+                  "without a reset")
       ->capture_default_str()
       ->check(CLI::IsMember({"laps", "back-and-forth", "figure-eight"}));
   cmd->add_option("--seed", c->trial.seed, "seed of the laps' start offsets")->capture_default_str();
@@ -93,7 +99,9 @@ void add_trial_terrain_command(CLI::App& app, Action& action) {
       ->capture_default_str()
       ->check(CLI::Range(0.3, 10.0));
   cmd->add_option("--time-limit", c->trial.time_limit, "s per lap (per crossing)")->capture_default_str()->check(CLI::Range(1.0, 3600.0));
-  cmd->add_option("--stuck-time", c->trial.stuck_time, "s without progress that count as stuck")->capture_default_str()->check(CLI::Range(1.0, 3600.0));
+  cmd->add_option("--stuck-time", c->trial.stuck_time, "s without progress that count as stuck")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 3600.0));
   cmd->add_option("--out,-o", c->out, "directory for trial.json and trial.png")->capture_default_str();
   cmd->final_callback([c, &action] { action = [c] { return run_trial(*c); }; });
 }

@@ -278,7 +278,8 @@ class Viewer {
     }
     v_.drag_x = mouse.x;
     v_.drag_y = mouse.y;
-    if (in_main && !mouse.over_ui && mouse.scroll != 0) v_.camera.distance = std::clamp(v_.camera.distance * std::pow(0.88, mouse.scroll), 0.6, 80.0);
+    if (in_main && !mouse.over_ui && mouse.scroll != 0)
+      v_.camera.distance = std::clamp(v_.camera.distance * std::pow(0.88, mouse.scroll), 0.6, 80.0);
     const bool f = window_.key_down(ViewerKey::f);
     if (f && !v_.was_f) v_.camera.set_follow(!v_.camera.follow, X_WB);
     v_.was_f = f;
@@ -390,7 +391,9 @@ class Viewer {
   /// Draws the frame; with --screenshot, once sim time has passed --after and every panel has
   /// its first image, saves it and returns kExitOk.
   std::optional<int> draw_frame(const ViewLayout& l) {
-    const auto ready = [&](const SensorSpec* spec, const char* tex) { return spec == nullptr || !spec->enabled || window_.texture(tex) != nullptr; };
+    const auto ready = [&](const SensorSpec* spec, const char* tex) {
+      return spec == nullptr || !spec->enabled || window_.texture(tex) != nullptr;
+    };
     const double t = state_.time.seconds();
     const bool shoot = !c_.screenshot.empty() && t >= c_.after && v_.frame_time >= c_.after && ready(sensors_.laser, "laser") &&
                        ready(sensors_.color, "color") && ready(sensors_.depth, "depth") && ready(sensors_.thermal, "thermal");
@@ -415,8 +418,8 @@ class Viewer {
     draw_info(l);
   }
 
-  static constexpr ImGuiWindowFlags kFixed =
-      ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar;
+  static constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                                             ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar;
 
   /// Run/Pause, Step, speed, the run's time and victims, follow, autonomous, quality.
   void draw_toolbar(const ViewLayout& l) {
@@ -450,10 +453,14 @@ class Viewer {
   }
 
   /// One sensor panel at (x, y): its image, or an empty box, and its legend.
-  void panel(const ViewLayout& l, const SensorSpec* spec, const char* what, const char* tex, float x, float y, const std::function<void()>& legend) {
-    const std::string size = spec == nullptr                            ? ""
-                             : spec->type == SensorSpec::Type::lidar ? fmt::format("{:.0f} deg, {} beams", (spec->lidar.max_angle - spec->lidar.min_angle) * 180 / std::numbers::pi, spec->lidar.samples)
-                                                                     : fmt::format("{}x{}", spec->camera.width, spec->camera.height);
+  void panel(const ViewLayout& l, const SensorSpec* spec, const char* what, const char* tex, float x, float y,
+             const std::function<void()>& legend) {
+    const std::string size =
+        spec == nullptr ? ""
+        : spec->type == SensorSpec::Type::lidar
+            ? fmt::format("{:.0f} deg, {} beams", (spec->lidar.max_angle - spec->lidar.min_angle) * 180 / std::numbers::pi,
+                          spec->lidar.samples)
+            : fmt::format("{}x{}", spec->camera.width, spec->camera.height);
     const std::string title = fmt::format("{} {}###{}", what, spec == nullptr ? "(none)" : !spec->enabled ? "(off)" : size, tex);
     ImGui::SetNextWindowPos({x, y});
     ImGui::SetNextWindowSize({l.panel_w, l.panel_h});
@@ -471,7 +478,8 @@ class Viewer {
     panel(l, sensors_.laser, "Laser", "laser", x0, l.toolbar, [&] { ImGui::TextUnformatted("top-down, forward up, rings every 1 m"); });
     panel(l, sensors_.color, "Colour camera", "color", x0 + l.panel_w, l.toolbar, [&] { ImGui::Text("image of %.2f s", v_.color_time); });
     panel(l, depth, "Depth camera", "depth", x0, y1, [&] {
-      legend_bar(depth_color, fmt::format("{:g} m", depth->camera.min_range), fmt::format("{:g} m  (black: none)", depth->camera.max_range), l.image_w);
+      legend_bar(depth_color, fmt::format("{:g} m", depth->camera.min_range), fmt::format("{:g} m  (black: none)", depth->camera.max_range),
+                 l.image_w);
     });
     panel(l, thermal, "Thermal camera", "thermal", x0 + l.panel_w, y1, [&] {
       legend_bar(iron_color, fmt::format("{:.0f} C", thermal->camera.mono8_min - 273.15),
@@ -591,7 +599,9 @@ void add_view_command(CLI::App& app, Action& action) {
       "  rescuesim view\n"
       "  rescuesim view worlds/arena.yaml --seed 3 --quality medium\n"
       "  xvfb-run -a rescuesim view --screenshot view.png --after 5");
-  cmd->add_option("scenario", c->scenario, "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")->transform(data_file());
+  cmd->add_option("scenario", c->scenario,
+                  "scenario YAML file (default: built-in); a relative path not found here is looked for in the installed worlds")
+      ->transform(data_file());
   cmd->add_option("--seed", c->seed, "run seed (overrides the scenario's; also reseeds a generated maze)");
   cmd->add_option("--quality", c->quality, "main view quality: low, medium or high")
       ->capture_default_str()

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "world/mission_spec.h"
 #include "world/world_spec.h"
@@ -24,7 +25,9 @@ void add_maze_command(CLI::App& app, Action& action);
 void add_arena_command(CLI::App& app, Action& action);
 void add_trial_terrain_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
-void add_bench_command(CLI::App& app, Action& action);
+/// `bench` (and the hidden `bench-probe`): runs rescuesim-bench beside this program with `args`,
+/// this program's own arguments without argv[0] (cmd_bench.cpp says why it is a program of its own).
+void add_bench_command(CLI::App& app, Action& action, const std::vector<std::string>& args);
 void add_snapshot_command(CLI::App& app, Action& action);
 void add_view_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);

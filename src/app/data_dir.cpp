@@ -55,6 +55,11 @@ fs::path executable() {
 
 void set_program_path(const char* argv0) { g_argv0 = argv0 ? argv0 : ""; }
 
+fs::path sibling_program(const std::string& name) {
+  const fs::path exe = executable();
+  return exe.empty() ? fs::path() : exe.parent_path() / name;
+}
+
 std::optional<fs::path> data_dir(std::vector<std::string>* looked) {
   if (const char* env = std::getenv("RESCUESIM_DATA_DIR"); env && *env) {
     if (!is_data_dir(env)) {
@@ -95,7 +100,8 @@ std::string locate_data_file(const std::string& arg) {
   }
   std::string where;
   for (const auto& l : looked) where += "\n  " + l;
-  throw Error(arg + ": no such file; looked in:" + where + "\n(set RESCUESIM_DATA_DIR to the folder of an installed copy's data, <prefix>/share/rescuesim)");
+  throw Error(arg + ": no such file; looked in:" + where +
+              "\n(set RESCUESIM_DATA_DIR to the folder of an installed copy's data, <prefix>/share/rescuesim)");
 }
 
 CLI::Validator data_file() {

@@ -19,6 +19,12 @@ namespace rescuesim::app {
 /// in PATH as the shell did. Call first thing in main().
 void set_program_path(const char* argv0);
 
+/// `name` in the folder of the running executable (/proc/self/exe, else argv[0] as
+/// set_program_path resolved it): how `rescuesim bench` finds rescuesim-bench and how the bench
+/// finds the `rescuesim` it times, installed or in a build folder. Empty when the executable's
+/// folder is unknown; the file itself may not exist.
+std::filesystem::path sibling_program(const std::string& name);
+
 /// The data folder, or nullopt when none of the places exists (then `looked` lists them).
 /// Throws rescuesim::Error when RESCUESIM_DATA_DIR is set to something that is not a data folder.
 std::optional<std::filesystem::path> data_dir(std::vector<std::string>* looked = nullptr);

@@ -115,7 +115,8 @@ FigureSensors figure_sensors(const RobotSpec& robot) {
 
 FigureLayout figure_layout(int width) {
   if (width < kFigureMinWidth || width > kFigureMaxWidth) {
-    throw Error(SourceRef{"", 0, "figure_layout"}, fmt::format("figure width {} px is outside [{}, {}]", width, kFigureMinWidth, kFigureMaxWidth));
+    throw Error(SourceRef{"", 0, "figure_layout"},
+                fmt::format("figure width {} px is outside [{}, {}]", width, kFigureMinWidth, kFigureMaxWidth));
   }
   const double u = width / 1600.0;
   FigureLayout l;
@@ -177,8 +178,10 @@ Canvas fit_canvas(const Canvas& src, int w, int h) {
       double rgb[3] = {0, 0, 0};
       if (shrink) {
         // average the source pixels whose centres fall in this pixel's footprint
-        const int i0 = static_cast<int>(std::ceil(x0 + x * sx - 0.5)), i1 = std::max(i0 + 1, static_cast<int>(std::ceil(x0 + (x + 1) * sx - 0.5)));
-        const int j0 = static_cast<int>(std::ceil(y0 + y * sy - 0.5)), j1 = std::max(j0 + 1, static_cast<int>(std::ceil(y0 + (y + 1) * sy - 0.5)));
+        const int i0 = static_cast<int>(std::ceil(x0 + x * sx - 0.5)),
+                  i1 = std::max(i0 + 1, static_cast<int>(std::ceil(x0 + (x + 1) * sx - 0.5)));
+        const int j0 = static_cast<int>(std::ceil(y0 + y * sy - 0.5)),
+                  j1 = std::max(j0 + 1, static_cast<int>(std::ceil(y0 + (y + 1) * sy - 0.5)));
         for (int j = j0; j < j1; ++j) {
           for (int i = i0; i < i1; ++i) {
             for (int k = 0; k < 3; ++k) rgb[k] += at(i, j, k);
@@ -191,7 +194,8 @@ Canvas fit_canvas(const Canvas& src, int w, int h) {
         const int i = static_cast<int>(std::floor(u)), j = static_cast<int>(std::floor(v));
         const double fu = u - i, fv = v - j;
         for (int k = 0; k < 3; ++k) {
-          rgb[k] = (at(i, j, k) * (1 - fu) + at(i + 1, j, k) * fu) * (1 - fv) + (at(i, j + 1, k) * (1 - fu) + at(i + 1, j + 1, k) * fu) * fv;
+          rgb[k] =
+              (at(i, j, k) * (1 - fu) + at(i + 1, j, k) * fu) * (1 - fv) + (at(i, j + 1, k) * (1 - fu) + at(i + 1, j + 1, k) * fu) * fv;
         }
       }
       auto b = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
@@ -202,12 +206,14 @@ Canvas fit_canvas(const Canvas& src, int w, int h) {
 }
 
 Rgb8 iron_color(double f) {
-  static constexpr std::array<Rgb8, 7> stops{{{0, 0, 12}, {42, 6, 100}, {128, 10, 148}, {208, 46, 76}, {246, 122, 20}, {255, 204, 44}, {255, 252, 220}}};
+  static constexpr std::array<Rgb8, 7> stops{
+      {{0, 0, 12}, {42, 6, 100}, {128, 10, 148}, {208, 46, 76}, {246, 122, 20}, {255, 204, 44}, {255, 252, 220}}};
   return ramp(stops, f);
 }
 
 Rgb8 depth_color(double f) {
-  static constexpr std::array<Rgb8, 6> stops{{{214, 48, 39}, {248, 141, 60}, {238, 222, 80}, {102, 194, 120}, {50, 136, 196}, {62, 48, 150}}};
+  static constexpr std::array<Rgb8, 6> stops{
+      {{214, 48, 39}, {248, 141, 60}, {238, 222, 80}, {102, 194, 120}, {50, 136, 196}, {62, 48, 150}}};
   return ramp(stops, f);
 }
 
@@ -266,7 +272,8 @@ Canvas laser_canvas(const msg::LaserScan& scan, int w, int h, double radius, int
   for (const Vec2& p : hits) c.fill_circle(p, 1.1 + 0.5 * text_scale, {196, 30, 36});
   // the robot: a green arrowhead pointing forward, 0.4 m long
   const double a = 0.2 * scale;
-  c.fill_polygon({{o.x(), o.y() - a}, {o.x() + 0.7 * a, o.y() + 0.7 * a}, {o.x(), o.y() + 0.35 * a}, {o.x() - 0.7 * a, o.y() + 0.7 * a}}, {34, 150, 60});
+  c.fill_polygon({{o.x(), o.y() - a}, {o.x() + 0.7 * a, o.y() + 0.7 * a}, {o.x(), o.y() + 0.35 * a}, {o.x() - 0.7 * a, o.y() + 0.7 * a}},
+                 {34, 150, 60});
   if (scan.ranges.empty()) {
     const char* none = "no scan yet";
     c.text((w - text_width(none, text_scale)) / 2, h / 4, none, kSoftInk, text_scale);

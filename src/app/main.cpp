@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   app::add_arena_command(app, action);
   app::add_trial_terrain_command(app, action);
   app::add_check_command(app, action);
-  app::add_bench_command(app, action);
+  app::add_bench_command(app, action, std::vector<std::string>(argv + 1, argv + argc));
   app::add_snapshot_command(app, action);
   app::add_view_command(app, action);
   app::add_replay_command(app, action);

@@ -76,12 +76,13 @@ std::string world_summary(const WorldSpec& w) {
 
 std::string mission_summary(const MissionSpec& m, const WorldSpec& w) {
   const MissionRules& r = m.rules;
-  std::string s = fmt::format("  mission       {} rules: victims within {:g} m, {:g} point(s) each, -{:g} per false report, {}, {:g} reports/s per "
-                              "robot{}{}\n",
-                              r.preset, r.report_radius_m, r.victim_points, r.false_report_penalty,
-                              r.report_limit > 0 ? fmt::format("{} reports", r.report_limit) : std::string("no report limit"),
-                              r.report_rate_hz, r.require_contact ? ", only in radio contact with a base" : "",
-                              r.time_limit_s > 0 ? fmt::format(", until {:g} s", r.time_limit_s) : std::string());
+  std::string s =
+      fmt::format("  mission       {} rules: victims within {:g} m, {:g} point(s) each, -{:g} per false report, {}, {:g} reports/s per "
+                  "robot{}{}\n",
+                  r.preset, r.report_radius_m, r.victim_points, r.false_report_penalty,
+                  r.report_limit > 0 ? fmt::format("{} reports", r.report_limit) : std::string("no report limit"), r.report_rate_hz,
+                  r.require_contact ? ", only in radio contact with a base" : "",
+                  r.time_limit_s > 0 ? fmt::format(", until {:g} s", r.time_limit_s) : std::string());
   const RadioModel& radio = m.radio.model;
   std::string model;
   switch (radio.kind) {
@@ -91,18 +92,21 @@ std::string mission_summary(const MissionSpec& m, const WorldSpec& w) {
                           radio.wss.d0_m, radio.wss.n, radio.wss.wall_loss_db, radio.wss.max_walls, radio.wss.cutoff_dbm);
       break;
     case RadioModelKind::subt:
-      model = fmt::format("subt: {:g} dBm out, loss {:g} dB + 10 x {:g} x log10(d), shadowing {:g} dB, floor {:g} dBm, {:g} bit/s per radio",
-                          radio.subt.tx_power_dbm, radio.subt.l0_db, radio.subt.n, radio.subt.sigma_db, radio.subt.noise_floor_dbm,
-                          radio.subt.capacity_bps);
+      model =
+          fmt::format("subt: {:g} dBm out, loss {:g} dB + 10 x {:g} x log10(d), shadowing {:g} dB, floor {:g} dBm, {:g} bit/s per radio",
+                      radio.subt.tx_power_dbm, radio.subt.l0_db, radio.subt.n, radio.subt.sigma_db, radio.subt.noise_floor_dbm,
+                      radio.subt.capacity_bps);
       break;
   }
   s += fmt::format("  radio         {}; links at {:g} Hz, {} relays per robot\n", model, m.radio.link_rate_hz, m.radio.relays_per_robot);
   if (m.bases.empty()) {
     if (!w.robots.empty()) {
-      s += fmt::format("  base          base, 1 m above {}'s start ({:.2f}, {:.2f}) m\n", w.robots[0].name, w.robots[0].start.x, w.robots[0].start.y);
+      s += fmt::format("  base          base, 1 m above {}'s start ({:.2f}, {:.2f}) m\n", w.robots[0].name, w.robots[0].start.x,
+                       w.robots[0].start.y);
     }
   } else {
-    for (const auto& b : m.bases) s += fmt::format("  base          {} at ({:.2f}, {:.2f}, {:.2f}) m\n", b.name, b.p_W.x(), b.p_W.y(), b.p_W.z());
+    for (const auto& b : m.bases)
+      s += fmt::format("  base          {} at ({:.2f}, {:.2f}, {:.2f}) m\n", b.name, b.p_W.x(), b.p_W.y(), b.p_W.z());
   }
   return s;
 }

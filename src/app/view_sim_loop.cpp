@@ -2,8 +2,8 @@
 
 #include <exception>
 
-#include "app/realtime_pacer.h"
 #include "core/thread.h"
+#include "session/realtime_pacer.h"
 
 namespace rescuesim::app {
 

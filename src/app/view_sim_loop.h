@@ -1,6 +1,6 @@
 #pragma once
 /// ViewSimLoop: `rescuesim view`'s simulation thread. It steps a Session paced to the wall clock
-/// (app/realtime_pacer.h) with the controls the UI thread last set, so the window keeps its
+/// (session/realtime_pacer.h) with the controls the UI thread last set, so the window keeps its
 /// frame rate whatever a step costs, and a heavy scenario runs at its own pace behind it.
 ///
 /// Locking: the loop holds lock() while it steps, in spans of at most kSpan of wall time, and

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "core/error.h"
 
 namespace rescuesim::autonomy {
 
@@ -39,9 +42,9 @@ Explorer::Explorer(const Pose2& X_BS, ExplorerConfig config)
       follower_(config_.path),
       slip_(config_.slip),
       match_slip_(config_.slip),
-      matcher_(config_.matcher),
-      camera_yaw_(config_.look.fixed_yaw) {
-  path_msg_.header.frame_id = config_.frame_id;
+      matcher_(config_.matcher) {
+  loc_.camera_yaw = config_.look.fixed_yaw;
+  plan_.path_msg.header.frame_id = config_.frame_id;
 }
 
 void Explorer::on_joint_state(const msg::JointState& joints) {
@@ -49,7 +52,7 @@ void Explorer::on_joint_state(const msg::JointState& joints) {
   if (look.yaw_joint.empty()) return;
   for (std::size_t i = 0; i < joints.name.size() && i < joints.position.size(); ++i) {
     if (joints.name[i] == look.yaw_joint && std::isfinite(joints.position[i])) {
-      camera_yaw_ = look.fixed_yaw + look.yaw_sign * joints.position[i];
+      loc_.camera_yaw = look.fixed_yaw + look.yaw_sign * joints.position[i];
     }
   }
 }
@@ -65,17 +68,17 @@ std::optional<double> Explorer::look_command(SimTime now) const {
 
 void Explorer::on_odometry(const msg::Odometry& odom) {
   // a stamp going backwards means the run restarted: forget the old poses
-  if (!odom_.empty() && odom.header.stamp < odom_.back().first) odom_.clear();
-  odom_.emplace_back(odom.header.stamp, odom.pose.to_pose2());
-  if (odom_.size() > kOdomHistory) odom_.pop_front();
+  if (!loc_.odom.empty() && odom.header.stamp < loc_.odom.back().first) loc_.odom.clear();
+  loc_.odom.emplace_back(odom.header.stamp, odom.pose.to_pose2());
+  if (loc_.odom.size() > kOdomHistory) loc_.odom.pop_front();
 }
 
 std::optional<Pose2> Explorer::pose_at(SimTime t) const {
-  if (odom_.empty()) return std::nullopt;
-  if (t <= odom_.front().first) return odom_.front().second;
-  if (t >= odom_.back().first) return odom_.back().second;
+  if (loc_.odom.empty()) return std::nullopt;
+  if (t <= loc_.odom.front().first) return loc_.odom.front().second;
+  if (t >= loc_.odom.back().first) return loc_.odom.back().second;
   // interpolate between the poses either side of t
-  auto after = std::lower_bound(odom_.begin(), odom_.end(), t, [](const auto& e, SimTime s) { return e.first < s; });
+  auto after = std::lower_bound(loc_.odom.begin(), loc_.odom.end(), t, [](const auto& e, SimTime s) { return e.first < s; });
   auto before = std::prev(after);
   const double span = (after->first - before->first).seconds();
   const double a = span > 0 ? (t - before->first).seconds() / span : 1.0;
@@ -87,37 +90,36 @@ std::optional<Pose2> Explorer::pose_at(SimTime t) const {
 std::optional<Pose2> Explorer::pose_in_map(SimTime t) const {
   const auto X_OB = pose_at(t);
   if (!X_OB) return std::nullopt;
-  return X_MO_ * *X_OB;
+  return loc_.X_MO * *X_OB;
 }
 
 bool Explorer::match_scan(const Pose2& X_OB) {
   // the scan against the map so far, from odometry's prediction; a match pins down the pose
   // (or, in a corridor, all but the shift along it) and so the correction X_MO
   std::vector<Vec2> p_B;
-  p_B.reserve(points_B_.size());
-  for (const ScanPoint& p : points_B_) {
+  p_B.reserve(scan_.points_B.size());
+  for (const ScanPoint& p : scan_.points_B) {
     if (!p.too_close) p_B.push_back(p.p_B);
   }
-  last_match_ = matcher_.match(mapper_, p_B, X_MO_ * X_OB);
-  if (last_match_.verdict == MatchVerdict::rejected) {
+  loc_.last_match = matcher_.match(mapper_, p_B, loc_.X_MO * X_OB);
+  if (loc_.last_match.verdict == MatchVerdict::rejected) {
     ++stats_.scans_unmatched;
     return false;
   }
-  ++(last_match_.verdict == MatchVerdict::good ? stats_.scans_matched : stats_.scans_ambiguous);
-  X_MO_ = last_match_.X_MB * X_OB.inverse();
+  ++(loc_.last_match.verdict == MatchVerdict::good ? stats_.scans_matched : stats_.scans_ambiguous);
+  loc_.X_MO = loc_.last_match.X_MB * X_OB.inverse();
   // odometry's motion against the matched one: wheels that spin while the scans stay put
-  match_slip_.add_motion(X_OB, last_match_.X_MB);
+  match_slip_.add_motion(X_OB, loc_.last_match.X_MB);
   return true;
 }
 
 void Explorer::on_scan(const msg::LaserScan& scan) {
   // the reactive controllers see every scan; the map only those with a pose
-  points_B_ = scan_points_in_base(scan, X_BS_);
-  posts_M_.clear();
-  scan_stamp_ = scan.header.stamp;
-  have_scan_ = true;
-  sees_behind_ = looks_toward(scan, X_BS_, M_PI - 0.35) && looks_toward(scan, X_BS_, M_PI) &&
-                 looks_toward(scan, X_BS_, M_PI + 0.35);
+  scan_.points_B = scan_points_in_base(scan, X_BS_);
+  scan_.masts_M.clear();
+  scan_.stamp = scan.header.stamp;
+  scan_.have = true;
+  scan_.sees_behind = looks_toward(scan, X_BS_, M_PI - 0.35) && looks_toward(scan, X_BS_, M_PI) && looks_toward(scan, X_BS_, M_PI + 0.35);
   const auto X_OB = pose_at(scan.header.stamp);
   if (!X_OB) return;
   // scans that contradict odometry (slipping wheels) would smear the map, unless the map
@@ -125,36 +127,35 @@ void Explorer::on_scan(const msg::LaserScan& scan) {
   // remembered for reversing blind
   const bool compared = slip_.add(scan, *X_OB * X_BS_);
   const bool matched = config_.scan_matching && stats_.scans > 0 && match_scan(*X_OB);
-  const bool pinned = matched && last_match_.verdict == MatchVerdict::good;
+  const bool pinned = matched && loc_.last_match.verdict == MatchVerdict::good;
   if ((slip_.slipping() || slip_.last_misfit()) && !pinned) {
     ++stats_.slipping_scans;
     return;
   }
-  const Pose2 X_MB = X_MO_ * *X_OB;
-  if (compared || pinned || !have_trusted_) trusted_X_MB_ = X_MB;
-  have_trusted_ = true;
+  const Pose2 X_MB = loc_.X_MO * *X_OB;
+  if (compared || pinned || !loc_.trusted_X_MB) loc_.trusted_X_MB = X_MB;
   // a wall follower steers by the laser: its map may be drawn at map_period (half a
   // millisecond short of it counts, so a 0.5 s period at 10 Hz maps every fifth scan)
   const bool map_due = config_.map_period <= 0 || mode_ != ExplorerMode::wall_following || stats_.scans == 0 ||
-                       (scan.header.stamp - last_mapped_).seconds() >= config_.map_period - 5e-4;
+                       (scan.header.stamp - scan_.last_mapped).seconds() >= config_.map_period - 5e-4;
   if (!map_due) {
     if (config_.post_radius > 0) find_masts(X_MB);
     return;
   }
-  last_mapped_ = scan.header.stamp;
+  scan_.last_mapped = scan.header.stamp;
   const int learned = mapper_.integrate(scan, X_MB * X_BS_);
   if (config_.post_radius > 0) find_masts(X_MB);
   if (config_.look.enabled) {
     CameraFan fan = config_.look.fan;
     fan.near = std::max(fan.near, config_.robot_radius);
-    looked_.look(mapper_, X_MB.position(), X_MB.yaw + camera_yaw_, fan);
+    looked_.look(mapper_, X_MB.position(), X_MB.yaw + loc_.camera_yaw, fan);
     looked_.cover_disc(mapper_, X_MB.position(), config_.robot_radius);
   }
   ++stats_.scans;
   stats_.cells_learned += learned;
-  novelty_.emplace_back(scan.header.stamp, learned);
-  while (!novelty_.empty() && (scan.header.stamp - novelty_.front().first).seconds() > config_.novelty_window) {
-    novelty_.pop_front();
+  progress_.novelty.emplace_back(scan.header.stamp, learned);
+  while (!progress_.novelty.empty() && (scan.header.stamp - progress_.novelty.front().first).seconds() > config_.novelty_window) {
+    progress_.novelty.pop_front();
   }
 }
 
@@ -165,7 +166,7 @@ void Explorer::find_masts(const Pose2& X_MB) {
   constexpr int kMaxAround = 2;
   const double res = mapper_.resolution();
   const int reach = static_cast<int>(std::ceil(kAround / res));
-  for (const Vec2& p_B : thin_returns(points_B_, X_BS_.position(), config_.post_width, 0.3)) {
+  for (const Vec2& p_B : thin_returns(scan_.points_B, X_BS_.position(), config_.post_width, 0.3)) {
     const Vec2 p_M = X_MB.transform(p_B);
     const auto c = mapper_.world_to_cell(p_M);
     if (!c) continue;
@@ -177,10 +178,10 @@ void Explorer::find_masts(const Pose2& X_MB) {
         if (d > kOwn && d <= kAround && mapper_.contains(n) && mapper_.is_occupied(n)) ++around;
       }
     }
-    if (around <= kMaxAround) posts_M_.push_back(p_M);
+    if (around <= kMaxAround) scan_.masts_M.push_back(p_M);
   }
   // plans keep a narrower berth than driving: enough to pass a robot standing in a corridor
-  planner_.set_keep_out(posts_M_, 0.6 * config_.post_radius);
+  planner_.set_keep_out(scan_.masts_M, 0.6 * config_.post_radius);
 }
 
 msg::OccupancyGrid Explorer::map(SimTime stamp) const {
@@ -193,41 +194,69 @@ msg::OccupancyGrid Explorer::map(SimTime stamp) const {
 }
 
 void Explorer::set_goal(const Vec2& p_M) {
-  goal_M_ = p_M;
-  goal_needs_plan_ = true;
-  tries_ = 0;
-  follower_.clear();
-  path_msg_.poses.clear();
-  mode_ = ExplorerMode::to_goal;
+  plan_.goal_M = p_M;
+  enter(ExplorerMode::to_goal, std::nullopt);
 }
 
 void Explorer::clear_goal() {
-  goal_M_.reset();
-  goal_needs_plan_ = false;
-  follower_.clear();
-  path_msg_.poses.clear();
-  mode_ = ExplorerMode::wall_following;
-  started_ = false;  // progress tracking restarts at the next command
+  plan_.goal_M.reset();
+  plan_.goal_needs_plan = false;
+  enter(ExplorerMode::wall_following, std::nullopt);
+}
+
+void Explorer::enter(ExplorerMode mode, std::optional<SimTime> now) {
+  const ExplorerMode from = std::exchange(mode_, mode);
+  switch (mode) {
+    case ExplorerMode::wall_following:
+      follower_.clear();
+      plan_.path_msg.poses.clear();
+      plan_.tries = 0;
+      if (now) {
+        plan_.path_msg.header.stamp = *now;
+        reset_progress(loc_.X_MO * loc_.odom.back().second, *now);
+      } else {
+        progress_.started = false;  // progress tracking restarts at the next command
+      }
+      break;
+    case ExplorerMode::to_goal:
+      // a goal trip begins with a plan, from wherever the robot stands
+      plan_.goal_needs_plan = true;
+      plan_.tries = 0;
+      follower_.clear();
+      plan_.path_msg.poses.clear();
+      break;
+    case ExplorerMode::to_frontier:
+      // a frontier trip resumed after reversing keeps counting its stuck paths
+      if (from != ExplorerMode::backing_up || reversing_.resume != ExplorerMode::to_frontier) plan_.tries = 0;
+      break;
+    case ExplorerMode::at_goal: break;
+    case ExplorerMode::backing_up:
+      RS_DEMAND(now.has_value(), "Explorer::enter: reversing starts at a command's sim time");
+      reversing_.until = *now + SimTime::from_seconds(config_.backup_time);
+      follower_.clear();
+      plan_.path_msg.poses.clear();
+      break;
+  }
 }
 
 void Explorer::reset_progress(const Pose2& X_MB, SimTime now) {
-  anchor_ = X_MB;
-  anchor_time_ = now;
-  mode_since_ = now;
-  blocked_times_.clear();
+  progress_.anchor = X_MB;
+  progress_.anchor_time = now;
+  progress_.since = now;
+  progress_.blocked_times.clear();
 }
 
 msg::Twist Explorer::command(SimTime now) {
-  if (odom_.empty() || !have_scan_) return {};
-  const Pose2 X_MB = X_MO_ * odom_.back().second;
-  if (!started_) {
+  if (loc_.odom.empty() || !scan_.have) return {};
+  const Pose2 X_MB = loc_.X_MO * loc_.odom.back().second;
+  if (!progress_.started) {
     reset_progress(X_MB, now);
-    started_ = true;
+    progress_.started = true;
   }
   // progress: any move of stuck_distance from the anchor restarts the stuck clock
-  if ((X_MB.position() - anchor_.position()).norm() > config_.stuck_distance) {
-    anchor_ = X_MB;
-    anchor_time_ = now;
+  if ((X_MB.position() - progress_.anchor.position()).norm() > config_.stuck_distance) {
+    progress_.anchor = X_MB;
+    progress_.anchor_time = now;
   }
   switch (mode_) {
     case ExplorerMode::wall_following: return wall_follow(X_MB, now);
@@ -242,12 +271,12 @@ msg::Twist Explorer::command(SimTime now) {
 bool Explorer::wheels_slipping() const { return slip_.slipping() || match_slip_.slipping(); }
 
 StuckReason Explorer::stuck_reason(SimTime now) const {
-  if ((now - anchor_time_).seconds() > config_.stuck_window || wheels_slipping()) return StuckReason::no_progress;
-  if (static_cast<int>(blocked_times_.size()) >= config_.blocked_limit) return StuckReason::blocked;
+  if ((now - progress_.anchor_time).seconds() > config_.stuck_window || wheels_slipping()) return StuckReason::no_progress;
+  if (static_cast<int>(progress_.blocked_times.size()) >= config_.blocked_limit) return StuckReason::blocked;
   // looping: a whole novelty window of wall following that taught the map almost nothing
-  if ((now - mode_since_).seconds() >= config_.novelty_window) {
+  if ((now - progress_.since).seconds() >= config_.novelty_window) {
     int learned = 0;
-    for (const auto& [stamp, cells] : novelty_) {
+    for (const auto& [stamp, cells] : progress_.novelty) {
       if ((now - stamp).seconds() <= config_.novelty_window) learned += cells;
     }
     const double cell_area = mapper_.resolution() * mapper_.resolution();
@@ -256,13 +285,11 @@ StuckReason Explorer::stuck_reason(SimTime now) const {
   return StuckReason::none;
 }
 
-bool Explorer::may_plan(SimTime now) const {
-  return !planned_ || (now - last_plan_).seconds() >= config_.replan_period;
-}
+bool Explorer::may_plan(SimTime now) const { return !plan_.planned || (now - plan_.last_plan).seconds() >= config_.replan_period; }
 
 std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
-  planned_ = true;
-  last_plan_ = now;
+  plan_.planned = true;
+  plan_.last_plan = now;
   ++stats_.plans;
   // the targets: frontiers, and with the camera's view tracked, free ground it has not seen.
   // Frontiers where a teammate has looked are left to it while there is anything else; when
@@ -278,22 +305,22 @@ std::vector<Vec2> Explorer::plan_frontier(const Pose2& X_MB, SimTime now) {
     return is_frontier(mapper_, c) ? config_.planner.min_frontier_cells : config_.look.min_cells;
   };
   const auto plan = [&](const std::vector<Vec2>& claims) {
-    return config_.look.enabled || !team_map_.empty()
-               ? planner_.plan_to_nearest_target(mapper_, X_MB.position(), is_target, min_cells, excluded_M_, claims)
-               : planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), excluded_M_, claims);
+    return config_.look.enabled || !team_.map.empty()
+               ? planner_.plan_to_nearest_target(mapper_, X_MB.position(), is_target, min_cells, plan_.excluded_M, claims)
+               : planner_.plan_to_nearest_frontier(mapper_, X_MB.position(), plan_.excluded_M, claims);
   };
   // targets teammates have not claimed first; any target when they claimed them all
   std::vector<Vec2> path;
-  if (!claims_M_.empty()) path = plan(claims_M_);
+  if (!team_.claims_M.empty()) path = plan(team_.claims_M);
   if (path.empty()) path = plan({});
   // (a third search only when a teammate's squares could have hidden anything: alone, it would
   // repeat the second)
-  if (path.empty() && team_seen_) {
+  if (path.empty() && team_.seen) {
     team_frontiers = true;
     path = plan({});
     if (!path.empty()) ++stats_.team_frontier_trips;
   }
-  team_frontier_target_ = team_frontiers;
+  plan_.team_frontier_target = team_frontiers;
   if (!path.empty()) {
     const auto end = mapper_.world_to_cell(path.back());
     if (end && !is_frontier(mapper_, *end)) ++stats_.look_trips;
@@ -305,7 +332,7 @@ bool Explorer::unseen(Cell c) const { return config_.look.enabled && mapper_.is_
 
 bool Explorer::open_frontier(Cell c) const {
   if (!is_frontier(mapper_, c)) return false;
-  if (team_map_.empty()) return true;
+  if (team_.map.empty()) return true;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       const Cell n{c.x + dx, c.y + dy};
@@ -318,7 +345,7 @@ bool Explorer::open_frontier(Cell c) const {
 void Explorer::add_team_map(const std::vector<std::pair<Vec2, CellState>>& squares_M, double cell) {
   if (!mapper_.allocated() || !(cell > 0)) return;
   const std::size_t cells = static_cast<std::size_t>(mapper_.width()) * static_cast<std::size_t>(mapper_.height());
-  if (team_map_.size() != cells) team_map_.assign(cells, CellState::unknown);
+  if (team_.map.size() != cells) team_.map.assign(cells, CellState::unknown);
   const double half = cell / 2, res = mapper_.resolution();
   for (const auto& [p, state] : squares_M) {
     if (state == CellState::unknown) continue;
@@ -331,7 +358,7 @@ void Explorer::add_team_map(const std::vector<std::pair<Vec2, CellState>>& squar
     const int y1 = static_cast<int>(std::min<double>(mapper_.height() - 1, std::floor(hi.y() - 0.5)));
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
-        CellState& t = team_map_[static_cast<std::size_t>(mapper_.index({x, y}))];
+        CellState& t = team_.map[static_cast<std::size_t>(mapper_.index({x, y}))];
         if (t == CellState::unknown) ++stats_.team_mapped_cells;
         // a wall one teammate saw stays a wall when another saw free ground there
         if (t != CellState::occupied) t = state;
@@ -342,7 +369,7 @@ void Explorer::add_team_map(const std::vector<std::pair<Vec2, CellState>>& squar
 
 void Explorer::add_team_seen(const std::vector<Vec2>& centres_M, double cell) {
   if (!config_.look.enabled || !mapper_.allocated() || !(cell > 0)) return;
-  for (const Vec2& p : centres_M) team_seen_ = looked_.mark_team_square(mapper_, p, cell / 2) > 0 || team_seen_;
+  for (const Vec2& p : centres_M) team_.seen = looked_.mark_team_square(mapper_, p, cell / 2) > 0 || team_.seen;
 }
 
 bool Explorer::still_frontier(const Vec2& p_M) const {
@@ -352,50 +379,40 @@ bool Explorer::still_frontier(const Vec2& p_M) const {
     for (int dx = -2; dx <= 2; ++dx) {
       const Cell n{c->x + dx, c->y + dy};
       if (!mapper_.contains(n)) continue;
-      if ((open_frontier(n) && (team_frontier_target_ || !looked_.looked_by_team(n))) || unseen(n)) return true;
+      if ((open_frontier(n) && (plan_.team_frontier_target || !looked_.looked_by_team(n))) || unseen(n)) return true;
     }
   }
   return false;
 }
 
-void Explorer::start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now) {
-  mode_ = mode;
-  target_M_ = path.back();
+void Explorer::start_path(std::vector<Vec2> path, SimTime now) {
+  plan_.target_M = path.back();
   // a new path is judged on fresh evidence: a slip verdict only changes while odometry claims
   // motion, so one kept from before would hold a robot that stopped for it still for good
   slip_.reset();
   match_slip_.reset();
   // the path message: each pose faces the next point
-  path_msg_.header = {now, config_.frame_id};
-  path_msg_.poses.clear();
+  plan_.path_msg.header = {now, config_.frame_id};
+  plan_.path_msg.poses.clear();
   for (std::size_t i = 0; i < path.size(); ++i) {
     const Vec2 d = i + 1 < path.size() ? Vec2(path[i + 1] - path[i]) : (i > 0 ? Vec2(path[i] - path[i - 1]) : Vec2(1, 0));
     msg::PoseStamped p;
-    p.header = path_msg_.header;
+    p.header = plan_.path_msg.header;
     p.pose = Pose3::from_pose2({path[i].x(), path[i].y(), std::atan2(d.y(), d.x())});
-    path_msg_.poses.push_back(p);
+    plan_.path_msg.poses.push_back(p);
   }
   follower_.set_path(std::move(path), now);
 }
 
-void Explorer::start_wall_following(SimTime now) {
-  mode_ = ExplorerMode::wall_following;
-  follower_.clear();
-  path_msg_.poses.clear();
-  path_msg_.header.stamp = now;
-  tries_ = 0;
-  reset_progress(X_MO_ * odom_.back().second, now);
-}
-
 msg::Twist Explorer::wall_follow(const Pose2& X_MB, SimTime now) {
-  const msg::Twist twist = wall_.command(points_B_, scan_stamp_);
+  const msg::Twist twist = wall_.command(scan_.points_B, scan_.stamp);
   // count blocked episodes (their starts) within the window
-  if (wall_.state() == WallFollowerState::blocked && last_wall_state_ != WallFollowerState::blocked) {
-    blocked_times_.push_back(now);
+  if (wall_.state() == WallFollowerState::blocked && progress_.last_wall_state != WallFollowerState::blocked) {
+    progress_.blocked_times.push_back(now);
   }
-  last_wall_state_ = wall_.state();
-  while (!blocked_times_.empty() && (now - blocked_times_.front()).seconds() > config_.blocked_window) {
-    blocked_times_.pop_front();
+  progress_.last_wall_state = wall_.state();
+  while (!progress_.blocked_times.empty() && (now - progress_.blocked_times.front()).seconds() > config_.blocked_window) {
+    progress_.blocked_times.pop_front();
   }
 
   // stuck: plan a trip to new terrain (at most once per replan period)
@@ -404,7 +421,7 @@ msg::Twist Explorer::wall_follow(const Pose2& X_MB, SimTime now) {
   const bool eager = config_.frontier_trips && config_.frontier_first;
   if ((reason == StuckReason::none && !eager) || !may_plan(now)) return twist;
   if (reason != StuckReason::none) {
-    last_stuck_ = reason;
+    progress_.last_stuck = reason;
     if (reason == StuckReason::no_progress) ++stats_.stuck_no_progress;
     if (reason == StuckReason::blocked) ++stats_.stuck_blocked;
     if (reason == StuckReason::looping) ++stats_.stuck_looping;
@@ -415,13 +432,13 @@ msg::Twist Explorer::wall_follow(const Pose2& X_MB, SimTime now) {
   if (reason != StuckReason::none || !path.empty()) reset_progress(X_MB, now);
   if (path.empty()) {
     if (reason != StuckReason::none) ++stats_.no_frontier;
-    complete_ = true;
+    plan_.complete = true;
     return twist;
   }
-  complete_ = false;
+  plan_.complete = false;
   ++stats_.frontier_trips;
-  tries_ = 0;
-  start_path(std::move(path), ExplorerMode::to_frontier, now);
+  enter(ExplorerMode::to_frontier, now);
+  start_path(std::move(path), now);
   return follow_path(X_MB, now);
 }
 
@@ -430,8 +447,8 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_MB, SimTime now) {
   // after arriving cannot be resolved from here and is not visited again
   if (follower_.status() == PathStatus::reached) {
     ++stats_.frontiers_reached;
-    if (still_frontier(target_M_)) excluded_M_.push_back(target_M_);
-    start_wall_following(now);
+    if (still_frontier(plan_.target_M)) plan_.excluded_M.push_back(plan_.target_M);
+    enter(ExplorerMode::wall_following, now);
     return wall_follow(X_MB, now);
   }
   // replan (at most once per replan period) when stuck on the path, when the target was
@@ -441,29 +458,29 @@ msg::Twist Explorer::drive_to_frontier(const Pose2& X_MB, SimTime now) {
   if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_MB, now);
   if (stuck) {
     ++stats_.path_stuck;
-    if (++tries_ >= config_.max_tries) {
+    if (++plan_.tries >= config_.max_tries) {
       ++stats_.abandoned;
-      excluded_M_.push_back(target_M_);
-      start_wall_following(now);
+      plan_.excluded_M.push_back(plan_.target_M);
+      enter(ExplorerMode::wall_following, now);
       return wall_follow(X_MB, now);
     }
     if (start_backup(ExplorerMode::to_frontier, now)) return back_up(X_MB, now);
-  } else if (still_frontier(target_M_)) {
+  } else if (still_frontier(plan_.target_M)) {
     if (!due_for_check(now) || !path_ahead_blocked(X_MB)) return follow_path(X_MB, now);
     ++stats_.path_blocked;
   }
   std::vector<Vec2> path = plan_frontier(X_MB, now);
   if (path.empty()) {
-    start_wall_following(now);
+    enter(ExplorerMode::wall_following, now);
     return wall_follow(X_MB, now);
   }
-  start_path(std::move(path), ExplorerMode::to_frontier, now);
+  start_path(std::move(path), now);
   return follow_path(X_MB, now);
 }
 
 msg::Twist Explorer::drive_to_goal(const Pose2& X_MB, SimTime now) {
   if (follower_.status() == PathStatus::reached) {
-    mode_ = ExplorerMode::at_goal;
+    enter(ExplorerMode::at_goal, now);
     return {};
   }
   // plan on request; replan (at most once per replan period) when there is no path, when
@@ -471,35 +488,35 @@ msg::Twist Explorer::drive_to_goal(const Pose2& X_MB, SimTime now) {
   // map grows
   const bool stuck = follower_.status() == PathStatus::stuck || wheels_slipping();
   const bool no_path = follower_.status() == PathStatus::idle;
-  if (!goal_needs_plan_) {
+  if (!plan_.goal_needs_plan) {
     if (!may_plan(now)) return stuck ? msg::Twist{} : follow_path(X_MB, now);
     if (stuck) {
       ++stats_.path_stuck;
       if (start_backup(ExplorerMode::to_goal, now)) return back_up(X_MB, now);
-    } else if (!no_path && (now - last_plan_).seconds() < config_.goal_replan_period) {
+    } else if (!no_path && (now - plan_.last_plan).seconds() < config_.goal_replan_period) {
       if (!due_for_check(now) || !path_ahead_blocked(X_MB)) return follow_path(X_MB, now);
       ++stats_.path_blocked;
     }
   }
-  goal_needs_plan_ = false;
-  planned_ = true;
-  last_plan_ = now;
+  plan_.goal_needs_plan = false;
+  plan_.planned = true;
+  plan_.last_plan = now;
   ++stats_.plans;
-  std::vector<Vec2> path = planner_.plan(mapper_, X_MB.position(), *goal_M_);
+  std::vector<Vec2> path = planner_.plan(mapper_, X_MB.position(), *plan_.goal_M);
   if (path.empty()) {
     // unreachable on the map so far: stand still and try again later
     follower_.clear();
-    path_msg_.poses.clear();
+    plan_.path_msg.poses.clear();
     return {};
   }
-  path.back() = *goal_M_;  // end on the goal itself rather than its cell's centre
-  start_path(std::move(path), ExplorerMode::to_goal, now);
+  path.back() = *plan_.goal_M;  // end on the goal itself rather than its cell's centre
+  start_path(std::move(path), now);
   return follow_path(X_MB, now);
 }
 
 bool Explorer::due_for_check(SimTime now) {
-  if ((now - last_check_).seconds() < config_.replan_period) return false;
-  last_check_ = now;
+  if ((now - plan_.last_check).seconds() < config_.replan_period) return false;
+  plan_.last_check = now;
   return true;
 }
 
@@ -510,11 +527,11 @@ bool Explorer::path_ahead_blocked(const Pose2& X_MB) const {
 
 bool Explorer::rear_clear(double distance) const {
   // the laser, when it looks behind
-  if (sees_behind_) return free_distance_along(points_B_, M_PI, config_.robot_radius) >= distance;
+  if (scan_.sees_behind) return free_distance_along(scan_.points_B, M_PI, config_.robot_radius) >= distance;
   // else the map: every cell the robot would sweep reversing must be known free, seen from
   // the last pose odometry and laser agreed on, with room for the drift since then
-  if (!mapper_.allocated() || !have_trusted_) return false;
-  const Pose2& X_MB = trusted_X_MB_;
+  if (!mapper_.allocated() || !loc_.trusted_X_MB) return false;
+  const Pose2& X_MB = *loc_.trusted_X_MB;
   distance += config_.slip.min_motion;
   const double reach = config_.robot_radius + mapper_.resolution();
   for (double back = 0; back <= distance + 1e-9; back += mapper_.resolution()) {
@@ -531,22 +548,18 @@ bool Explorer::rear_clear(double distance) const {
 
 bool Explorer::start_backup(ExplorerMode resume, SimTime now) {
   // only when the way back is clear (seen by the laser, or known free on the map)
-  if (backed_up_ && (now - backup_until_).seconds() < config_.backup_cooldown) return false;
+  if (reversing_.until && (now - *reversing_.until).seconds() < config_.backup_cooldown) return false;
   if (!rear_clear(std::max(config_.backup_clearance, config_.backup_speed * config_.backup_time))) return false;
-  backed_up_ = true;
   ++stats_.backups;
-  resume_ = resume;
-  mode_ = ExplorerMode::backing_up;
-  backup_until_ = now + SimTime::from_seconds(config_.backup_time);
-  follower_.clear();
-  path_msg_.poses.clear();
+  reversing_.resume = resume;
+  enter(ExplorerMode::backing_up, now);
   return true;
 }
 
 msg::Twist Explorer::back_up(const Pose2& X_MB, SimTime now) {
   // reverse for a moment (stopping short of anything the laser sees behind), then find a way
   // on: the goal again, or the nearest frontier (wall following when there is none)
-  if (now < backup_until_ && (!sees_behind_ || free_distance_along(points_B_, M_PI, config_.robot_radius) > 0.1)) {
+  if (now < *reversing_.until && (!scan_.sees_behind || free_distance_along(scan_.points_B, M_PI, config_.robot_radius) > 0.1)) {
     msg::Twist twist;
     twist.linear.x() = -config_.backup_speed;
     return twist;
@@ -554,22 +567,21 @@ msg::Twist Explorer::back_up(const Pose2& X_MB, SimTime now) {
   reset_progress(X_MB, now);
   slip_.reset();  // fresh evidence before calling it slipping again
   match_slip_.reset();
-  backup_until_ = now;
-  if (resume_ == ExplorerMode::to_goal) {
-    mode_ = ExplorerMode::to_goal;
-    goal_needs_plan_ = true;
+  reversing_.until = now;
+  if (reversing_.resume == ExplorerMode::to_goal) {
+    enter(ExplorerMode::to_goal, now);
     return drive_to_goal(X_MB, now);
   }
   std::vector<Vec2> path = plan_frontier(X_MB, now);
-  complete_ = path.empty();
+  plan_.complete = path.empty();
   if (path.empty()) {
     ++stats_.no_frontier;
-    start_wall_following(now);
-    return wall_.command(points_B_, scan_stamp_);
+    enter(ExplorerMode::wall_following, now);
+    return wall_.command(scan_.points_B, scan_.stamp);
   }
   ++stats_.frontier_trips;
-  tries_ = resume_ == ExplorerMode::to_frontier ? tries_ : 0;
-  start_path(std::move(path), ExplorerMode::to_frontier, now);
+  enter(ExplorerMode::to_frontier, now);
+  start_path(std::move(path), now);
   return follow_path(X_MB, now);
 }
 
@@ -577,12 +589,12 @@ msg::Twist Explorer::follow_path(const Pose2& X_MB, SimTime now) {
   msg::Twist twist = follower_.command(X_MB, now);
   // the laser overrules the map: slow, then stop forward motion, when something is close
   // ahead; another robot counts as the outline of the disc around its mast
-  double ahead = free_distance_ahead(points_B_, config_.robot_radius);
-  if (!posts_M_.empty()) {
+  double ahead = free_distance_ahead(scan_.points_B, config_.robot_radius);
+  if (!scan_.masts_M.empty()) {
     constexpr int kOutline = 16;
     std::vector<ScanPoint> outline;
     const Pose2 X_BM = X_MB.inverse();
-    for (const Vec2& c_M : posts_M_) {
+    for (const Vec2& c_M : scan_.masts_M) {
       for (int k = 0; k < kOutline; ++k) {
         const double a = 2 * M_PI * k / kOutline;
         ScanPoint p;

@@ -184,7 +184,7 @@ class Explorer {
   void add_team_map(const std::vector<std::pair<Vec2, CellState>>& squares_M, double cell);
   /// True when a teammate has said cell `c` (inside the map) is free or occupied.
   bool team_mapped(Cell c) const {
-    return !team_map_.empty() && team_map_[static_cast<std::size_t>(mapper_.index(c))] != CellState::unknown;
+    return !team_.map.empty() && team_.map[static_cast<std::size_t>(mapper_.index(c))] != CellState::unknown;
   }
 
   /// Drives to `p_M` (m, map frame) by A* over the map (unknown cells allowed per the
@@ -196,16 +196,16 @@ class Explorer {
   /// Points (m, map frame) where teammates are or are going: frontier trips skip frontiers
   /// within the planner's claimed_radius of them, unless no other frontier is left. Replaces
   /// the previous set; empty for a robot alone.
-  void set_claims(std::vector<Vec2> claims_M) { claims_M_ = std::move(claims_M); }
+  void set_claims(std::vector<Vec2> claims_M) { team_.claims_M = std::move(claims_M); }
   /// Other robots' masts in the last scan (map frame; ExplorerConfig::post_radius).
-  const std::vector<Vec2>& masts() const { return posts_M_; }
+  const std::vector<Vec2>& masts() const { return scan_.masts_M; }
   /// The end of the frontier trip under way (map frame), if one is.
   std::optional<Vec2> frontier_target() const {
-    return mode_ == ExplorerMode::to_frontier ? std::optional<Vec2>(target_M_) : std::nullopt;
+    return mode_ == ExplorerMode::to_frontier ? std::optional<Vec2>(plan_.target_M) : std::nullopt;
   }
 
   /// The path being followed (map frame), empty when wall following.
-  const msg::Path& current_path() const { return path_msg_; }
+  const msg::Path& current_path() const { return plan_.path_msg; }
   /// The map so far (map frame, named frame_id; `stamp`); an empty grid before the first scan.
   msg::OccupancyGrid map(SimTime stamp) const;
   /// The map itself (map frame), for planners and plots in-process.
@@ -213,25 +213,87 @@ class Explorer {
 
   /// The odom frame in the map frame: the correction scan matching has found so far (the
   /// identity until the first good match, and always without scan matching).
-  const Pose2& X_MO() const { return X_MO_; }
+  const Pose2& X_MO() const { return loc_.X_MO; }
   /// The pose of base_link in the map frame at `t` (odometry at t, corrected by the current
   /// X_MO); nothing before the first odometry.
   std::optional<Pose2> pose_in_map(SimTime t) const;
   /// The last scan match (verdict rejected before the first).
-  const ScanMatch& last_match() const { return last_match_; }
+  const ScanMatch& last_match() const { return loc_.last_match; }
 
   /// What it is doing now.
   ExplorerMode mode() const { return mode_; }
   /// Why it last decided it was stuck (none before the first time).
-  StuckReason last_stuck_reason() const { return last_stuck_; }
+  StuckReason last_stuck_reason() const { return progress_.last_stuck; }
   /// True after a stuck trigger found no reachable frontier (cleared when one is found).
-  bool exploration_complete() const { return complete_; }
+  bool exploration_complete() const { return plan_.complete; }
   /// Counters of what it did.
   const ExplorerStats& stats() const { return stats_; }
   /// Its settings, with robot_radius and X_BS copied into the parts.
   const ExplorerConfig& config() const { return config_; }
 
  private:
+  /// Where the robot is: odometry, the map frame's correction, the last pose the laser agreed
+  /// with, and where its camera looks. Written by on_odometry, on_scan and on_joint_state.
+  struct Localisation {
+    std::deque<std::pair<SimTime, Pose2>> odom;  // recent poses of base_link in odom
+    Pose2 X_MO;                                  // the odom frame in the map frame
+    ScanMatch last_match;
+    std::optional<Pose2> trusted_X_MB;  // pose of the last scan that fitted odometry or the map
+    double camera_yaw = 0;              // the camera's yaw in base_link (rad)
+  };
+  /// The latest scan as the reactive parts read it (wall follower, path safety, reversing,
+  /// masts), and when the map last took one.
+  struct LatestScan {
+    std::vector<ScanPoint> points_B;  // in base_link
+    SimTime stamp;
+    bool have = false;          // a scan has arrived
+    bool sees_behind = false;   // the laser's fan covers the robot's rear
+    std::vector<Vec2> masts_M;  // other robots' masts in it (post_radius)
+    SimTime last_mapped;        // stamp of the last scan integrated into the map
+  };
+  /// Whether the robot is getting anywhere: what stuck_reason reads.
+  struct Progress {
+    bool started = false;  // tracking runs (else it restarts at the next command)
+    Pose2 anchor;          // where the robot was when it last made progress
+    SimTime anchor_time;
+    SimTime since;                      // when tracking last restarted (looping is judged from here)
+    std::deque<SimTime> blocked_times;  // starts of blocked episodes
+    WallFollowerState last_wall_state = WallFollowerState::no_data;
+    std::deque<std::pair<SimTime, int>> novelty;  // cells learned per scan, by stamp
+    StuckReason last_stuck = StuckReason::none;
+  };
+  /// The trip under way (to a frontier or the goal), its path, and the planner's schedule.
+  struct Plan {
+    std::optional<Vec2> goal_M;  // map frame, as everything below
+    bool goal_needs_plan = false;
+    Vec2 target_M = Vec2::Zero();  // end of the current path
+    int tries = 0;                 // stuck paths to this frontier so far
+    std::vector<Vec2> excluded_M;  // frontiers given up
+    bool planned = false;          // last_plan is set
+    SimTime last_plan;
+    SimTime last_check;                 // last look for obstacles on the path
+    bool team_frontier_target = false;  // the last plan had to take a frontier a teammate looked at
+    bool complete = false;              // the last search found no reachable frontier
+    msg::Path path_msg;
+  };
+  /// Reversing out of a stuck spot.
+  struct Reversing {
+    std::optional<SimTime> until;                        // end of the last reversing (none before the first)
+    ExplorerMode resume = ExplorerMode::wall_following;  // what it was for
+  };
+  /// What teammates said over the radio (set_claims, add_team_map, add_team_seen).
+  struct TeamKnowledge {
+    std::vector<Vec2> claims_M;  // where teammates are and are going
+    std::vector<CellState> map;  // per map cell: what teammates mapped; empty before the first
+    bool seen = false;           // a teammate's squares marked some cell of `looked_`
+  };
+
+  /// The one place the mode changes, with what entering each mode takes: wall following drops
+  /// the path and restarts progress tracking (at `now`, or at the next command when called
+  /// between commands); a goal trip drops the path and asks for a plan; a frontier trip
+  /// counts its tries afresh unless it resumes after reversing; reversing drops the path and
+  /// sets its end. `now` is nothing only between commands (set_goal, clear_goal).
+  void enter(ExplorerMode mode, std::optional<SimTime> now);
   std::optional<Pose2> pose_at(SimTime t) const;  // odometry (base_link in odom) at t
   bool match_scan(const Pose2& X_OB);
   msg::Twist wall_follow(const Pose2& X_MB, SimTime now);
@@ -248,66 +310,36 @@ class Explorer {
   bool path_ahead_blocked(const Pose2& X_MB) const;
   std::vector<Vec2> plan_frontier(const Pose2& X_MB, SimTime now);
   bool still_frontier(const Vec2& p_M) const;
-  /// Other robots' masts in the scan just mapped (posts_M_, ExplorerConfig::post_radius).
+  /// Other robots' masts in the scan just mapped (LatestScan::masts_M, ExplorerConfig::post_radius).
   void find_masts(const Pose2& X_MB);
   bool unseen(Cell c) const;
   /// A frontier whose unknown side some teammate has not mapped either (any frontier without
   /// a teammate's map).
   bool open_frontier(Cell c) const;
-  void start_path(std::vector<Vec2> path, ExplorerMode mode, SimTime now);
-  void start_wall_following(SimTime now);
+  /// Follows `path` (a trip in the current mode): its end, its message, fresh slip evidence.
+  void start_path(std::vector<Vec2> path, SimTime now);
   void reset_progress(const Pose2& X_MB, SimTime now);
 
+  // the parts, made from the settings
   Pose2 X_BS_;
   ExplorerConfig config_;
   OccupancyMapper mapper_;
   AStarPlanner planner_;
   WallFollower wall_;
   PathFollower follower_;
-
-  std::deque<std::pair<SimTime, Pose2>> odom_;   // recent poses of base_link in odom
-  std::vector<ScanPoint> points_B_;               // latest scan in base_link
-  SimTime scan_stamp_;
-  bool have_scan_ = false;
-  SimTime last_mapped_;                           // stamp of the last scan integrated into the map
-  bool sees_behind_ = false;                      // the laser's fan covers the robot's rear
-  Pose2 trusted_X_MB_;                            // pose of the last scan that fitted odometry or the map
-  bool have_trusted_ = false;
-  bool backed_up_ = false;                        // reversed at least once (backup_until_ is its end)
-  SlipDetector slip_;                             // odometry against the laser, scan to scan
-  SlipDetector match_slip_;                       // odometry against scan matching
+  SlipDetector slip_;        // odometry against the laser, scan to scan
+  SlipDetector match_slip_;  // odometry against scan matching
   ScanMatcher matcher_;
-  LookCoverage looked_;
-  double camera_yaw_ = 0;                         // the camera's yaw in base_link (rad)
-  ScanMatch last_match_;
-  Pose2 X_MO_;                                    // the odom frame in the map frame
-  std::deque<std::pair<SimTime, int>> novelty_;  // cells learned per scan, by stamp
-  std::deque<SimTime> blocked_times_;             // starts of blocked episodes
-  WallFollowerState last_wall_state_ = WallFollowerState::no_data;
+  LookCoverage looked_;  // where this robot's camera and (add_team_seen) its teammates' have looked
 
-  ExplorerMode mode_ = ExplorerMode::wall_following;
-  SimTime mode_since_;
-  bool started_ = false;
-  Pose2 anchor_;                                  // where the robot was when it last made progress
-  SimTime anchor_time_;
-  SimTime last_plan_;
-  bool planned_ = false;
-  SimTime last_check_;                            // last look for obstacles on the path
-  bool goal_needs_plan_ = false;
-  std::optional<Vec2> goal_M_;                    // map frame, as everything below
-  Vec2 target_M_ = Vec2::Zero();                  // end of the current path
-  SimTime backup_until_;                          // end of the current reversing
-  ExplorerMode resume_ = ExplorerMode::wall_following;  // what reversing was for
-  int tries_ = 0;
-  std::vector<Vec2> excluded_M_;                  // frontiers given up
-  std::vector<Vec2> claims_M_;                    // where teammates are and are going (set_claims)
-  bool team_frontier_target_ = false;             // the last plan had to take a frontier a teammate looked at
-  bool team_seen_ = false;                        // a teammate's squares marked some cell (add_team_seen)
-  std::vector<CellState> team_map_;               // per map cell: what teammates mapped (add_team_map); empty before the first
-  std::vector<Vec2> posts_M_;                     // other robots' masts in the last scan (post_radius)
-  msg::Path path_msg_;
-  StuckReason last_stuck_ = StuckReason::none;
-  bool complete_ = false;
+  // the state, by who reads it
+  ExplorerMode mode_ = ExplorerMode::wall_following;  // changed only by enter()
+  Localisation loc_;
+  LatestScan scan_;
+  Progress progress_;
+  Plan plan_;
+  Reversing reversing_;
+  TeamKnowledge team_;
   ExplorerStats stats_;
 };
 

@@ -77,7 +77,10 @@ Axes panel(Canvas& img, int px, int py, int pw, int ph, const std::string& title
     img.text(static_cast<int>(p.x()) - text_width(s, 1) / 2, a.y + a.h + 8, s, kInk, 1);
   }
   img.text(a.x + (a.w - text_width(xlabel, 1)) / 2, a.y + a.h + 24, xlabel, kInk, 1);
-  img.polyline({{double(a.x), double(a.y)}, {double(a.x + a.w), double(a.y)}, {double(a.x + a.w), double(a.y + a.h)}, {double(a.x), double(a.y + a.h)}},
+  img.polyline({{double(a.x), double(a.y)},
+                {double(a.x + a.w), double(a.y)},
+                {double(a.x + a.w), double(a.y + a.h)},
+                {double(a.x), double(a.y + a.h)}},
                kInk, 1.0, true);
   return a;
 }
@@ -99,8 +102,8 @@ void histogram(Canvas& img, int px, int py, int pw, int ph, const std::string& t
     if (counts[static_cast<std::size_t>(b)] == 0) continue;
     const Vec2 p0 = a.px(lo + (hi - lo) * b / bins, 0);
     const Vec2 p1 = a.px(lo + (hi - lo) * (b + 1) / bins, counts[static_cast<std::size_t>(b)]);
-    img.fill_rect(static_cast<int>(std::lround(p0.x())) + 1, static_cast<int>(std::lround(p1.y())), static_cast<int>(std::lround(p1.x())) - 1,
-                  static_cast<int>(std::lround(p0.y())), kBlue);
+    img.fill_rect(static_cast<int>(std::lround(p0.x())) + 1, static_cast<int>(std::lround(p1.y())),
+                  static_cast<int>(std::lround(p1.x())) - 1, static_cast<int>(std::lround(p0.y())), kBlue);
   }
   if (values.empty()) img.text(a.x + 10, a.y + 10, "no trials", kInk, 1);
 }
@@ -159,7 +162,8 @@ Canvas terrain_figure(const std::map<int, TrialRecord>& records) {
   integer_histogram(img, 2 * pw, top, pw, ph, "falls", "falls per trial", falls, max_falls);
   integer_histogram(img, 0, top + ph, pw, ph, "stuck", "stuck events per trial", stuck, max_stuck);
   double t_hi = mean_time.empty() ? 1 : *std::max_element(mean_time.begin(), mean_time.end());
-  histogram(img, pw, top + ph, pw, ph, "time per repetition", "s, mean over a trial's completed ones", mean_time, 0, std::ceil(t_hi * 1.1 + 1e-9), 10);
+  histogram(img, pw, top + ph, pw, ph, "time per repetition", "s, mean over a trial's completed ones", mean_time, 0,
+            std::ceil(t_hi * 1.1 + 1e-9), 10);
   rtf_histogram(img, 2 * pw, top + ph, pw, ph, rtf);
   return img;
 }
@@ -167,8 +171,10 @@ Canvas terrain_figure(const std::map<int, TrialRecord>& records) {
 }  // namespace
 
 Canvas batch_figure(const std::map<int, TrialRecord>& records) {
-  const bool terrain = !records.empty() && std::all_of(records.begin(), records.end(), [](const auto& kv) { return kv.second.terrain.has_value() || kv.second.status != "ok"; }) &&
-                       std::any_of(records.begin(), records.end(), [](const auto& kv) { return kv.second.terrain.has_value(); });
+  const auto terrain_or_failed = [](const auto& kv) { return kv.second.terrain.has_value() || kv.second.status != "ok"; };
+  const auto has_terrain = [](const auto& kv) { return kv.second.terrain.has_value(); };
+  const bool terrain = !records.empty() && std::all_of(records.begin(), records.end(), terrain_or_failed) &&
+                       std::any_of(records.begin(), records.end(), has_terrain);
   if (terrain) return terrain_figure(records);
   const int pw = 400, ph = 330, top = 50;
   Canvas img(3 * pw, top + 2 * ph);

@@ -79,8 +79,9 @@ void check_same_batch(const LoadedResults& results, const fs::path& file, const 
     if (r.seed != trial_seed(base_seed, trial)) {
       throw Error({file.string(), 0, "trial " + std::to_string(trial)},
                   "ran with seed " + std::to_string(r.seed) + ", but this batch gives it seed " +
-                      std::to_string(trial_seed(base_seed, trial)) + " (base seed " + std::to_string(r.seed - static_cast<std::uint64_t>(trial)) +
-                      " then, " + std::to_string(base_seed) + " now); use the same --seed or another --out folder");
+                      std::to_string(trial_seed(base_seed, trial)) + " (base seed " +
+                      std::to_string(r.seed - static_cast<std::uint64_t>(trial)) + " then, " + std::to_string(base_seed) +
+                      " now); use the same --seed or another --out folder");
     }
   }
 }
@@ -113,7 +114,8 @@ ResultsFile::ResultsFile(const fs::path& dir) : dir_(dir) {
     ::close(lock_fd_);
     lock_fd_ = -1;
     release_hold();
-    throw Error({dir_.string(), 0, ""}, "another batch is writing this folder (it holds " + lock.string() + "); wait for it or use another --out");
+    throw Error({dir_.string(), 0, ""},
+                "another batch is writing this folder (it holds " + lock.string() + "); wait for it or use another --out");
   }
 }
 
@@ -200,8 +202,9 @@ std::vector<std::string> merge_results(const std::vector<fs::path>& dirs, const 
       base = b;
       have_base = true;
     } else if (b != base) {
-      throw Error({from.string(), 0, "trial " + std::to_string(r.trial)},
-                  "ran with base seed " + std::to_string(b) + ", other folders with " + std::to_string(base) + ": these are different batches");
+      throw Error(
+          {from.string(), 0, "trial " + std::to_string(r.trial)},
+          "ran with base seed " + std::to_string(b) + ", other folders with " + std::to_string(base) + ": these are different batches");
     }
   };
   for (const auto& [trial, r] : all.records) check(r, out / "results.jsonl");
@@ -218,7 +221,8 @@ std::vector<std::string> merge_results(const std::vector<fs::path>& dirs, const 
       if (it == all.records.end()) {
         all.records.emplace(trial, std::move(r));
       } else if (!same_outcome(it->second, r)) {
-        notices.push_back(file.string() + ": trial " + std::to_string(trial) + " has a different outcome than the copy already merged; keeping the first");
+        notices.push_back(file.string() + ": trial " + std::to_string(trial) +
+                          " has a different outcome than the copy already merged; keeping the first");
       }
     }
   }

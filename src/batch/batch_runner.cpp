@@ -121,7 +121,8 @@ BatchRunStats run_in_processes(const Scenario& scenario, const ModelMap& models,
     ::close(c.fd);
     // abandoned, or stopped along with the batch (Ctrl-C reaches the whole process group, a
     // scheduler's SIGTERM every process): not recorded, so the trial runs again on resume
-    const bool stopped_too = WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM || WTERMSIG(status) == SIGHUP);
+    const bool stopped_too =
+        WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM || WTERMSIG(status) == SIGHUP);
     if (stopping() || stopped_too) return;
     TrialRecord rec;
     bool parsed = false;

@@ -49,7 +49,8 @@ Stat stat_of(std::vector<double> v) {
   s.stddev = s.n > 1 ? std::sqrt(sq / (s.n - 1)) : 0.0;
   s.min = v.front();
   s.max = v.back();
-  s.median = s.n % 2 ? v[static_cast<std::size_t>(s.n / 2)] : 0.5 * (v[static_cast<std::size_t>(s.n / 2 - 1)] + v[static_cast<std::size_t>(s.n / 2)]);
+  s.median = s.n % 2 ? v[static_cast<std::size_t>(s.n / 2)]
+                     : 0.5 * (v[static_cast<std::size_t>(s.n / 2 - 1)] + v[static_cast<std::size_t>(s.n / 2)]);
   return s;
 }
 
@@ -125,7 +126,9 @@ std::string batch_summary_json(const std::map<int, TrialRecord>& records, const 
                     {"contact_fraction", stat_json(stat_of(contact))},
                     {"per_seed", json::array()}};
     for (const auto& [trial, r] : records) {
-      if (r.status == "ok" && r.mission) j["mission"]["per_seed"].push_back({{"trial", trial}, {"seed", r.seed}, {"score", r.mission->score}});
+      if (r.status == "ok" && r.mission) {
+        j["mission"]["per_seed"].push_back({{"trial", trial}, {"seed", r.seed}, {"score", r.mission->score}});
+      }
     }
   }
   if (!repetitions.empty()) {

@@ -31,7 +31,8 @@ std::string batch_fingerprint(const std::string& scenario_text, const TrialOptio
   char duration[40] = "scenario";
   if (options.duration) std::snprintf(duration, sizeof duration, "%.17g", *options.duration);
   const std::string key = scenario_text + "\n--\nduration=" + duration + "\ncontroller=" + options.controller +
-                          "\ncameras=" + (options.cameras ? "1" : "0") + "\nstop_when_all_found=" + (options.stop_when_all_found ? "1" : "0");
+                          "\ncameras=" + (options.cameras ? "1" : "0") +
+                          "\nstop_when_all_found=" + (options.stop_when_all_found ? "1" : "0");
   std::string terrain;
   if (const auto& t = options.terrain) {
     // only terrain batches carry these, so other batches keep their fingerprints

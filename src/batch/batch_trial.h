@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "batch/batch_record.h"
+#include "import/scenario/scenario.h"
 #include "session/terrain_trial.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim {
 

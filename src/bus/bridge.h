@@ -6,8 +6,8 @@
 /// and Foxglove; the MCAP recorder keeps one FIFO so that a recording's order is the publish
 /// order; cheap, never blocks unless the bridge is lossless), and serialises and sends from its
 /// own thread. Commands it receives are checked by the gate the bridges share
-/// (bridges/common/commands.h) and handed to the host's submit_velocity / submit_head /
-/// submit_joints, which queue them for the next step boundary.
+/// (bridges/common/commands.h) and handed to the host's command_velocity / command_head /
+/// command_joints, which queue them for the next step boundary.
 /// A slow network or subscriber therefore never slows the simulation: when a queue is full the
 /// oldest message is dropped and counted.
 

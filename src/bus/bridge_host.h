@@ -78,11 +78,11 @@ class BridgeHost {
   virtual std::string frame_name(int robot, const std::string& frame) const = 0;
 
   /// cmd_vel for robot `robot` (an index into world().robots), applied at the next step.
-  virtual CommandOutcome submit_velocity(int robot, const msg::Twist& twist) = 0;
+  virtual CommandOutcome command_velocity(int robot, const msg::Twist& twist) = 0;
   /// Head joint position targets (rad), in RobotSpec::head_joints order.
-  virtual CommandOutcome submit_head(int robot, const std::vector<double>& positions) = 0;
+  virtual CommandOutcome command_head(int robot, const std::vector<double>& positions) = 0;
   /// Targets for commandable joints by name (see Simulation::command_joints).
-  virtual CommandOutcome submit_joints(int robot, const msg::JointState& command) = 0;
+  virtual CommandOutcome command_joints(int robot, const msg::JointState& command) = 0;
 
   /// Topics taken beyond the commands above; fixed before bridges start. None by default.
   virtual std::vector<HostInput> inputs() const { return {}; }

@@ -19,7 +19,9 @@ bool finite3(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()
 RadioNetwork::RadioNetwork(RadioModel model, std::uint64_t seed, RadioNetworkOptions options)
     : model_(std::move(model)), seed_(seed), options_(options) {
   std::vector<std::string> errors = validate_radio_model(model_);
-  if (options_.relays_per_robot < 0) errors.push_back(fmt::format("radio.relays_per_robot: must be >= 0 (got {})", options_.relays_per_robot));
+  if (options_.relays_per_robot < 0) {
+    errors.push_back(fmt::format("radio.relays_per_robot: must be >= 0 (got {})", options_.relays_per_robot));
+  }
   if (!errors.empty()) {
     std::string text = "RadioNetwork: invalid radio parameters:";
     for (const std::string& e : errors) text += "\n  " + e;

@@ -1,5 +1,5 @@
 #pragma once
-/// The three error channels (see docs/style): `RS_DEMAND` for bugs, `Error` for bad input at a
+/// The three error channels (see docs/style.md): `RS_DEMAND` for bugs, `Error` for bad input at a
 /// file or API boundary (its text names the file, line or element and what was expected), and
 /// counted warnings in `Diagnostics` for problems a user should hear about but that do not stop
 /// the work.

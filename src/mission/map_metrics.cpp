@@ -144,8 +144,10 @@ void add_visible(Grid& seen, const Grid& truth, const Pose2& X_WB, const LaserMo
     truth.cell_of(X_WL.position(), i, j);
     const int si = dx > 0 ? 1 : -1, sj = dy > 0 ? 1 : -1;
     const Vec2 p = (X_WL.position() - truth.origin) / res;  // in cells
-    double t_max_x = std::fabs(dx) < 1e-12 ? INFINITY : ((si > 0 ? std::floor(p.x()) + 1 - p.x() : p.x() - std::floor(p.x())) / std::fabs(dx));
-    double t_max_y = std::fabs(dy) < 1e-12 ? INFINITY : ((sj > 0 ? std::floor(p.y()) + 1 - p.y() : p.y() - std::floor(p.y())) / std::fabs(dy));
+    double t_max_x =
+        std::fabs(dx) < 1e-12 ? INFINITY : ((si > 0 ? std::floor(p.x()) + 1 - p.x() : p.x() - std::floor(p.x())) / std::fabs(dx));
+    double t_max_y =
+        std::fabs(dy) < 1e-12 ? INFINITY : ((sj > 0 ? std::floor(p.y()) + 1 - p.y() : p.y() - std::floor(p.y())) / std::fabs(dy));
     const double t_dx = std::fabs(dx) < 1e-12 ? INFINITY : 1 / std::fabs(dx);
     const double t_dy = std::fabs(dy) < 1e-12 ? INFINITY : 1 / std::fabs(dy);
     const double t_end = laser.max_range / res;
@@ -177,7 +179,9 @@ Grid visible_surface(const Grid& truth, const std::vector<Pose2>& poses, const L
 
 Grid grid_from_occupancy(int width, int height, double resolution, const std::vector<std::int8_t>& data,
                          int free_max, int occupied_min) {
-  if (!(resolution > 0) || !std::isfinite(resolution)) throw Error("map: resolution " + std::to_string(resolution) + " m is not a positive number");
+  if (!(resolution > 0) || !std::isfinite(resolution)) {
+    throw Error("map: resolution " + std::to_string(resolution) + " m is not a positive number");
+  }
   if (width < 0 || height < 0 || static_cast<std::size_t>(width) * static_cast<std::size_t>(height) != data.size()) {
     throw Error("map: " + std::to_string(data.size()) + " cells of data for " + std::to_string(width) + " x " + std::to_string(height));
   }

@@ -48,7 +48,8 @@ std::string image_problem(const msg::Image& im) {
     return "step " + std::to_string(im.step) + " is shorter than a row of " + std::to_string(im.width) + " " + im.encoding + " pixels";
   }
   if (im.data.size() != static_cast<std::size_t>(im.step) * im.height) {
-    return std::to_string(im.data.size()) + " bytes of data, expected step x height = " + std::to_string(static_cast<std::size_t>(im.step) * im.height);
+    return std::to_string(im.data.size()) +
+           " bytes of data, expected step x height = " + std::to_string(static_cast<std::size_t>(im.step) * im.height);
   }
   return {};
 }
@@ -209,7 +210,8 @@ void Mission::publish_image_result(int robot, std::uint64_t report, const std::s
   j["id"] = report > 0 ? nlohmann::json(report) : nlohmann::json(nullptr);
   if (!problem.empty()) j["reason"] = problem;
   j["stamp"] = sim_.time().seconds();
-  sim_.bus().publish(result_topics_.at(static_cast<std::size_t>(robot)), msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+  sim_.bus().publish(result_topics_.at(static_cast<std::size_t>(robot)),
+                     msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
 }
 
 void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W) {
@@ -217,7 +219,8 @@ void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W
     nlohmann::json j;
     j["id"] = reply.id;
     j["outcome"] = std::string(report_outcome_name(reply.outcome));
-    j["victim"] = reply.victim >= 0 ? nlohmann::json(referee_.victims()[static_cast<std::size_t>(reply.victim)].name) : nlohmann::json(nullptr);
+    j["victim"] =
+        reply.victim >= 0 ? nlohmann::json(referee_.victims()[static_cast<std::size_t>(reply.victim)].name) : nlohmann::json(nullptr);
     j["distance"] = reply.distance_m >= 0 ? nlohmann::json(reply.distance_m) : nlohmann::json(nullptr);
     j["position"] = {number_or_null(p_W.x()), number_or_null(p_W.y()), number_or_null(p_W.z())};
     j["score_change"] = reply.score_change;
@@ -225,7 +228,8 @@ void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W
     j["reports_left"] = reply.reports_left;
     j["message"] = reply.message;
     j["stamp"] = sim_.time().seconds();
-    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)], msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)],
+                       msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
   }
 }
 
@@ -369,7 +373,8 @@ void Mission::publish_status() {
     j["hops_to_base"] = st.hops_to_base ? nlohmann::json(*st.hops_to_base) : nlohmann::json(nullptr);
     nlohmann::json nb = nlohmann::json::array();
     for (const auto& n : st.neighbours) {
-      nb.push_back({{"id", network_.node(n.node).id}, {"rssi_dbm", number_or_null(n.rssi_dbm)}, {"margin_db", number_or_null(n.margin_db)}});
+      nb.push_back(
+          {{"id", network_.node(n.node).id}, {"rssi_dbm", number_or_null(n.rssi_dbm)}, {"margin_db", number_or_null(n.margin_db)}});
     }
     j["neighbours"] = nb;
     j["bytes_sent"] = st.bytes_sent;
@@ -461,7 +466,8 @@ void Mission::enable_map_scoring(const WorldSpec& world) {
   seen_from_.assign(w.robots.size(), std::nullopt);
   map_truth_ = std::move(t);
   map_score_topic_ = sim_.bus().advertise("/rescue/map_score", "std_msgs/String", 0, true);
-  sim_.add_input({"/rescue/map", "nav_msgs/OccupancyGrid", -1}, [this](const msg::Message& m) { score_map(std::get<msg::OccupancyGrid>(m)); });
+  sim_.add_input({"/rescue/map", "nav_msgs/OccupancyGrid", -1},
+                 [this](const msg::Message& m) { score_map(std::get<msg::OccupancyGrid>(m)); });
   update_visible();
 }
 
@@ -492,7 +498,8 @@ MapScoreResult Mission::score_map(const msg::OccupancyGrid& map) {
     }
     const Pose2 X_WM = map.origin.to_pose2();
     if (!std::isfinite(X_WM.x) || !std::isfinite(X_WM.y) || !std::isfinite(X_WM.yaw)) throw Error("map: the origin is not finite");
-    const map_eval::Grid grid = map_eval::grid_from_occupancy(static_cast<int>(map.width), static_cast<int>(map.height), map.resolution, map.data);
+    const map_eval::Grid grid =
+        map_eval::grid_from_occupancy(static_cast<int>(map.width), static_cast<int>(map.height), map.resolution, map.data);
     const map_eval::MapScore sc = map_eval::score_map(grid, X_WM, map_truth_->truth, visible_, map_truth_->ignore);
     out.precision = sc.precision;
     out.recall = sc.recall;
@@ -519,7 +526,9 @@ MapScoreResult Mission::score_map(const msg::OccupancyGrid& map) {
     j["error"] = e.message();
   }
   map_score_ = out;
-  if (map_score_topic_ != kNoTopic) sim_.bus().publish(map_score_topic_, msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+  if (map_score_topic_ != kNoTopic) {
+    sim_.bus().publish(map_score_topic_, msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+  }
   return out;
 }
 

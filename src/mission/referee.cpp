@@ -41,11 +41,13 @@ Referee::Referee(MissionRules rules, std::vector<RefereeVictim> victims, int rob
        fmt::format("report_radius must be > 0 m, not {}", rules_.report_radius_m));
   need(std::isfinite(rules_.report_rate_hz) && rules_.report_rate_hz > 0,
        fmt::format("report_rate must be > 0 Hz, not {}", rules_.report_rate_hz));
-  need(std::isfinite(rules_.victim_points) && rules_.victim_points >= 0, fmt::format("victim_points must be >= 0, not {}", rules_.victim_points));
+  need(std::isfinite(rules_.victim_points) && rules_.victim_points >= 0,
+       fmt::format("victim_points must be >= 0, not {}", rules_.victim_points));
   need(std::isfinite(rules_.false_report_penalty) && rules_.false_report_penalty >= 0,
        fmt::format("false_report_penalty must be >= 0, not {}", rules_.false_report_penalty));
   need(rules_.report_limit >= 0, fmt::format("report_limit must be >= 0, not {}", rules_.report_limit));
-  need(std::isfinite(rules_.time_limit_s) && rules_.time_limit_s >= 0, fmt::format("time_limit must be >= 0 s, not {}", rules_.time_limit_s));
+  need(std::isfinite(rules_.time_limit_s) && rules_.time_limit_s >= 0,
+       fmt::format("time_limit must be >= 0 s, not {}", rules_.time_limit_s));
   need(robots >= 0, fmt::format("robot count must be >= 0, not {}", robots));
   for (const auto& v : victims_) need(v.p_W.allFinite(), "victim '" + v.name + "' has a position that is not finite");
   if (!problems.empty()) throw Error("mission rules: " + problems);

@@ -14,11 +14,29 @@ void on_embree_error(void*, RTCError code, const char* text) {
   demand_failed("Embree call succeeded", __FILE__, __LINE__, message.c_str());
 }
 
+/// The device's configuration. Embree builds a scene (rtcCommitScene) on TBB's threads and
+/// hands it back through TBB's own synchronisation, which ThreadSanitizer cannot see in
+/// Debian's uninstrumented libraries: what the builders allocated and the thread that later
+/// releases the scene would look like a race. Under TSan, "threads=1" caps TBB at one thread,
+/// so every build runs on the thread that commits, and each scene passes between our threads
+/// only through the worker pool's mutex (core/parallel.cpp) or the caller's own locks.
+#if defined(__SANITIZE_THREAD__)
+constexpr const char* kDeviceConfig = "threads=1";
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+constexpr const char* kDeviceConfig = "threads=1";
+#else
+constexpr const char* kDeviceConfig = nullptr;
+#endif
+#else
+constexpr const char* kDeviceConfig = nullptr;
+#endif
+
 /// Owns the device for the life of the process; scenes retain it themselves, so static
 /// destruction order does not matter.
 struct DeviceHolder {
   RTCDevice device;
-  DeviceHolder() : device(rtcNewDevice(nullptr)) {
+  DeviceHolder() : device(rtcNewDevice(kDeviceConfig)) {
     RS_DEMAND(device != nullptr, "rtcNewDevice failed");
     rtcSetDeviceErrorFunction(device, on_embree_error, nullptr);
   }

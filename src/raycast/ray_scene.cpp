@@ -1,9 +1,6 @@
 #include "raycast/ray_scene.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
+#include <algorithm>
 #include <cstdint>
 #include <list>
 #include <string>
@@ -20,7 +17,7 @@ namespace {
 
 /// Below this many rays a batch is traced on the calling thread.
 constexpr std::size_t kParallelMinRays = 384;
-/// Packets of 16 rays handed to one TBB task at a time.
+/// Packets of 16 rays handed to one task of the pool at a time.
 constexpr std::size_t kPacketsPerTask = 4;
 /// Above this many static triangles rubble is never folded into the flat geometry: each time a
 /// body falls asleep or wakes the flat BVH is rebuilt (about 1 ms for a maze of a few thousand
@@ -296,7 +293,8 @@ RayScene::RayScene(const World& world) : impl_(std::make_unique<Impl>()) {
     s.link_instance.emplace_back(robot.spec.links.size(), -1);
     for (std::size_t l = 0; l < robot.spec.links.size(); ++l) {
       FloatMesh mesh;
-      for (const LinkShape& shape : robot.spec.links[l].shapes) mesh.append(mesh_of(shape.geometry, raycast_detail::kRoundSegments), shape.X_LG);
+      for (const LinkShape& shape : robot.spec.links[l].shapes)
+        mesh.append(mesh_of(shape.geometry, raycast_detail::kRoundSegments), shape.X_LG);
       if (mesh.triangle_count() == 0) continue;
       s.link_instance[r][l] = s.add_instance(s.link_prototype(mesh, static_cast<int>(r)), mesh, robot.X_W_start * X_BL[l],
                                              RayHit::Source::robot_link, static_cast<int>(l), static_cast<int>(r));
@@ -320,7 +318,8 @@ void RayScene::update(const State& state) {
     if (inst < 0) continue;
     const BodyState& b = state.dynamics[i];
     const bool flat = b.sleep == BodyState::Sleep::asleep && s.statics.triangle_count() <= kFlatRubbleMaxStaticTriangles;
-    if (flat != static_cast<bool>(s.flat_rubble[i]) || (flat && !(b.X_WB.p == s.flat_pose[i].p && b.X_WB.q.coeffs() == s.flat_pose[i].q.coeffs()))) {
+    if (flat != static_cast<bool>(s.flat_rubble[i]) ||
+        (flat && !(b.X_WB.p == s.flat_pose[i].p && b.X_WB.q.coeffs() == s.flat_pose[i].q.coeffs()))) {
       s.flat_rubble[i] = flat;
       s.flat_pose[i] = b.X_WB;
       rebuild = true;
@@ -357,10 +356,9 @@ void RayScene::cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignor
   if (n < kParallelMinRays || worker_threads() == 1) {
     run(0, packets);
   } else {
-    tbb::this_task_arena::isolate([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets, kPacketsPerTask),
-                        [&](const tbb::blocked_range<std::size_t>& r) { run(r.begin(), r.end()); });
-    });
+    // on the process's pool (core/parallel.h, isolated like this), kPacketsPerTask a task
+    const std::size_t tasks = (packets + kPacketsPerTask - 1) / kPacketsPerTask;
+    parallel_for(tasks, [&](std::size_t t) { run(t * kPacketsPerTask, std::min(packets, (t + 1) * kPacketsPerTask)); });
   }
 }
 

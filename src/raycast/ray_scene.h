@@ -38,8 +38,8 @@ struct RayHit {
 /// no instance); awake rubble and robot links are instances moved by update(). A body that falls
 /// asleep or wakes rebuilds the flat geometry (not in worlds of more than 20 000 static
 /// triangles, where rubble stays instanced). Which bodies are flat is a function of the State
-/// alone, so a run and the same run restored from a snapshot trace the same triangles. Move-only. cast() and occluded() are const and may run from
-/// several threads at once, but not concurrently with update().
+/// alone, so a run and the same run restored from a snapshot trace the same triangles. Move-only. cast() and occluded() are const and may
+/// run from several threads at once, but not concurrently with update().
 class RayScene {
  public:
   /// Builds the scene with rubble at World::dynamics[i].X_WO and robots at their start poses
@@ -55,10 +55,10 @@ class RayScene {
   void update(const State& state);
 
   /// First hit of each ray; hits.size() must equal rays.size(). Links of robot `ignore_robot`
-  /// (an index into World::robots; -1 = none) are invisible. Large batches run on TBB, isolated
-  /// from the caller's other tasks. Results do not depend on the thread count, nor on a ray's
-  /// place in the batch: rays are independent and traced in packets of 16. A ray whose origin
-  /// or direction is not finite gets distance NaN and no hit.
+  /// (an index into World::robots; -1 = none) are invisible. Large batches run on the worker
+  /// pool (core/parallel.h), isolated from the caller's other tasks. Results do not depend on
+  /// the thread count, nor on a ray's place in the batch: rays are independent and traced in
+  /// packets of 16. A ray whose origin or direction is not finite gets distance NaN and no hit.
   void cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignore_robot = -1) const;
 
   /// True when anything (walls, rubble, victims, robot links except `ignore_robot`'s) lies on

@@ -106,8 +106,8 @@ RenderScene build_render_scene(const World& world);
 
 /// Moves rubble to State::dynamics[i].X_WB and robot link shapes to
 /// State::robots[r].X_WL[l] * X_LG, sets the scene's time to the State's, and puts the lamps
-/// of robots whose lights are on (RobotState::lights_on) after the world's lights. Throws Error when the State does not match the scene's World
-/// (counts of rubble, robots or links differ).
+/// of robots whose lights are on (RobotState::lights_on) after the world's lights. Throws Error
+/// when the State does not match the scene's World (counts of rubble, robots or links differ).
 void update_render_scene(RenderScene& scene, const State& state);
 
 /// Linear value of one sRGB component in [0, 1].

@@ -94,7 +94,9 @@ void lidar_through_media(const World& world, SimTime stamp, Buffers& b, std::siz
   sensor_media(world, stamp, SensingBand::near_infrared, b.media);
   if (b.media.empty()) return;
   const double echo = medium_echo_probability(SensingBand::near_infrared);
-  for (std::size_t i = 0; i < n; ++i) b.hits[i].distance = echo_through_media(b.hits[i].distance, b.rays[i], b.media, echo, rng, b.segments);
+  for (std::size_t i = 0; i < n; ++i) {
+    b.hits[i].distance = echo_through_media(b.hits[i].distance, b.rays[i], b.media, echo, rng, b.segments);
+  }
 }
 
 void check_robot(const World& world, const State& state, int robot, const char* who) {

@@ -55,7 +55,8 @@ void integrate_odometry(const World& world, State& state, int robot, const Senso
     bool standing = !rspec.drive.left_wheels.empty() || !rspec.drive.right_wheels.empty();
     for (const auto* side : {&rspec.drive.left_wheels, &rspec.drive.right_wheels}) {
       for (const auto& name : *side) {
-        standing = standing && std::abs(rs.qd[static_cast<std::size_t>(rspec.joint_index(name))] * rspec.drive.wheel_radius) < kStandingWheelSpeed;
+        standing =
+            standing && std::abs(rs.qd[static_cast<std::size_t>(rspec.joint_index(name))] * rspec.drive.wheel_radius) < kStandingWheelSpeed;
       }
     }
     if (standing) rate.w = 0;

@@ -22,7 +22,9 @@ struct SensorInstance {
   TopicId extra_topic = kNoTopic;      ///< the kind's extra output (SensorSpec::extra_topic): depth points, thermal image_mono8
   std::string frame_id;                ///< header frame of its messages, namespaced; cameras: the optical frame
   SimTime period;
-  SensorSpec spec;                     ///< the robot's spec of this sensor with frame_id set to the one above, made once at set-up for the samplers
+  /// the robot's spec of this sensor with frame_id set to the one above, made once at set-up for
+  /// the samplers
+  SensorSpec spec;
 };
 
 }  // namespace rescuesim

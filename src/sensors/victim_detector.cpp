@@ -30,7 +30,8 @@ void LineOfSightDetector::check(const World& world, State& state, const RayScene
         Ray ray{X_WC.p, d.normalized(), static_cast<float>(d.norm() + 0.05)};
         RayHit hit;
         rays.cast({&ray, 1}, {&hit, 1}, static_cast<int>(r));
-        if (hit.source == RayHit::Source::static_object && world.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
+        if (hit.source == RayHit::Source::static_object &&
+            world.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
           vs.saw(r, world.robots.size(), world.robots[r].name, state.time);
           break;
         }

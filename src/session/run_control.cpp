@@ -217,7 +217,9 @@ Result RunControl::start_steps(StepJob job, bool action) {
   if (state_ != RunState::paused && state_ != RunState::stopped) {
     return Result::fail(refused, std::string("steps are taken only while PAUSED; the simulation is ") + state_name(state_));
   }
-  if (job_) return Result::fail(refused, "another stepping request is in progress (" + std::to_string(job_->job.steps - job_->completed) + " steps left)");
+  if (job_)
+    return Result::fail(refused,
+                        "another stepping request is in progress (" + std::to_string(job_->job.steps - job_->completed) + " steps left)");
   if (job.steps == 0) {
     if (job.done) job.done(Result::ok(), 0);
     return Result::ok();
@@ -282,7 +284,8 @@ Result RunControl::reset(std::uint8_t scope_bits) {
     if (!state) {
       State s = sim.state();
       std::copy(now.robots.begin() + static_cast<long>(base_robots), now.robots.end(), s.robots.begin() + static_cast<long>(base_robots));
-      std::copy(now.dynamics.begin() + static_cast<long>(base_bodies), now.dynamics.end(), s.dynamics.begin() + static_cast<long>(base_bodies));
+      std::copy(now.dynamics.begin() + static_cast<long>(base_bodies), now.dynamics.end(),
+                s.dynamics.begin() + static_cast<long>(base_bodies));
       sim.restore(s);
     }
   }
@@ -342,7 +345,8 @@ Result RunControl::unload_world() {
 std::vector<ParameterDescriptor> RunControl::parameter_descriptors() const {
   return {
       {"duration", ParameterValue::kDouble, "sim seconds the run lasts (the scenario's duration)", true, {}},
-      {"real_time_factor", ParameterValue::kDouble, "realtime pace: sim seconds per wall second (with realtime true)", false, std::pair{1e-3, kMaxRate}},
+      {"real_time_factor", ParameterValue::kDouble, "realtime pace: sim seconds per wall second (with realtime true)", false,
+       std::pair{1e-3, kMaxRate}},
       {"realtime", ParameterValue::kBool, "paced to the wall clock (true) or as fast as possible, lockstep (false)", false, {}},
       {"scenario", ParameterValue::kString, "the scenario's name (its output folder runs/<name>)", true, {}},
       {"scenario_file", ParameterValue::kString, "the scenario file the run was started from", true, {}},

@@ -53,19 +53,24 @@ const RunControl::Entity* RunControl::find(const std::string& name) const {
 
 Result RunControl::entities(const EntityFilters& filters, std::vector<std::string>& names) const {
   names.clear();
-  if (!filters.tags.tags.empty()) return Result::fail(code::kFeatureUnsupported, "entities carry no tags in rescuesim: filter by name, category or bounds");
+  if (!filters.tags.tags.empty())
+    return Result::fail(code::kFeatureUnsupported, "entities carry no tags in rescuesim: filter by name, category or bounds");
   std::optional<std::regex> re;
   if (!filters.filter.empty()) {
     try {
       re.emplace(filters.filter, std::regex::extended | std::regex::nosubs);
     } catch (const std::regex_error& e) {
-      return Result::fail(code::kOperationFailed, "the filter '" + filters.filter + "' is no POSIX extended regular expression: " + e.what());
+      return Result::fail(code::kOperationFailed,
+                          "the filter '" + filters.filter + "' is no POSIX extended regular expression: " + e.what());
     }
   }
   const Bounds& b = filters.bounds;
-  if (b.type == Bounds::kSphere && b.points.size() != 2) return Result::fail(code::kOperationFailed, "a SPHERE bounds filter needs 2 points (centre, then radius in x)");
-  if (b.type == Bounds::kBox && b.points.size() != 2) return Result::fail(code::kOperationFailed, "a BOX bounds filter needs 2 points (two corners)");
-  if (b.type == Bounds::kConvexHull) return Result::fail(code::kFeatureUnsupported, "CONVEX_HULL bounds filters are not supported: use a sphere or a box");
+  if (b.type == Bounds::kSphere && b.points.size() != 2)
+    return Result::fail(code::kOperationFailed, "a SPHERE bounds filter needs 2 points (centre, then radius in x)");
+  if (b.type == Bounds::kBox && b.points.size() != 2)
+    return Result::fail(code::kOperationFailed, "a BOX bounds filter needs 2 points (two corners)");
+  if (b.type == Bounds::kConvexHull)
+    return Result::fail(code::kFeatureUnsupported, "CONVEX_HULL bounds filters are not supported: use a sphere or a box");
   if (b.type > Bounds::kSphere) return Result::fail(code::kOperationFailed, "unknown bounds type " + std::to_string(b.type));
   for (const Entity& e : entities_) {
     if (re && !std::regex_search(e.name, *re)) continue;
@@ -127,9 +132,12 @@ Result RunControl::set_entity_state(const std::string& name, const EntityState& 
                                     bool set_acceleration) {
   const Entity* e = find(name);
   if (!e) return Result::fail(code::kNotFound, "no entity named '" + name + "'");
-  if (set_acceleration) return Result::fail(code::kFeatureUnsupported, "accelerations cannot be set: forces make them; set the pose and the twist");
+  if (set_acceleration)
+    return Result::fail(code::kFeatureUnsupported, "accelerations cannot be set: forces make them; set the pose and the twist");
   if (!target.frame_id.empty() && target.frame_id != "world" && target.frame_id != "map") {
-    return Result::fail(code::kOperationFailed, "frame '" + target.frame_id + "' is not supported: give the state in the world frame (frame_id empty, 'world' or 'map')");
+    return Result::fail(
+        code::kOperationFailed,
+        "frame '" + target.frame_id + "' is not supported: give the state in the world frame (frame_id empty, 'world' or 'map')");
   }
   if (set_pose) {
     if (const std::string why = pose_problem(target.pose); !why.empty()) return Result::fail(code::kInvalidPose, name + ": " + why);
@@ -139,7 +147,8 @@ Result RunControl::set_entity_state(const std::string& name, const EntityState& 
   }
   if (e->kind == Entity::Kind::victim || e->kind == Entity::Kind::fixed) {
     return Result::fail(code::kOperationFailed, "'" + name + "' is fixed in the world (" +
-                                                    (e->kind == Entity::Kind::victim ? "a victim" : "a wall or obstacle") + ") and cannot be moved");
+                                                    (e->kind == Entity::Kind::victim ? "a victim" : "a wall or obstacle") +
+                                                    ") and cannot be moved");
   }
   Simulation& sim = session_.sim();
   State s = sim.state();
@@ -186,7 +195,8 @@ Result RunControl::entity_info(const std::string& name, EntityInfo& out) const {
   switch (e->kind) {
     case Entity::Kind::robot:
       out.category = category::kRobot;
-      out.description = "robot '" + name + "'" + (w.robots[e->index].spec.model.empty() ? "" : " (model " + w.robots[e->index].spec.model + ")");
+      out.description =
+          "robot '" + name + "'" + (w.robots[e->index].spec.model.empty() ? "" : " (model " + w.robots[e->index].spec.model + ")");
       break;
     case Entity::Kind::victim: out.category = category::kHuman; out.description = "victim"; break;
     case Entity::Kind::rubble: out.category = category::kDynamicObject; out.description = "loose body (rubble)"; break;

@@ -9,13 +9,13 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "import/scenario/scenario.h"
+#include "import/sdf/sdf_import.h"
+#include "import/urdf/urdf_import.h"
 #include "robots/rescue_robot.h"
 #include "session/run_control.h"
 #include "session/session.h"
 #include "world/resource_uri.h"
-#include "world/scenario/scenario.h"
-#include "world/sdf/sdf_import.h"
-#include "world/urdf/urdf_import.h"
 
 namespace rescuesim {
 
@@ -75,7 +75,8 @@ std::uint8_t parse_failure_code(const std::string& what) {
 struct TempSdf {
   std::filesystem::path path;
   explicit TempSdf(const std::string& text) {
-    path = std::filesystem::temp_directory_path() / ("rescuesim-spawn-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++) + ".sdf");
+    path = std::filesystem::temp_directory_path() /
+           ("rescuesim-spawn-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++) + ".sdf");
     std::ofstream(path) << text;
   }
   ~TempSdf() {
@@ -142,7 +143,8 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
   std::string name = request.name;
   if (name.empty() && !request.allow_renaming) return Result::fail(code::kNameInvalid, "an entity needs a name (or allow_renaming)");
   if (!name.empty() && !is_token(name)) {
-    return Result::fail(code::kNameInvalid, "'" + name + "' is no valid name: a letter, then letters, digits and underscores (it names topics)");
+    return Result::fail(code::kNameInvalid,
+                        "'" + name + "' is no valid name: a letter, then letters, digits and underscores (it names topics)");
   }
   if (name.empty()) name = "entity";
   if (find(name)) {
@@ -153,7 +155,8 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
   // the namespace of its topics and frames: the one asked for, else its name; one robot's own
   const std::optional<std::string> ns = clean_namespace(request.entity_namespace.empty() ? name : request.entity_namespace);
   if (!ns || ns->empty()) {
-    return Result::fail(code::kNamespaceInvalid, "'" + request.entity_namespace + "' is no valid namespace: tokens of letters, digits and underscores between '/'");
+    return Result::fail(code::kNamespaceInvalid,
+                        "'" + request.entity_namespace + "' is no valid namespace: tokens of letters, digits and underscores between '/'");
   }
   for (std::size_t r = 0; r < sim.world().robots.size(); ++r) {
     const std::string taken = sim.topic_name(static_cast<int>(r), "x");  // "/<ns>/x" or "/x"
@@ -168,7 +171,8 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
   if (!request.frame_id.empty() && request.frame_id != "world" && request.frame_id != "map") {
     EntityState parent;
     if (!find(request.frame_id) || !entity_state(request.frame_id, parent).is_ok()) {
-      return Result::fail(code::kSpawnInvalidPose, "the pose's frame '" + request.frame_id + "' is neither the world ('world', 'map', '') nor an entity");
+      return Result::fail(code::kSpawnInvalidPose,
+                          "the pose's frame '" + request.frame_id + "' is neither the world ('world', 'map', '') nor an entity");
     }
     X_W = parent.pose * X_W;
   }
@@ -235,7 +239,9 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
         text << in.rdbuf();
         what.robot = read_robot_yaml(text.str(), file.string(), models, paths).spec;
       } else {
-        return Result::fail(code::kUnsupportedFormat, "'" + uri + "': spawn takes URDF (.urdf), SDF (.sdf, model://, a model folder) or rescuesim YAML (.yaml) robots");
+        return Result::fail(
+            code::kUnsupportedFormat,
+            "'" + uri + "': spawn takes URDF (.urdf), SDF (.sdf, model://, a model folder) or rescuesim YAML (.yaml) robots");
       }
     }
   } catch (const Error& e) {
@@ -280,7 +286,9 @@ Result RunControl::remove(const std::string& name) {
   const bool spawned = (e->kind == Entity::Kind::robot && sim.world().robots[e->index].spawned) ||
                        (e->kind == Entity::Kind::rubble && sim.world().dynamics[e->index].spawned);
   if (!spawned) {
-    return Result::fail(code::kOperationFailed, "'" + name + "' comes from the scenario: only spawned entities can be deleted (a reset brings the scenario's back)");
+    return Result::fail(
+        code::kOperationFailed,
+        "'" + name + "' comes from the scenario: only spawned entities can be deleted (a reset brings the scenario's back)");
   }
   if (e->kind == Entity::Kind::robot) {
     sim.remove_robot(static_cast<int>(e->index));

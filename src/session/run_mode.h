@@ -16,8 +16,8 @@
 
 #include <optional>
 
+#include "import/scenario/scenario.h"
 #include "session/session.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "world/scenario/scenario.h"
+#include "import/scenario/scenario.h"
 
 namespace rescuesim {
 

@@ -12,11 +12,16 @@
 #include <vector>
 
 #include "autonomy/explorer.h"
+#include "import/scenario/scenario.h"
 #include "mission/mission.h"
+#include "mission/mission_system.h"
 #include "sensors/camera/render_camera_service.h"
+#include "session/recorder.h"
 #include "session/run_control.h"
+#include "sim/run_system.h"
 #include "sim/simulation.h"
-#include "world/scenario/scenario.h"
+#include "team/builtin_controllers.h"
+#include "team/builtin_team.h"
 
 namespace rescuesim {
 
@@ -50,14 +55,6 @@ struct RunResult {
   std::vector<std::pair<std::string, autonomy::ExplorerStats>> explorers;
 };
 
-/// One trajectory sample.
-struct TrajectoryPoint {
-  double t = 0;
-  int robot = 0;
-  Pose2 truth, odom;
-  double v = 0, w = 0;
-};
-
 /// Settings of a run beyond its scenario.
 struct SessionOptions {
   bool controllers = true;      ///< attach the scenario's built-in controllers
@@ -83,13 +80,18 @@ struct SessionOptions {
 };
 
 /// Everything Session::restore needs to go back to a moment of a run: the simulation's State
-/// and what lives beside it (camera frames in flight, the built-in controllers' memory, the
-/// trajectory and coverage recorded so far). Copyable; only for the Session that made it.
+/// and what lives beside it (camera frames in flight, and each run system's memory: the
+/// built-in controllers', the recorder's, the mission's, the team's). Copyable; only for the
+/// Session that made it.
 struct SessionSnapshot {
   State state;
   std::shared_ptr<const struct SessionExtras> extras;  ///< the rest, opaque (session_snapshot.cpp)
 };
 
+/// A run is a Simulation and a list of run systems (sim/run_system.h) stepped around it, as
+/// gz-sim composes a run from systems: the built-in controllers (team/builtin_controllers.h),
+/// the recorder (session/recorder.h), and with a mission the mission (mission/mission_system.h)
+/// and the built-in team (team/builtin_team.h), in that order; add_system() appends more.
 class Session {
  public:
   /// Builds the world, validates it (throws Error listing the problems), compiles and sets up.
@@ -127,6 +129,10 @@ class Session {
   /// the wall time and the last camera frames (sensors/*.png) are not rewound.
   void restore(const SessionSnapshot& snapshot);
 
+  /// Appends a run system: its pre_step and post_step run around every step after the built-in
+  /// ones', and its memory is part of snapshots from now on. Not while run() is stepping.
+  void add_system(std::unique_ptr<RunSystem> system);
+
   /// The control surface (SessionOptions::control), or null.
   RunControl* control() { return control_.get(); }
 
@@ -141,35 +147,24 @@ class Session {
   /// Fraction of free floor passed within 1 m of so far (see docs/outputs.md).
   double coverage() const;
   /// Samples at record_interval() (see SessionOptions::trajectory_max_points), robots in order per time.
-  const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
-  SimTime record_interval() const { return record_interval_; }
+  const std::vector<TrajectoryPoint>& trajectory() const { return recorder_->trajectory(); }
+  SimTime record_interval() const { return recorder_->record_interval(); }
 
   /// Writes summary.json, overview.png, trajectory.csv, world.svg, sensors/laser.png and, with
   /// a mission, score.png into `dir` (atomically, file by file).
   void write_outputs(const std::filesystem::path& dir, const RunResult& result) const;
 
  private:
-  struct Controllers;
-  /// One Simulation step with what a run does around it: the trajectory, the mission.
+  /// One Simulation step with the run systems around it.
   void step_once();
-  /// Hands each built-in controller what it heard during the step just taken (robots in
-  /// parallel) and commands what they ask for.
-  void run_controllers();
-  void command_look(int robot, double yaw);  // the explorer's camera swing, through the head or the joint
-  void record();
-  /// Drops every other sample time from the trajectory and doubles the interval; true when the
-  /// sample due now falls on the new grid.
-  bool thin_trajectory();
-  /// After every step with a mission: its links and datagrams, and the built-in controllers' reports.
-  void mission_step();
-  /// The base station's side of the built-in team: takes the maps the robots got through to it
-  /// and submits the team's map to the referee (Controllers::base_maps).
-  void base_map_step();
+  /// Gives each robot that asked for a built-in controller its explorer (session_setup.cpp).
+  void attach_controllers(const ModelMap& models);
   void write_camera_frames(const std::filesystem::path& dir) const;
   /// Robot `robot`'s last thermal frame as mono8 through its sensor's temperature window (the
   /// picture of a built-in report), or nothing when its thermal camera does not render.
   std::optional<msg::Image> victim_picture(int robot) const;
-  bool world_has_no_thermal() const;
+  /// True when a scenario robot's thermal camera renders, so victims are found in its images.
+  bool thermal_images_render() const;
   /// The camera service, built afresh for the world now (robots spawned or deleted), and the
   /// victim detector that reads its thermal images.
   void rebuild_cameras();
@@ -178,22 +173,21 @@ class Session {
   WorldSpec spec_;
   Diagnostics diagnostics_;
   std::unique_ptr<Simulation> sim_;
-  std::unique_ptr<Controllers> controllers_;
-  std::unique_ptr<Mission> mission_;             ///< after sim_ (it refers to it), before the controllers use it
+  std::unique_ptr<Mission> mission_;  ///< after sim_ (it refers to it), before the systems that use it
   CameraServiceOptions camera_options_;
   std::unique_ptr<RenderCameraService> cameras_;  ///< attached to sim_ (not owned there); detached in ~Session
   std::unique_ptr<RunControl> control_;           ///< attached to sim_ (not owned there); detached in ~Session
   SessionOptions options_;
-  std::vector<TrajectoryPoint> trajectory_;
-  SimTime next_record_;
-  SimTime record_interval_;  ///< between trajectory samples: 1/trajectory_rate, doubled at each thinning
+  // the run systems (session.cpp builds them; systems_ lists them in step order, the added ones last)
+  std::unique_ptr<BuiltinControllers> controllers_;
+  std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<MissionSystem> mission_system_;  ///< with a mission
+  std::unique_ptr<BuiltinTeam> team_;              ///< with a mission
+  std::vector<std::unique_ptr<RunSystem>> added_systems_;
+  std::vector<RunSystem*> systems_;
   double wall_time_ = 0;
   std::string stop_reason_;
   std::uint64_t sync_timeouts_ = 0;
-  std::vector<msg::LaserScan> last_scans_;
-  std::vector<std::uint8_t> free_cells_, visited_cells_;
-  Box2 grid_box_;
-  int grid_w_ = 0, grid_h_ = 0;
 };
 
 }  // namespace rescuesim

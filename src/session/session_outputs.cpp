@@ -8,11 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
-#include "session/session.h"
+#include "import/svg/svg_world.h"
 #include "sensors/camera/render_camera_service.h"
-#include "session/session_controllers.h"
+#include "session/session.h"
 #include "viz/world_plot.h"
-#include "world/svg/svg_world.h"
 
 namespace rescuesim {
 
@@ -74,7 +73,8 @@ nlohmann::ordered_json mission_json(const MissionResult& m) {
                         {"robot", m.robot_names.at(static_cast<std::size_t>(p.robot))},
                         {"time_s", p.t},
                         {"outcome", report_outcome_name(p.outcome)},
-                        {"victim", p.victim >= 0 ? nlohmann::ordered_json(m.victim_names.at(static_cast<std::size_t>(p.victim))) : nlohmann::ordered_json()},
+                        {"victim", p.victim >= 0 ? nlohmann::ordered_json(m.victim_names.at(static_cast<std::size_t>(p.victim)))
+                                                 : nlohmann::ordered_json()},
                         {"file", picture_file(p, m.robot_names)}});
   }
   auto& robots = j["robots"] = nlohmann::ordered_json::array();
@@ -155,7 +155,9 @@ nlohmann::ordered_json summary_json(const RunResult& r, const Scenario& s, const
   j["victim_detection"] = r.victim_detection;
   auto& victims = j["victims"] = nlohmann::ordered_json::array();
   for (const auto& v : r.victims) {
-    victims.push_back({{"name", v.name}, {"found", v.found}, {"time_s", v.found ? nlohmann::ordered_json(v.time) : nlohmann::ordered_json()},
+    victims.push_back({{"name", v.name},
+                       {"found", v.found},
+                       {"time_s", v.found ? nlohmann::ordered_json(v.time) : nlohmann::ordered_json()},
                        {"by", v.by}});
   }
   j["coverage"] = r.coverage;
@@ -271,7 +273,8 @@ void Session::write_camera_frames(const std::filesystem::path& dir) const {
         img.set(static_cast<int>(x), static_cast<int>(y), c);
       }
     }
-    const std::string name = (sim_->base_robots() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
+    const std::string name =
+        (sim_->base_robots() > 1 ? world.robots[static_cast<std::size_t>(f.robot)].name + "_" : std::string()) + f.sensor + ".png";
     img.write_png(dir / "sensors" / name);
   }
 }
@@ -304,7 +307,7 @@ std::optional<msg::Image> Session::victim_picture(int robot) const {
 void Session::write_outputs(const std::filesystem::path& dir, const RunResult& result) const {
   const World& world = sim_->world();
   write_file_atomic(dir / "summary.json", summary_json(result, scenario_, spec_).dump(2) + "\n");
-  write_file_atomic(dir / "trajectory.csv", trajectory_csv(trajectory_, world));
+  write_file_atomic(dir / "trajectory.csv", trajectory_csv(recorder_->trajectory(), world));
   write_file_atomic(dir / "world.svg", world_to_svg(spec_));
 
   // overview: the world, each robot's laser map (its map frame placed at its start), its
@@ -315,11 +318,11 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
              std::to_string(static_cast<int>(result.sim_time)) + " s";
   Canvas img = plot_world(spec_, po);
   const PlotFrame frame = plot_frame_for(spec_, po);
-  for (std::size_t r = 0; r < controllers_->explorers.size(); ++r) {
-    const autonomy::Explorer* ex = controllers_->explorers[r].get();
+  for (std::size_t r = 0; r < controllers_->size(); ++r) {
+    const autonomy::Explorer* ex = controllers_->explorer(r);
     if (!ex) continue;
     const msg::OccupancyGrid map = ex->map(sim_->time());
-    const Pose2 X_WM = controllers_->X_WO[r];  // the map frame starts on the odom frame
+    const Pose2 X_WM = controllers_->X_WO(r);  // the map frame starts on the odom frame
     const Pose2 X_MG = map.origin.to_pose2();  // the grid's corner in the map frame
     for (std::uint32_t y = 0; y < map.height; ++y) {
       for (std::uint32_t x = 0; x < map.width; ++x) {
@@ -332,7 +335,7 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
   }
   for (std::size_t r = 0; r < world.robots.size(); ++r) {
     std::vector<Vec2> path;
-    for (const auto& p : trajectory_) {
+    for (const auto& p : recorder_->trajectory()) {
       if (p.robot == static_cast<int>(r)) path.push_back(frame.to_px(p.truth.position()));
     }
     img.polyline(path, {20, 160, 60}, 2.0);
@@ -359,12 +362,13 @@ void Session::write_outputs(const std::filesystem::path& dir, const RunResult& r
   }
 
   write_camera_frames(dir);
-  for (std::size_t r = 0; r < last_scans_.size(); ++r) {
-    if (last_scans_[r].ranges.empty()) continue;
+  const std::vector<msg::LaserScan>& last_scans = recorder_->last_scans();
+  for (std::size_t r = 0; r < last_scans.size(); ++r) {
+    if (last_scans[r].ranges.empty()) continue;
     const std::string name = sim_->base_robots() > 1 ? "laser_" + world.robots[r].name + ".png" : "laser.png";
     char t[64];
-    std::snprintf(t, sizeof t, "%.1f s", last_scans_[r].header.stamp.seconds());
-    laser_plot(last_scans_[r], world.robots[r].name + " laser at " + t).write_png(dir / "sensors" / name);
+    std::snprintf(t, sizeof t, "%.1f s", last_scans[r].header.stamp.seconds());
+    laser_plot(last_scans[r], world.robots[r].name + " laser at " + t).write_png(dir / "sensors" / name);
   }
 }
 

@@ -31,7 +31,8 @@ const TerrainSpec& find_lane(const WorldSpec& world, const std::string& lane) {
   if (const TerrainSpec* t = find_terrain_lane(world, lane)) return *t;
   std::string known;
   for (const auto& t : world.terrain) known += (known.empty() ? "" : ", ") + t.name + " (" + TerrainSpec::kind_name(t.kind) + ")";
-  throw Error("no lane '" + lane + "' in world '" + world.name + "'; it has " + (known.empty() ? std::string("no terrain elements") : known));
+  throw Error("no lane '" + lane + "' in world '" + world.name + "'; it has " +
+              (known.empty() ? std::string("no terrain elements") : known));
 }
 
 /// Where a lap ends, in metres along the lane from its start line: the end line, `approach`
@@ -135,7 +136,8 @@ struct Leg {
 /// Drives one leg from where the robot is, watching for falls (pitch or roll beyond the
 /// limits), being stuck (no 5 cm of progress in stuck_time) and time-outs, with the flippers
 /// worked by `driver`. `floor_z` is the base's height when standing on the floor.
-TerrainLap drive_leg(Simulation& sim, LaneDriver& driver, const TerrainTrialOptions& o, int lap, bool reverse, double floor_z, const Leg& leg) {
+TerrainLap drive_leg(Simulation& sim, LaneDriver& driver, const TerrainTrialOptions& o, int lap, bool reverse, double floor_z,
+                     const Leg& leg) {
   const RobotSpec& robot = sim.world().robots[0].spec;
   const double t0 = sim.time().seconds();
   TerrainLap out;

@@ -167,10 +167,10 @@ void Simulation::setup_robot_topics() {
   }
 }
 
-bool Simulation::command_velocity(int robot, const msg::Twist& t) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return false;
+CommandOutcome Simulation::command_velocity(int robot, const msg::Twist& t) {
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
   for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return false;
+    if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return CommandOutcome::refused("a value is not finite");
   }
   {
     std::lock_guard lock(commands_mutex_);
@@ -182,7 +182,7 @@ bool Simulation::command_velocity(int robot, const msg::Twist& t) {
     ++velocity_commands_;
   }
   command_arrived_.notify_all();
-  return true;
+  return CommandOutcome::ok();
 }
 
 std::uint64_t Simulation::velocity_commands() const {
@@ -195,11 +195,14 @@ bool Simulation::wait_for_velocity_commands(std::uint64_t count, std::chrono::du
   return command_arrived_.wait_for(lock, timeout, [&] { return velocity_commands_ >= count; });
 }
 
-bool Simulation::command_head(int robot, const std::vector<double>& positions) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return false;
-  if (positions.size() != world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size()) return false;
+CommandOutcome Simulation::command_head(int robot, const std::vector<double>& positions) {
+  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+  const std::size_t joints = world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
+  if (positions.size() != joints) {
+    return CommandOutcome::refused(std::to_string(positions.size()) + " positions for " + std::to_string(joints) + " head joints");
+  }
   for (double p : positions) {
-    if (!std::isfinite(p)) return false;
+    if (!std::isfinite(p)) return CommandOutcome::refused("a position is not finite");
   }
   Command c;
   c.robot = robot;
@@ -207,14 +210,11 @@ bool Simulation::command_head(int robot, const std::vector<double>& positions) {
   c.values = positions;
   std::lock_guard lock(commands_mutex_);
   commands_.push_back(std::move(c));
-  return true;
+  return CommandOutcome::ok();
 }
 
-bool Simulation::command_joints(int robot, const msg::JointState& command, std::string* why) {
-  const auto refuse = [&](std::string text) {
-    if (why) *why = std::move(text);
-    return false;
-  };
+CommandOutcome Simulation::command_joints(int robot, const msg::JointState& command) {
+  const auto refuse = [](std::string text) { return CommandOutcome::refused(std::move(text)); };
   if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return refuse("no robot " + std::to_string(robot));
   const RobotSpec& spec = world().robots[static_cast<std::size_t>(robot)].spec;
   const std::size_t n = command.name.size();
@@ -251,26 +251,7 @@ bool Simulation::command_joints(int robot, const msg::JointState& command, std::
   }
   std::lock_guard lock(commands_mutex_);
   commands_.push_back(std::move(c));
-  return true;
-}
-
-CommandOutcome Simulation::submit_velocity(int robot, const msg::Twist& twist) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
-  return command_velocity(robot, twist) ? CommandOutcome::ok() : CommandOutcome::refused("a value is not finite");
-}
-
-CommandOutcome Simulation::submit_head(int robot, const std::vector<double>& positions) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
-  const std::size_t joints = world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
-  if (positions.size() != joints) {
-    return CommandOutcome::refused(std::to_string(positions.size()) + " positions for " + std::to_string(joints) + " head joints");
-  }
-  return command_head(robot, positions) ? CommandOutcome::ok() : CommandOutcome::refused("a position is not finite");
-}
-
-CommandOutcome Simulation::submit_joints(int robot, const msg::JointState& command) {
-  std::string why;
-  return command_joints(robot, command, &why) ? CommandOutcome::ok() : CommandOutcome::refused(why);
+  return CommandOutcome::ok();
 }
 
 std::size_t Simulation::discard_commands() {
@@ -357,11 +338,13 @@ void Simulation::step() {
   state_.time += SimTime::from_seconds(dt());
   ++state_.step;
   rays_current_ = false;
-  for (std::size_t r = 0; r < state_.robots.size(); ++r) state_.robots[r].distance += (state_.robots[r].base.X_WB.p - before[r]).head<2>().norm();
+  for (std::size_t r = 0; r < state_.robots.size(); ++r)
+    state_.robots[r].distance += (state_.robots[r].base.X_WB.p - before[r]).head<2>().norm();
   // wheel odometry integrates every step, whatever rate it publishes at
   for (const auto& s : sensors_) {
     const SensorSpec& spec = world().robots[static_cast<std::size_t>(s.robot)].spec.sensors[static_cast<std::size_t>(s.index)];
-    if (spec.type == SensorSpec::Type::odometry) integrate_odometry(world(), state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
+    if (spec.type == SensorSpec::Type::odometry)
+      integrate_odometry(world(), state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
   }
   if (in_trouble()) return;
   post_step();
@@ -385,7 +368,8 @@ void Simulation::post_step() {
   // same messages in the same order whatever the thread count
   std::vector<std::size_t> due_rays;
   for (std::size_t k = 0; k < sensors_.size(); ++k) {
-    if (now >= state_.sensors[static_cast<std::size_t>(sensors_[k].slot)].next_due && ray_sensor(sensors_[k].spec.type)) due_rays.push_back(k);
+    if (now >= state_.sensors[static_cast<std::size_t>(sensors_[k].slot)].next_due && ray_sensor(sensors_[k].spec.type))
+      due_rays.push_back(k);
   }
   std::vector<msg::Message> ray_messages(due_rays.size());
   if (!due_rays.empty()) {
@@ -489,7 +473,8 @@ void Simulation::publish_tf_static() {
     const RobotSpec& spec = world().robots[r].spec;
     const int ri = static_cast<int>(r);
     for (const auto& j : spec.joints) {
-      if (j.type == JointSpec::Type::fixed) tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
+      if (j.type == JointSpec::Type::fixed)
+        tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
     }
     for (const auto& s : spec.sensors) {
       if (s.frame_id.empty() || s.frame_id == s.link || !s.kind().mounted) continue;
@@ -523,7 +508,8 @@ void Simulation::publish_tf() {
       if (js.type == JointSpec::Type::fixed) continue;
       // a rotation about the axis, or for a prismatic joint a translation along it
       const Pose3 X = js.X_PJ * joint_motion(js, rs.q[j]);
-      tf.transforms.push_back(transform(state_.time, frame_name(static_cast<int>(r), js.parent), frame_name(static_cast<int>(r), js.child), X));
+      tf.transforms.push_back(
+          transform(state_.time, frame_name(static_cast<int>(r), js.parent), frame_name(static_cast<int>(r), js.child), X));
     }
   }
   if (!tf.transforms.empty()) bus_.publish(tf_topic_, std::move(tf));

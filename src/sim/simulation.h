@@ -75,30 +75,27 @@ class Simulation : public BridgeHost {
   /// True when numerical trouble stopped the simulation (see state().trouble).
   bool in_trouble() const { return state_.trouble.nan_poses + state_.trouble.escaped > 0; }
 
-  /// cmd_vel for a robot: applied at the next step boundary. Non-finite values are rejected
-  /// (returns false); the drive clamps the rest to its limits.
-  bool command_velocity(int robot, const msg::Twist& twist);
+  /// Commands, from any thread (the BridgeHost interface, and the owners of the run): each is
+  /// queued and applied at the next step boundary, or refused with its reason (the outcome is
+  /// false and says why; nothing is applied).
+  /// cmd_vel for a robot. Non-finite values are refused; the drive clamps the rest to its limits.
+  CommandOutcome command_velocity(int robot, const msg::Twist& twist) override;
   /// Head joint position targets (rad), one per head joint in RobotSpec::head_joints order.
-  bool command_head(int robot, const std::vector<double>& positions);
+  CommandOutcome command_head(int robot, const std::vector<double>& positions) override;
   /// Targets for a robot's commandable joints by name (`/<robot>/joint_command`, a
   /// sensor_msgs/JointState): a position for position-controlled joints, a velocity for
   /// velocity-controlled ones; `position` and `velocity` may each be empty or hold one value per
-  /// name. Applied at the next step boundary. Rejected (false, nothing applied) when a name is
-  /// unknown, a drive wheel, fixed, passive or a mimic joint, or a value is missing or non-finite.
-  /// Position targets beyond a joint's limits are clamped to them (like the head's); velocity
-  /// targets are limited to max_velocity by the joint motor. When rejected and `why` is given,
-  /// it says why ("position has 1 values for 2 names"), for the bridges' warnings.
-  bool command_joints(int robot, const msg::JointState& command, std::string* why = nullptr);
+  /// name. Refused when a name is unknown, a drive wheel, fixed, passive or a mimic joint, or a
+  /// value is missing or non-finite ("position has 1 values for 2 names"). Position targets
+  /// beyond a joint's limits are clamped to them (like the head's); velocity targets are
+  /// limited to max_velocity by the joint motor.
+  CommandOutcome command_joints(int robot, const msg::JointState& command) override;
   /// Drops the commands queued for the next step; returns how many. For owners that publish
   /// without stepping (rescuesim replay), so what bridges take in does not pile up.
   std::size_t discard_commands();
   /// Velocity commands accepted so far (every robot); with wait_for_velocity_commands, what a
   /// synchronous run (SessionOptions::sync_timeout) waits on.
   std::uint64_t velocity_commands() const;
-  /// BridgeHost: command_velocity / command_head / command_joints with the reason for a refusal.
-  CommandOutcome submit_velocity(int robot, const msg::Twist& twist) override;
-  CommandOutcome submit_head(int robot, const std::vector<double>& positions) override;
-  CommandOutcome submit_joints(int robot, const msg::JointState& command) override;
   /// Adds a topic bridges take in for an owner above the simulation (a Mission: reports,
   /// datagrams, relay drops) and returns its index in inputs(). Every message submitted for it
   /// (submit_input, from any thread) is handed to `handler` on the stepping thread at the next

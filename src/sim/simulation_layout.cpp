@@ -52,8 +52,9 @@ std::size_t Simulation::add_body(DynamicObject body) {
 }
 
 void Simulation::remove_robot(int robot) {
-  RS_DEMAND(robot >= 0 && static_cast<std::size_t>(robot) < world().robots.size() && world().robots[static_cast<std::size_t>(robot)].spawned,
-            "Simulation::remove_robot: a spawned robot");
+  RS_DEMAND(
+      robot >= 0 && static_cast<std::size_t>(robot) < world().robots.size() && world().robots[static_cast<std::size_t>(robot)].spawned,
+      "Simulation::remove_robot: a spawned robot");
   auto next = std::make_unique<World>(world());
   next->robots.erase(next->robots.begin() + robot);
   State next_state = state_;

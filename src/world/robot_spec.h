@@ -1,7 +1,7 @@
 #pragma once
 /// RobotSpec: a robot described as data — links with mass and shapes, joints with limits and
 /// actuation, a drive, and sensors with their mount frames. The built-in rescue robot
-/// (src/robots) is one; URDF models (world/urdf) produce the same structure. Frames: each
+/// (src/robots) is one; URDF models (import/urdf) produce the same structure. Frames: each
 /// link's frame is its joint frame; X_PJ places a joint in its parent link's frame.
 
 #include <string>

@@ -26,7 +26,11 @@ constexpr std::array<SensorKindInfo, 10> kKinds{{
      .camera = true,
      .extra = {"points", "sensor_msgs/PointCloud2"},
      .extra_switch = &CameraSpec::point_cloud},
-    {.type = T::thermal_camera, .name = "thermal_camera", .ros_type = "sensor_msgs/Image", .camera = true, .extra = {"image_mono8", "sensor_msgs/Image"}},
+    {.type = T::thermal_camera,
+     .name = "thermal_camera",
+     .ros_type = "sensor_msgs/Image",
+     .camera = true,
+     .extra = {"image_mono8", "sensor_msgs/Image"}},
 }};
 
 constexpr bool rows_in_enum_order() {

@@ -126,7 +126,8 @@ struct SensorKindInfo {
   const char* ros_type = "";                 ///< message type of the main topic
   const char* layered_ros_type = nullptr;    ///< the main topic's type instead when a lidar has layers > 1 (nullptr: none)
   bool camera = false;                       ///< rendered by the camera service, in an optical frame, with camera_info beside the image
-  bool mounted = true;                       ///< frame_id names the sensor's mount (X_LS on its link), published on /tf_static; false where it is a world-fixed frame (odometry's "odom", ground truth's "map")
+  bool mounted = true;  ///< frame_id names the sensor's mount (X_LS on its link), published on /tf_static; false where it is a world-fixed
+                        ///< frame (odometry's "odom", ground truth's "map")
   SensorExtraTopic extra{nullptr, nullptr};  ///< a further output beside the main topic (name nullptr: none)
   bool CameraSpec::*extra_switch = nullptr;  ///< the setting that turns `extra` off when false (depth: point_cloud); nullptr: always on
 };

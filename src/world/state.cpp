@@ -131,7 +131,8 @@ State initial_state(const World& world) {
     for (std::size_t j = 0; j < spec.joints.size(); ++j) {
       if (spec.joints[j].control == JointSpec::Control::position) rs.joint_target[j] = spec.joints[j].initial;
     }
-    for (const auto& name : spec.head_joints) rs.head_target.push_back(spec.joints[static_cast<std::size_t>(spec.joint_index(name))].initial);
+    for (const auto& name : spec.head_joints)
+      rs.head_target.push_back(spec.joints[static_cast<std::size_t>(spec.joint_index(name))].initial);
     rs.lights_on = spec.lights_on && !spec.lights.empty();
     s.robots.push_back(std::move(rs));
   }

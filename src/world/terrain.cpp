@@ -59,12 +59,14 @@ struct Builder {
   void stepfield() {
     const double fx = std::floor(t.length / t.post + 1e-9), fy = std::floor(t.width / t.post + 1e-9);
     if (fx * fy > kMaxSolids) {
-      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m in " + message_number(t.post) + " m posts would have " + message_number(fx * fy) +
-           " posts (expected at most " + message_number(kMaxSolids) + ": larger posts or a smaller footprint)");
+      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m in " + message_number(t.post) +
+           " m posts would have " + message_number(fx * fy) + " posts (expected at most " + message_number(kMaxSolids) +
+           ": larger posts or a smaller footprint)");
     }
     const int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
     if (nx < 1 || ny < 1) {
-      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m holds no " + message_number(t.post) + " m post (expected a footprint of at least one post)");
+      fail("a stepfield of " + message_number(t.length) + " x " + message_number(t.width) + " m holds no " + message_number(t.post) +
+           " m post (expected a footprint of at least one post)");
     }
     const std::vector<double> h = stepfield_heights(t, nx, ny);
     const double x0 = -0.5 * nx * t.post, y0 = -0.5 * ny * t.post;
@@ -78,16 +80,20 @@ struct Builder {
 
   void stairs() {
     if (!(t.angle > 10 && t.angle <= 60)) {
-      fail("stairs at " + message_number(t.angle) + " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
+      fail("stairs at " + message_number(t.angle) +
+           " deg cannot be built (expected a slope above 10 and at most 60 degrees; the test method's are 35-45)");
     }
-    if (!(t.riser > 0) || !(t.height >= t.riser)) fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) + " m risers have no step (expected a rise of at least one riser)");
-    if (t.height / t.riser > 1000) fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) + " m risers would have more than 1000 steps");
+    if (!(t.riser > 0) || !(t.height >= t.riser))
+      fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) +
+           " m risers have no step (expected a rise of at least one riser)");
+    if (t.height / t.riser > 1000)
+      fail("stairs rising " + message_number(t.height) + " m in " + message_number(t.riser) + " m risers would have more than 1000 steps");
     const int n = static_cast<int>(std::lround(t.height / t.riser));
     const double tread = t.riser / std::tan(t.angle * M_PI / 180);
     const double landing = t.length - (n - 1) * tread;
     if (landing < 0.3) {
-      fail(std::to_string(n) + " steps of " + message_number(tread) + " m need " + message_number((n - 1) * tread + 0.3) + " m with a 0.3 m landing; the footprint is " + message_number(t.length) +
-           " m long");
+      fail(std::to_string(n) + " steps of " + message_number(tread) + " m need " + message_number((n - 1) * tread + 0.3) +
+           " m with a 0.3 m landing; the footprint is " + message_number(t.length) + " m long");
     }
     const double x0 = -0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
     for (int k = 1; k < n; ++k) box("step_" + std::to_string(k), x0 + (k - 1) * tread, x0 + k * tread, y0, y1, k * t.riser);
@@ -95,10 +101,16 @@ struct Builder {
   }
 
   void crossing_ramps() {
-    if (!(t.angle > 0 && t.angle <= 45)) fail("crossing ramps at " + message_number(t.angle) + " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
-    if (t.length / t.width > kMaxSolids) fail("crossing ramps " + message_number(t.length) + " m long in " + message_number(t.width) + " m cells would be more than " + message_number(kMaxSolids) + " ramps");
+    if (!(t.angle > 0 && t.angle <= 45))
+      fail("crossing ramps at " + message_number(t.angle) +
+           " deg (expected a slope above 0 and at most 45 degrees; the test method's is 15)");
+    if (t.length / t.width > kMaxSolids)
+      fail("crossing ramps " + message_number(t.length) + " m long in " + message_number(t.width) + " m cells would be more than " +
+           message_number(kMaxSolids) + " ramps");
     const int n = static_cast<int>(std::floor(t.length / t.width + 1e-9));
-    if (n < 1) fail("crossing ramps need a footprint at least as long as it is wide (" + message_number(t.width) + " m); it is " + message_number(t.length) + " m");
+    if (n < 1)
+      fail("crossing ramps need a footprint at least as long as it is wide (" + message_number(t.width) + " m); it is " +
+           message_number(t.length) + " m");
     const double rise = t.width * std::tan(t.angle * M_PI / 180);
     const double x0 = -0.5 * n * t.width, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
     // square cells in turn: pitch up, roll left, pitch down, roll right
@@ -112,17 +124,23 @@ struct Builder {
   }
 
   void hurdle() {
-    if (!(t.height > 0) || !(t.thickness > 0)) fail("hurdle of " + message_number(t.height) + " m height and " + message_number(t.thickness) + " m thickness (expected both positive)");
-    if (t.thickness > t.length) fail("hurdle " + message_number(t.thickness) + " m thick in a footprint " + message_number(t.length) + " m long");
+    if (!(t.height > 0) || !(t.thickness > 0))
+      fail("hurdle of " + message_number(t.height) + " m height and " + message_number(t.thickness) +
+           " m thickness (expected both positive)");
+    if (t.thickness > t.length)
+      fail("hurdle " + message_number(t.thickness) + " m thick in a footprint " + message_number(t.length) + " m long");
     box("hurdle", -0.5 * t.thickness, 0.5 * t.thickness, -0.5 * t.width, 0.5 * t.width, t.height);
   }
 
   void gap() {
-    if (!(t.height > 0) || !(t.gap > 0)) fail("gap of " + message_number(t.gap) + " m between decks " + message_number(t.height) + " m high (expected both positive)");
+    if (!(t.height > 0) || !(t.gap > 0))
+      fail("gap of " + message_number(t.gap) + " m between decks " + message_number(t.height) + " m high (expected both positive)");
     // 15 degree ramps up to decks of at least 0.3 m each side of the opening
     const double ramp = t.height / std::tan(15 * M_PI / 180);
     const double need = t.gap + 2 * ramp + 2 * 0.3;
-    if (t.length < need) fail("a " + message_number(t.gap) + " m gap between " + message_number(t.height) + " m decks needs " + message_number(need) + " m (15 deg ramps, 0.3 m decks); the footprint is " + message_number(t.length) + " m long");
+    if (t.length < need)
+      fail("a " + message_number(t.gap) + " m gap between " + message_number(t.height) + " m decks needs " + message_number(need) +
+           " m (15 deg ramps, 0.3 m decks); the footprint is " + message_number(t.length) + " m long");
     const double L = 0.5 * t.length, y0 = -0.5 * t.width, y1 = 0.5 * t.width;
     wedge("ramp_in", -L, -L + ramp, y0, y1, t.height, 0);
     box("deck_near", -L + ramp, -0.5 * t.gap, y0, y1, t.height);
@@ -200,11 +218,13 @@ TerrainSpec::Kind terrain_kind_from_name(const std::string& name) {
 WorldSpec test_method_arena(const ArenaOptions& o) {
   if (o.lanes.empty()) throw Error("an arena needs at least one lane (expected --lanes like stepfield,stairs)");
   if (o.start_lane < 0 || o.start_lane >= static_cast<int>(o.lanes.size())) {
-    throw Error("start lane " + std::to_string(o.start_lane) + " does not exist; the arena has " + std::to_string(o.lanes.size()) + " lanes (0.." +
-                std::to_string(o.lanes.size() - 1) + ")");
+    throw Error("start lane " + std::to_string(o.start_lane) + " does not exist; the arena has " + std::to_string(o.lanes.size()) +
+                " lanes (0.." + std::to_string(o.lanes.size() - 1) + ")");
   }
-  if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width)) throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
-  if (!(o.approach >= 1.0) || !std::isfinite(o.approach)) throw Error("approach " + message_number(o.approach) + " m is too short to start from (expected at least 1 m)");
+  if (!(o.lane_width >= 0.6) || !std::isfinite(o.lane_width))
+    throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a robot (expected at least 0.6 m)");
+  if (!(o.approach >= 1.0) || !std::isfinite(o.approach))
+    throw Error("approach " + message_number(o.approach) + " m is too short to start from (expected at least 1 m)");
   if (o.figure_eight) {
     for (TerrainSpec::Kind k : o.lanes) {
       if (!is_figure_eight_kind(k)) {
@@ -213,8 +233,8 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
       }
     }
     if (!(o.lane_width >= kFigureEightLaneWidth - 1e-9)) {
-      throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a figure-8 element " + message_number(kFigureEightWidth) +
-                  " m wide (expected at least " + message_number(kFigureEightLaneWidth) + " m)");
+      throw Error("lane width " + message_number(o.lane_width) + " m is too narrow for a figure-8 element " +
+                  message_number(kFigureEightWidth) + " m wide (expected at least " + message_number(kFigureEightLaneWidth) + " m)");
     }
   }
   WorldSpec w;
@@ -233,7 +253,8 @@ WorldSpec test_method_arena(const ArenaOptions& o) {
   wall({width, length}, {0, length});
   wall({0, length}, {0, 0});
   // lane walls stop short of the south end, so a robot can be moved from lane to lane there
-  for (std::size_t i = 1; i < o.lanes.size(); ++i) wall({o.lane_width * static_cast<double>(i), length}, {o.lane_width * static_cast<double>(i), 0.6 * o.approach});
+  for (std::size_t i = 1; i < o.lanes.size(); ++i)
+    wall({o.lane_width * static_cast<double>(i), length}, {o.lane_width * static_cast<double>(i), 0.6 * o.approach});
   for (std::size_t i = 0; i < o.lanes.size(); ++i) {
     TerrainSpec e = TerrainSpec::defaults(o.lanes[i]);
     e.name = std::string(i < 10 ? "lane_0" : "lane_") + std::to_string(i) + "_" + TerrainSpec::kind_name(o.lanes[i]);

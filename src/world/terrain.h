@@ -52,7 +52,9 @@ inline constexpr double kFigureEightLength = 4.8;
 inline constexpr double kFigureEightLaneWidth = kFigureEightWidth + 0.1;
 
 /// Whether the test methods drive figure-eights on this kind (stepfields and crossing ramps).
-inline bool is_figure_eight_kind(TerrainSpec::Kind k) { return k == TerrainSpec::Kind::stepfield || k == TerrainSpec::Kind::crossing_ramps; }
+inline bool is_figure_eight_kind(TerrainSpec::Kind k) {
+  return k == TerrainSpec::Kind::stepfield || k == TerrainSpec::Kind::crossing_ramps;
+}
 
 /// The arena as a WorldSpec (in the SVG convention, ready for world_to_svg). Its metadata records
 /// each lane's kind and its start and end lines (the element's near and far edges). Throws Error

@@ -303,7 +303,8 @@ class Validator {
     }
     if (!std::isfinite(m.bottom) || m.bottom < 0) d_.error(where, "bottom " + num(m.bottom) + " m is not a height of 0 or more");
     if (!std::isfinite(m.height) || !(m.height > 0)) d_.error(where, "height " + num(m.height) + " m is not positive");
-    if (!std::isfinite(m.growth) || m.growth < 0) d_.error(where, "growth " + num(m.growth) + " m/s is not 0 or more (a footprint only grows)");
+    if (!std::isfinite(m.growth) || m.growth < 0)
+      d_.error(where, "growth " + num(m.growth) + " m/s is not 0 or more (a footprint only grows)");
     if (!finite(m.drift)) d_.error(where, "drift is not a finite velocity");
   }
 
@@ -347,8 +348,10 @@ class Validator {
       const GroundAreaSpec& o = w_.ground[k];
       if (o.outline.size() < 3 || !finite(o.outline)) continue;
       if (polygons_overlap(shrunk(g.outline), shrunk(o.outline))) {
-        d_.error(where, "overlaps ground area '" + o.name + "'" + (o.source.line > 0 ? " (line " + std::to_string(o.source.line) + ")" : std::string()) +
-                            "; ground areas must not overlap, so that every point of the floor has one material (expected patches side by side)");
+        d_.error(where,
+                 "overlaps ground area '" + o.name + "'" +
+                     (o.source.line > 0 ? " (line " + std::to_string(o.source.line) + ")" : std::string()) +
+                     "; ground areas must not overlap, so that every point of the floor has one material (expected patches side by side)");
       }
     }
   }

@@ -187,7 +187,8 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
   for (const TerrainSpec& t : spec.terrain) {
     const int mat = w.material_index(t.material);
     for (TerrainSolid& so : terrain_solids(t)) {
-      w.statics.push_back({std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, -1});
+      w.statics.push_back(
+          {std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, -1});
     }
   }
   // floor patches: no solids, only the floor's material inside their footprints
@@ -242,7 +243,8 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     StaticObject o{so.name, ObjectKind::obstacle, so.geometry, so.X_WS, w.material_index(so.material), so.temperature, -1};
     if (!so.victim.empty()) {
       const auto it = std::find_if(w.victims.begin(), w.victims.end(), [&](const Victim& v) { return v.name == so.victim; });
-      if (it == w.victims.end()) throw Error(so.source, "solid '" + so.name + "' names victim '" + so.victim + "', which the world does not have");
+      if (it == w.victims.end())
+        throw Error(so.source, "solid '" + so.name + "' names victim '" + so.victim + "', which the world does not have");
       const auto vi = static_cast<std::size_t>(it - w.victims.begin());
       o.kind = ObjectKind::victim;
       o.victim = static_cast<int>(vi);

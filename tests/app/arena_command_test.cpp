@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "import/svg/svg_world.h"
 #include "support/command.h"
-#include "world/svg/svg_world.h"
 
 namespace rescuesim {
 namespace {
@@ -20,7 +20,8 @@ using testing::temp_dir;
 TEST(ArenaCommand, LanesSideBySideReadBackWithTheirElementsCentredInThem) {
   const auto dir = temp_dir("arena-command");
   const auto svg = dir / "arena.svg";
-  const auto r = rescuesim("arena --lanes stepfield,crossing-ramps,curb --lane-width 1.1 --start-lane 1 --seed 5 --out '" + svg.string() + "'");
+  const auto r =
+      rescuesim("arena --lanes stepfield,crossing-ramps,curb --lane-width 1.1 --start-lane 1 --seed 5 --out '" + svg.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("lane 1  crossing-ramps  3.60 m long"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir / "arena.png"));
@@ -88,7 +89,8 @@ TEST(ArenaCommand, AFigureEightArenaOfStairsOrNarrowLanesIsAUsageError) {
       << stairs.err;
   const auto narrow = rescuesim("arena --lanes stepfield --figure-eight --lane-width 1.2 --out '" + (dir / "a.svg").string() + "'");
   EXPECT_EQ(narrow.exit_code, 2);
-  EXPECT_NE(narrow.err.find("lane width 1.2 m is too narrow for a figure-8 element 2.4 m wide (expected at least 2.5 m)"), std::string::npos)
+  EXPECT_NE(narrow.err.find("lane width 1.2 m is too narrow for a figure-8 element 2.4 m wide (expected at least 2.5 m)"),
+            std::string::npos)
       << narrow.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "a.svg"));
 }
@@ -97,7 +99,8 @@ TEST(ArenaCommand, AnUnknownLaneOrStartLaneIsAUsageErrorThatSaysWhatExists) {
   const auto dir = temp_dir("arena-command-bad");
   const auto unknown = rescuesim("arena --lanes stepfield,ladder --out '" + (dir / "a.svg").string() + "'");
   EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_NE(unknown.err.find("unknown terrain 'ladder'; expected stepfield, stairs, crossing-ramps, curb, hurdle or gap"), std::string::npos)
+  EXPECT_NE(unknown.err.find("unknown terrain 'ladder'; expected stepfield, stairs, crossing-ramps, curb, hurdle or gap"),
+            std::string::npos)
       << unknown.err;
   const auto start = rescuesim("arena --lanes curb --start-lane 3 --out '" + (dir / "a.svg").string() + "'");
   EXPECT_EQ(start.exit_code, 2);

@@ -78,8 +78,9 @@ TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
              "  <rect id=\"low\" x=\"90\" y=\"270\" width=\"120\" height=\"60\" data-kind=\"curb\" data-height=\"3cm\" data-yaw=\"90\"/>\n"
              "  <circle cx=\"150\" cy=\"500\" r=\"30\" fill=\"#2ca02c\" data-yaw=\"90\"/>\n"
              "</svg>\n");
-  const auto r = rescuesim("batch --trial-terrain '" + arena.string() + "' --lane curb --robot tracked_robot --laps 1 --speed 0.5 --trials 2 --jobs 2 --out '" +
-                           (dir_ / "curb").string() + "'");
+  const auto r =
+      rescuesim("batch --trial-terrain '" + arena.string() +
+                "' --lane curb --robot tracked_robot --laps 1 --speed 0.5 --trials 2 --jobs 2 --out '" + (dir_ / "curb").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("2 trials recorded: 2 completed every repetition (100%), 0 failed; repetitions 2/2"), std::string::npos) << r.out;
   EXPECT_EQ(lines("curb"), 2);
@@ -105,7 +106,8 @@ TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
   EXPECT_EQ(summary["terrain"]["repetitions"], 2);
 
   // bad input is exit 2: a lane the arena lacks, a scenario and an arena at once
-  const auto lane = rescuesim("batch --trial-terrain '" + arena.string() + "' --lane stairs --trials 1 --out '" + (dir_ / "x").string() + "'");
+  const auto lane =
+      rescuesim("batch --trial-terrain '" + arena.string() + "' --lane stairs --trials 1 --out '" + (dir_ / "x").string() + "'");
   EXPECT_EQ(lane.exit_code, 2);
   EXPECT_NE(lane.err.find("no lane 'stairs'"), std::string::npos) << lane.err;
   const auto both = rescuesim("batch '" + scenario_.string() + "' --trial-terrain '" + arena.string() + "' --lane curb --trials 1");
@@ -116,7 +118,8 @@ TEST_F(BatchCli, TerrainTrialsAreRecordedOneLineEach) {
   EXPECT_EQ(eight.exit_code, 2);
   EXPECT_NE(eight.err.find("lane 'low' is curb: use --pattern laps or back-and-forth"), std::string::npos) << eight.err;
   EXPECT_FALSE(fs::exists(dir_ / "eight" / "results.jsonl"));
-  const auto single = rescuesim("trial-terrain '" + arena.string() + "' --lane curb --pattern figure-eight --out '" + (dir_ / "eight1").string() + "'");
+  const auto single =
+      rescuesim("trial-terrain '" + arena.string() + "' --lane curb --pattern figure-eight --out '" + (dir_ / "eight1").string() + "'");
   EXPECT_EQ(single.exit_code, 2);
   EXPECT_NE(single.err.find("figure-eights are driven on stepfields and crossing ramps"), std::string::npos) << single.err;
 }
@@ -186,12 +189,14 @@ TEST_F(BatchCli, ShardsMergeIntoTheWholeBatch) {
   ASSERT_EQ(s1.exit_code, 0) << s1.err;
   EXPECT_EQ(lines("s0"), 10);
   EXPECT_EQ(records("s1").begin()->first, 1);
-  const auto m = rescuesim("batch merge '" + (dir_ / "s0").string() + "' '" + (dir_ / "s1").string() + "' --out '" + (dir_ / "merged").string() + "'");
+  const auto m =
+      rescuesim("batch merge '" + (dir_ / "s0").string() + "' '" + (dir_ / "s1").string() + "' --out '" + (dir_ / "merged").string() + "'");
   ASSERT_EQ(m.exit_code, 0) << m.err;
   expect_same(records("whole"), records("merged"));
   EXPECT_TRUE(fs::exists(dir_ / "merged" / "summary.png"));
   // the merged file is in trial order
-  const auto first = nlohmann::json::parse(slurp(dir_ / "merged" / "results.jsonl").substr(0, slurp(dir_ / "merged" / "results.jsonl").find('\n')));
+  const auto first =
+      nlohmann::json::parse(slurp(dir_ / "merged" / "results.jsonl").substr(0, slurp(dir_ / "merged" / "results.jsonl").find('\n')));
   EXPECT_EQ(first["trial"], 0);
 }
 
@@ -239,8 +244,8 @@ TEST_F(BatchCli, ACrashedTrialIsRecordedAndCanBeRetried) {
   const auto r = rescuesim("batch '" + scenario_.string() + "' --out '" + (dir_ / "c").string() + "' --trials 4 --jobs 2 --duration 2",
                            {});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto crash = testing::run_command(std::string("RESCUESIM_BATCH_CRASH_TRIAL=5 '") + RESCUESIM_EXE + "' batch '" + scenario_.string() +
-                                          "' --out '" + (dir_ / "c").string() + "' --trials 7 --jobs 2 --duration 2");
+  const auto crash = testing::run_command(std::string("RESCUESIM_BATCH_CRASH_TRIAL=5 '") + RESCUESIM_EXE + "' batch '" +
+                                          scenario_.string() + "' --out '" + (dir_ / "c").string() + "' --trials 7 --jobs 2 --duration 2");
   EXPECT_EQ(crash.exit_code, 1) << crash.err;
   auto recs = records("c");
   ASSERT_EQ(recs.size(), 7u);
@@ -265,7 +270,8 @@ TEST_F(BatchCli, AnotherBatchsFolderIsRefused) {
   EXPECT_NE(reseeded.err.find("ran with seed 11"), std::string::npos) << reseeded.err;
   // nor can shards of different batches be merged
   ASSERT_EQ(batch("y", "--trials 2 -q --duration 3").exit_code, 0);
-  const auto m = rescuesim("batch merge '" + (dir_ / "x").string() + "' '" + (dir_ / "y").string() + "' --out '" + (dir_ / "xy").string() + "'");
+  const auto m =
+      rescuesim("batch merge '" + (dir_ / "x").string() + "' '" + (dir_ / "y").string() + "' --out '" + (dir_ / "xy").string() + "'");
   EXPECT_EQ(m.exit_code, 2);
   EXPECT_NE(m.err.find("only shards of one batch"), std::string::npos) << m.err;
 }

@@ -52,7 +52,8 @@ TEST(CheckSdf, ADrawnWorldTakesModelsPlacedByTheScenario) {
 TEST(CheckSdf, EveryKindOfBadSdfExitsTwoNamingTheFile) {
   const auto dir = temp_dir("check-sdf");
   fs::create_directories(dir / "junk_model" / "meshes");
-  write_text(dir / "junk_model" / "model.config", "<?xml version=\"1.0\"?><model><name>junk</name><sdf version=\"1.9\">model.sdf</sdf></model>\n");
+  write_text(dir / "junk_model" / "model.config",
+             "<?xml version=\"1.0\"?><model><name>junk</name><sdf version=\"1.9\">model.sdf</sdf></model>\n");
   write_text(dir / "junk_model" / "model.sdf",
              "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\"><model name=\"junk\"><static>true</static><link name=\"l\">\n"
              "<collision name=\"c\"><geometry><mesh><uri>meshes/junk.stl</uri></mesh></geometry></collision>\n"
@@ -92,7 +93,9 @@ TEST(CheckSdf, EveryKindOfBadSdfExitsTwoNamingTheFile) {
 TEST(CheckSdf, RunWithABadSdfWorldExitsTwoAndWritesNothing) {
   const auto dir = temp_dir("run-sdf");
   const fs::path file = dir / "broken.sdf";
-  write_text(file, "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\">\n<world name=\"w\">\n<include><uri>model://gone</uri></include>\n</world></sdf>\n");
+  write_text(
+      file,
+      "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\">\n<world name=\"w\">\n<include><uri>model://gone</uri></include>\n</world></sdf>\n");
   const fs::path out = dir / "out";
   const auto r = rescuesim("run --world " + quoted(file) + " --duration 1 --no-cameras --out " + quoted(out));
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;

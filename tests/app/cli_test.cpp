@@ -150,7 +150,8 @@ TEST_F(CheckBadInput, BadGroundAreasAreNamed) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"(<rect id="pit" x="100" y="100" width="200" height="100" data-kind="ground" data-material="lava"/>)", "unknown material 'lava'"},
       {R"(<rect id="pit" x="100" y="100" width="200" height="100" data-kind="ground"/>)", "a ground area needs data-material"},
-      {R"(<polyline id="pit" points="100,100 200,100 300,100" data-kind="ground" data-material="sand"/>)", "needs a footprint with an area"},
+      {R"(<polyline id="pit" points="100,100 200,100 300,100" data-kind="ground" data-material="sand"/>)",
+       "needs a footprint with an area"},
       {R"(<rect id="a" x="0" y="300" width="100" height="100" data-kind="ground" data-material="sand"/>
 <rect id="pit" x="50" y="350" width="100" height="100" data-kind="ground" data-material="wood"/>)",
        "overlaps ground area 'a'"},
@@ -294,8 +295,8 @@ TEST(RunCommand, OneWorkerThreadOrTwoWriteTheSameTrajectories) {
   std::string traj[2];
   for (int threads : {1, 2}) {
     const auto dir = temp_dir("threads-" + std::to_string(threads));
-    const auto r = testing::rescuesim("--threads " + std::to_string(threads) + " run worlds/team.yaml --duration 5 -q --no-cameras --out '" +
-                                      dir.string() + "'");
+    const auto r = testing::rescuesim("--threads " + std::to_string(threads) +
+                                      " run worlds/team.yaml --duration 5 -q --no-cameras --out '" + dir.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     traj[threads - 1] = testing::slurp(dir / "trajectory.csv");
   }

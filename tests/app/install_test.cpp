@@ -25,7 +25,8 @@ class Installed : public ::testing::Test {
     root_ = fs::temp_directory_path() / ("rescuesim-install-test-" + std::to_string(::getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_ / "home");
-    const auto r = testing::run_command("cmake --install '" + std::string(RESCUESIM_BINARY_DIR) + "' --prefix '" + (root_ / "prefix").string() + "'");
+    const auto r =
+        testing::run_command("cmake --install '" + std::string(RESCUESIM_BINARY_DIR) + "' --prefix '" + (root_ / "prefix").string() + "'");
     install_exit_ = r.exit_code;
     install_log_ = r.out + r.err;
   }
@@ -33,7 +34,8 @@ class Installed : public ::testing::Test {
 
   /// `command` in the home folder with only PATH (the prefix's bin first), HOME and `extra` set.
   static testing::CommandResult as_user(const std::string& command, const std::string& extra = "") {
-    const std::string env = "env -i HOME='" + (root_ / "home").string() + "' PATH='" + (root_ / "prefix/bin").string() + ":/usr/bin:/bin' " + extra + " ";
+    const std::string env =
+        "env -i HOME='" + (root_ / "home").string() + "' PATH='" + (root_ / "prefix/bin").string() + ":/usr/bin:/bin' " + extra + " ";
     return testing::run_command(env + command, root_ / "home");
   }
 
@@ -46,6 +48,7 @@ TEST_F(Installed, TheCliRunsAndFindsItsWorldsFromAnyFolder) {
   ASSERT_EQ(install_exit_, 0) << install_log_;
   const fs::path prefix = root_ / "prefix";
   EXPECT_TRUE(fs::exists(prefix / "bin/rescuesim"));
+  EXPECT_TRUE(fs::exists(prefix / "bin/rescuesim-bench"));  // beside the CLI, which runs it for `rescuesim bench`
   EXPECT_TRUE(fs::exists(prefix / "share/rescuesim/worlds/team.yaml"));
   EXPECT_TRUE(fs::exists(prefix / "share/rescuesim/worlds/robots/turtlebot3_description/LICENSE"));  // licences stay with the data
   EXPECT_TRUE(fs::exists(prefix / "share/doc/rescuesim/README.md"));
@@ -84,7 +87,8 @@ TEST_F(Installed, AWrongDataFolderIsAClearError) {
   ASSERT_EQ(install_exit_, 0) << install_log_;
   const auto wrong = as_user("rescuesim run --duration 1", "RESCUESIM_DATA_DIR=/nonexistent/share/rescuesim");
   EXPECT_EQ(wrong.exit_code, 2);
-  EXPECT_NE(wrong.err.find("RESCUESIM_DATA_DIR=/nonexistent/share/rescuesim is not a rescuesim data folder"), std::string::npos) << wrong.err;
+  EXPECT_NE(wrong.err.find("RESCUESIM_DATA_DIR=/nonexistent/share/rescuesim is not a rescuesim data folder"), std::string::npos)
+      << wrong.err;
 
   // an installed copy whose data went: a shipped world cannot be found, and it says where it looked
   if (fs::exists("/usr/local/share/rescuesim/worlds")) GTEST_SKIP() << "a rescuesim is installed in /usr/local: it would be found";
@@ -101,7 +105,8 @@ TEST(DebPackage, HoldsTheProgramItsDataAndComputedDepends) {
   // what `make deb` does, into a folder of the test's own
   const fs::path dir = fs::temp_directory_path() / ("rescuesim-deb-test-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  const auto pack = testing::run_command("cpack --config '" + std::string(RESCUESIM_BINARY_DIR) + "/CPackConfig.cmake' -G DEB -B '" + dir.string() + "'");
+  const auto pack =
+      testing::run_command("cpack --config '" + std::string(RESCUESIM_BINARY_DIR) + "/CPackConfig.cmake' -G DEB -B '" + dir.string() + "'");
   ASSERT_EQ(pack.exit_code, 0) << pack.out << pack.err;
   fs::path deb;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -132,15 +137,16 @@ TEST(DebPackage, HoldsTheProgramItsDataAndComputedDepends) {
     if (w.front() == '(' || w.back() == ')' || w == "|") continue;  // version constraints
     const auto q = testing::run_command("dpkg-query -W -f='${Status}' '" + w + "'");
     const bool installed = q.out.find("install ok installed") != std::string::npos;
-    const bool virtual_provided = (", " + provided).find(", " + w + " ") != std::string::npos || (", " + provided).find(", " + w + ",") != std::string::npos;
+    const bool virtual_provided =
+        (", " + provided).find(", " + w + " ") != std::string::npos || (", " + provided).find(", " + w + ",") != std::string::npos;
     EXPECT_TRUE(installed || virtual_provided) << "Depends names " << w << ", which nothing installed here is or provides";
     ++checked;
   }
   EXPECT_GT(checked, 5);
 
   const auto contents = testing::run_command("dpkg-deb --contents '" + deb.string() + "'");
-  for (const char* f : {"./usr/bin/rescuesim", "./usr/share/rescuesim/worlds/team.yaml", "./usr/share/doc/rescuesim/LICENSE",
-                        "./usr/share/rescuesim/worlds/robots/turtlebot3_description/LICENSE"}) {
+  for (const char* f : {"./usr/bin/rescuesim", "./usr/bin/rescuesim-bench", "./usr/share/rescuesim/worlds/team.yaml",
+                        "./usr/share/doc/rescuesim/LICENSE", "./usr/share/rescuesim/worlds/robots/turtlebot3_description/LICENSE"}) {
     EXPECT_NE(contents.out.find(f), std::string::npos) << f;
   }
   // Debian's python3 reads /usr/lib/python3/dist-packages
@@ -151,13 +157,15 @@ TEST(DebPackage, HoldsTheProgramItsDataAndComputedDepends) {
 }
 
 TEST(Wheel, PipInstallsItIntoAVenvAndTheExamplesRun) {
-  if (!fs::exists(fs::path(RESCUESIM_BINARY_DIR) / "python/rescuesim")) GTEST_SKIP() << "the Python API is not built here (RESCUESIM_PYTHON)";
+  if (!fs::exists(fs::path(RESCUESIM_BINARY_DIR) / "python/rescuesim")) {
+    GTEST_SKIP() << "the Python API is not built here (RESCUESIM_PYTHON)";
+  }
   const fs::path dir = fs::temp_directory_path() / ("rescuesim-wheel-test-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "home");
   // what `make wheel` does, into a folder of the test's own
-  const auto made = testing::run_command("'" + std::string(RESCUESIM_SOURCE_DIR) + "/scripts/make-wheel.sh' '" + RESCUESIM_BINARY_DIR + "' '" +
-                                         (dir / "dist").string() + "'");
+  const auto made = testing::run_command("'" + std::string(RESCUESIM_SOURCE_DIR) + "/scripts/make-wheel.sh' '" + RESCUESIM_BINARY_DIR +
+                                         "' '" + (dir / "dist").string() + "'");
   ASSERT_EQ(made.exit_code, 0) << made.out << made.err;
   fs::path wheel;
   for (const auto& e : fs::directory_iterator(dir / "dist")) {

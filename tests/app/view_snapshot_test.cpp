@@ -140,7 +140,8 @@ std::filesystem::path write_victim_room(const std::filesystem::path& dir) {
   <line x1="80" y1="200" x2="140" y2="200" stroke="#2ca02c" stroke-width="5"/>
 </svg>
 )");
-  testing::write_text(dir / "room.yaml", "name: victim-room\nseed: 1\nworld:\n  svg: room.svg\nrobots:\n  - name: robot\n    controller: none\n");
+  testing::write_text(dir / "room.yaml",
+                      "name: victim-room\nseed: 1\nworld:\n  svg: room.svg\nrobots:\n  - name: robot\n    controller: none\n");
   return dir / "room.yaml";
 }
 

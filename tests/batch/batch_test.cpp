@@ -288,7 +288,8 @@ TEST(BatchTrial, SameSeedSameOutcomeAndAnInvalidWorldIsAFailedTrial) {
   EXPECT_FALSE(same_outcome(r1, run_trial(b.scenario, models, 0, 6, o, "rs1-x")));
 
   // the robot starts on the corner of the outer walls: validation refuses the world
-  const BatchScenario bad = parse_batch_scenario(std::string(kTinyYaml) + "robots:\n  - name: robot\n    start: {x: 0, y: 0}\n", "bad.yaml", models);
+  const BatchScenario bad =
+      parse_batch_scenario(std::string(kTinyYaml) + "robots:\n  - name: robot\n    start: {x: 0, y: 0}\n", "bad.yaml", models);
   const TrialRecord f = run_trial(bad.scenario, models, 3, 14, o, "rs1-x");
   EXPECT_EQ(f.status, "failed");
   EXPECT_EQ(f.trial, 3);

@@ -147,8 +147,9 @@ TEST_F(BusDeathTest, SubscribingFromALatchedReplayIsRefused) {
   const TopicId l = bus.advertise("/latched", "rosgraph_msgs/Clock", 0, true);
   bus.publish(l, msg::Clock{SimTime{1}});
   // the newcomer's callback runs inside subscribe (the latched replay): the Bus is locked there too
-  EXPECT_DEATH(bus.subscribe("/latched", [&](const Topic&, const msg::Message&) { bus.subscribe("", [](const Topic&, const msg::Message&) {}); }),
-               "Bus::subscribe: called from inside a subscriber callback");
+  EXPECT_DEATH(
+      bus.subscribe("/latched", [&](const Topic&, const msg::Message&) { bus.subscribe("", [](const Topic&, const msg::Message&) {}); }),
+      "Bus::subscribe: called from inside a subscriber callback");
 }
 
 TEST_F(BusDeathTest, UnknownTopicIdsAreRefused) {

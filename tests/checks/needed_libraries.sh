@@ -2,7 +2,7 @@
 # needed_libraries.sh BINARY [--needs LIB]... [--not LIB]...
 # Reads BINARY's dynamic section (readelf -d): every --needs prefix must be among its NEEDED
 # libraries (so the check cannot pass on the wrong file) and no --not prefix may be. Used to
-# prove that the replay program links no physics engine and no ray tracer.
+# prove that the replay program links no physics engine, no ray tracer and no importer's parser.
 set -euo pipefail
 binary=${1:?usage: needed_libraries.sh BINARY [--needs LIB]... [--not LIB]...}
 shift

@@ -171,7 +171,8 @@ TEST(Mission, ReportsAreAnsweredOnTheBusAndTheScoreIsLatched) {
 
   // a subscriber that comes late gets the latched score at once
   nlohmann::json score;
-  sim.bus().subscribe("/rescue/score", [&](const Topic&, const msg::Message& m) { score = nlohmann::json::parse(std::get<msg::String>(m).data); });
+  sim.bus().subscribe("/rescue/score",
+                      [&](const Topic&, const msg::Message& m) { score = nlohmann::json::parse(std::get<msg::String>(m).data); });
   EXPECT_EQ(score["score"], 1.0);
   EXPECT_EQ(score["victims_found"], 1);
   EXPECT_EQ(score["victims"], 1);
@@ -209,7 +210,8 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   ASSERT_GE(relay, 0);
   EXPECT_EQ(inputs[static_cast<std::size_t>(send)].type, "std_msgs/String");
   const auto on = [&](const char* topic, std::vector<nlohmann::json>& into) {
-    sim.bus().subscribe(topic, [&into](const Topic&, const msg::Message& m) { into.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+    sim.bus().subscribe(
+        topic, [&into](const Topic&, const msg::Message& m) { into.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
   };
   std::vector<nlohmann::json> inbox_b, results_a, answers_a;
   on("/b/rescue/comms/inbox", inbox_b);
@@ -306,8 +308,9 @@ TEST(Mission, AReportsPictureGoesWithTheReportOfItsStampInEitherOrder) {
   ASSERT_GE(image, 0);
   EXPECT_EQ(sim.inputs()[static_cast<std::size_t>(image)].type, "sensor_msgs/Image");
   std::vector<nlohmann::json> answers;
-  sim.bus().subscribe("/a/rescue/report_result",
-                      [&](const Topic&, const msg::Message& m) { answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+  sim.bus().subscribe("/a/rescue/report_result", [&](const Topic&, const msg::Message& m) {
+    answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
   const auto submit = [&](int index, msg::Message m) { return sim.submit_input(static_cast<std::size_t>(index), m); };
   msg::PoseStamped p;
   p.header.frame_id = "map";
@@ -355,8 +358,9 @@ TEST(Mission, APictureThatIsNoPictureIsRefusedWithTheReasonAndTheReportStillCoun
   Mission mission(wss_mission(), sim);
   const int image = input_index(sim, "/a/rescue/report_image");
   std::vector<nlohmann::json> answers;
-  sim.bus().subscribe("/a/rescue/report_result",
-                      [&](const Topic&, const msg::Message& m) { answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data)); });
+  sim.bus().subscribe("/a/rescue/report_result", [&](const Topic&, const msg::Message& m) {
+    answers.push_back(nlohmann::json::parse(std::get<msg::String>(m).data));
+  });
   msg::Image depth = picture(2, 2, SimTime{});
   depth.encoding = "32FC1";
   msg::Image short_data = picture(4, 4, SimTime{});
@@ -401,7 +405,8 @@ TEST(Mission, ATeamMapIsScoredAgainstTheWallsTheRobotsCouldSee) {
   mission.enable_map_scoring(spec);
   ASSERT_EQ(input_index(sim, "/rescue/map"), static_cast<int>(sim.inputs().size()) - 1);
   nlohmann::json published;
-  sim.bus().subscribe("/rescue/map_score", [&](const Topic&, const msg::Message& m) { published = nlohmann::json::parse(std::get<msg::String>(m).data); });
+  sim.bus().subscribe("/rescue/map_score",
+                      [&](const Topic&, const msg::Message& m) { published = nlohmann::json::parse(std::get<msg::String>(m).data); });
   steps(sim, mission, 0.5);
 
   // the truth itself as a map (100 on the wall's cells, 0 elsewhere): every occupied cell is a

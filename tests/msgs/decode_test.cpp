@@ -196,7 +196,8 @@ TEST(Decode, AbsurdCountsAreRejectedBeforeAllocating) {
   const TypeSupport& js = *find_type("sensor_msgs/JointState");
   b = ros1(test::joint_state());
   put_u32(b, 4 + 8 + 4 + 9, 100'000'000u);  // name count after the header
-  EXPECT_THAT(error_of(from_ros1, js, b), StartsWith("sensor_msgs/JointState: name: sequence of 100000000 elements needs at least 400000000 bytes"));
+  EXPECT_THAT(error_of(from_ros1, js, b),
+              StartsWith("sensor_msgs/JointState: name: sequence of 100000000 elements needs at least 400000000 bytes"));
 
   const TypeSupport& img = *find_type("sensor_msgs/Image");
   b = ros1(test::image());
@@ -226,7 +227,8 @@ TEST(Decode, CdrPaddingAnnouncedInTheOptionsIsAccepted) {
   EXPECT_EQ(error_of(from_cdr, t, b), "");
   EXPECT_EQ(digest(from_cdr(t, b)), digest(test::contacts()));
   b.push_back(0);
-  EXPECT_EQ(error_of(from_cdr, t, b), "rescuesim_msgs/msg/Contacts: 4 trailing bytes after the message (the encapsulation options allow 3)");
+  EXPECT_EQ(error_of(from_cdr, t, b),
+            "rescuesim_msgs/msg/Contacts: 4 trailing bytes after the message (the encapsulation options allow 3)");
 }
 
 TEST(Decode, CdrEncapsulationIsChecked) {

@@ -131,15 +131,16 @@ TEST(JsonRead, EveryTypeRoundTripsThroughToJson) {
 
 TEST(JsonRead, PartialMessagesKeepDefaultsAndRos2NamesAreTaken) {
   // a report as a Foxglove publish panel sends it: no header stamp, no orientation
-  const Message m = from_json(*find_type("geometry_msgs/PoseStamped"), R"({"header":{"frame_id":"map"},"pose":{"position":{"x":1.5,"y":-2}}})");
+  const Message m =
+      from_json(*find_type("geometry_msgs/PoseStamped"), R"({"header":{"frame_id":"map"},"pose":{"position":{"x":1.5,"y":-2}}})");
   const auto& p = std::get<PoseStamped>(m);
   EXPECT_EQ(p.header.frame_id, "map");
   EXPECT_EQ(p.header.stamp.ns, 0);
   EXPECT_EQ(p.pose.p, Vec3(1.5, -2, 0));
   EXPECT_EQ(p.pose.q.w(), 1.0);  // the default, identity
   // ROS 2's nanosec, and ROS 1's seq (ignored)
-  const auto s = std::get<PoseStamped>(
-      from_json(*find_type("geometry_msgs/msg/PoseStamped"), R"({"header":{"seq":7,"stamp":{"sec":3,"nanosec":250000000},"frame_id":""}})"));
+  const auto s = std::get<PoseStamped>(from_json(*find_type("geometry_msgs/msg/PoseStamped"),
+                                                 R"({"header":{"seq":7,"stamp":{"sec":3,"nanosec":250000000},"frame_id":""}})"));
   EXPECT_EQ(s.header.stamp.ns, 3'250'000'000);
   // CameraInfo's D/K/R/P are d/k/r/p in ROS 2
   const auto c = std::get<CameraInfo>(from_json(*find_type("sensor_msgs/CameraInfo"), R"({"k":[1,0,2,0,1,3,0,0,1]})"));
@@ -147,7 +148,8 @@ TEST(JsonRead, PartialMessagesKeepDefaultsAndRos2NamesAreTaken) {
   EXPECT_EQ(c.k[5], 3.0);
   // uint8[] as base64 or as numbers; int8[] as numbers
   EXPECT_EQ(std::get<Image>(from_json(*find_type("sensor_msgs/Image"), R"({"data":"AQID"})")).data, (std::vector<std::uint8_t>{1, 2, 3}));
-  EXPECT_EQ(std::get<Image>(from_json(*find_type("sensor_msgs/Image"), R"({"data":[1,2,255]})")).data, (std::vector<std::uint8_t>{1, 2, 255}));
+  EXPECT_EQ(std::get<Image>(from_json(*find_type("sensor_msgs/Image"), R"({"data":[1,2,255]})")).data,
+            (std::vector<std::uint8_t>{1, 2, 255}));
   EXPECT_EQ(std::get<OccupancyGrid>(from_json(*find_type("nav_msgs/OccupancyGrid"), R"({"data":[-1,0,100]})")).data,
             (std::vector<std::int8_t>{-1, 0, 100}));
 }
@@ -169,10 +171,12 @@ TEST(JsonRead, BadInputNamesTheFieldAndWhatWasExpected) {
   EXPECT_EQ(error("geometry_msgs/Twist", R"({"linear":{"x":1,"yy":2}})"), "geometry_msgs/Twist: linear.yy: no such field");
   EXPECT_EQ(error("geometry_msgs/PoseStamped", R"({"pose":{},"extra":1})"), "geometry_msgs/PoseStamped: extra: no such field");
   EXPECT_EQ(error("std_msgs/String", R"({"data":5})"), "std_msgs/String: data: expected a string, got 5");
-  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"data":[1,200]})"), "nav_msgs/OccupancyGrid: data[1]: expected an integer from -128 to 127, got 200");
+  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"data":[1,200]})"),
+            "nav_msgs/OccupancyGrid: data[1]: expected an integer from -128 to 127, got 200");
   EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"info":{"width":-1}})"),
             "nav_msgs/OccupancyGrid: info.width: expected an integer from 0 to 4294967295, got -1");
-  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"info":{"width":2.5}})"), "nav_msgs/OccupancyGrid: info.width: expected an integer, got 2.5");
+  EXPECT_EQ(error("nav_msgs/OccupancyGrid", R"({"info":{"width":2.5}})"),
+            "nav_msgs/OccupancyGrid: info.width: expected an integer, got 2.5");
   EXPECT_EQ(error("sensor_msgs/Image", R"({"data":"AQI"})"), "sensor_msgs/Image: data: a string here must be base64 (RFC 4648, padded)");
   EXPECT_EQ(error("sensor_msgs/CameraInfo", R"({"K":[1,2]})"), "sensor_msgs/CameraInfo: K: expected an array of 9 numbers, got [1,2]");
   EXPECT_EQ(error("tf2_msgs/TFMessage", R"({"transforms":[{},5]})"), "tf2_msgs/TFMessage: transforms[1]: expected an object, got 5");

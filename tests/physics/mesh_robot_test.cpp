@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "world/urdf/urdf_import.h"
-#include "world/urdf/urdf_test_files.h"
+#include "import/urdf/urdf_import.h"
+#include "import/urdf/urdf_test_files.h"
 
 namespace rescuesim {
 namespace {
@@ -52,13 +52,21 @@ std::string four_wheels() {
   std::string out;
   for (const Wheel& w : {Wheel{"lf", 0.15, 0.18}, Wheel{"lr", -0.15, 0.18}, Wheel{"rf", 0.15, -0.18}, Wheel{"rr", -0.15, -0.18}}) {
     const std::string n = w.name;
-    out += "  <link name=\"" + n + "_wheel\">\n"
-           "    <inertial><mass value=\"0.3\"/><inertia ixx=\"0.00052\" ixy=\"0\" ixz=\"0\" iyy=\"0.00052\" iyz=\"0\" izz=\"0.00096\"/></inertial>\n"
+    out += "  <link name=\"" + n +
+           "_wheel\">\n"
+           "    <inertial><mass value=\"0.3\"/><inertia ixx=\"0.00052\" ixy=\"0\" ixz=\"0\" iyy=\"0.00052\" iyz=\"0\" "
+           "izz=\"0.00096\"/></inertial>\n"
            "    <collision><geometry><cylinder radius=\"0.08\" length=\"0.04\"/></geometry></collision>\n"
            "  </link>\n"
-           "  <joint name=\"" + n + "\" type=\"continuous\">\n"
-           "    <parent link=\"chassis\"/><child link=\"" + n + "_wheel\"/>\n"
-           "    <origin xyz=\"" + std::to_string(w.x) + " " + std::to_string(w.y) + " 0\" rpy=\"-1.5707963 0 0\"/>\n"
+           "  <joint name=\"" +
+           n +
+           "\" type=\"continuous\">\n"
+           "    <parent link=\"chassis\"/><child link=\"" +
+           n +
+           "_wheel\"/>\n"
+           "    <origin xyz=\"" +
+           std::to_string(w.x) + " " + std::to_string(w.y) +
+           " 0\" rpy=\"-1.5707963 0 0\"/>\n"
            "    <axis xyz=\"0 0 1\"/>\n"
            "    <limit effort=\"10\" velocity=\"20\"/>\n"
            "  </joint>\n";
@@ -71,7 +79,8 @@ constexpr double kWheelRadius = 0.08;
 /// Writes the chassis STL and a URDF of the chassis (and wheels) beside it, and loads it.
 UrdfRobot load_robot(const TempDir& dir, bool wheels) {
   dir.write("chassis.stl", urdf_test::binary_stl(chassis_mesh()));
-  const auto file = dir.write("robot.urdf", std::string("<robot name=\"crawler\">\n") + kChassisLink + (wheels ? four_wheels() : "") + "</robot>\n");
+  const auto file =
+      dir.write("robot.urdf", std::string("<robot name=\"crawler\">\n") + kChassisLink + (wheels ? four_wheels() : "") + "</robot>\n");
   UrdfOptions o;
   o.resolver = ResourceResolver({}, false);
   return load_urdf(file, o);

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "import/maze/maze.h"
 #include "render_support.h"
-#include "world/maze/maze.h"
 
 namespace rescuesim {
 namespace {

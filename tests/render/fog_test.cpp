@@ -120,7 +120,10 @@ TEST(Fog, ColourContrastFallsAsExpOfTheOpticalDepth) {
     const ColorImage light_clear = image(0.9, {}), dark_clear = image(0.3, {});
     const ColorImage light = image(0.9, media), dark = image(0.3, media);
     render_test::dump("fog_wall_clear", light_clear);
-    render_test::dump(media.size() > 1 ? "fog_wall_smoke_trapezoid" : medium.outline[0].y() == -2 ? "fog_wall_smoke" : "fog_wall_smoke_turned", light);
+    render_test::dump(media.size() > 1              ? "fog_wall_smoke_trapezoid"
+                      : medium.outline[0].y() == -2 ? "fog_wall_smoke"
+                                                    : "fog_wall_smoke_turned",
+                      light);
     int checked = 0;
     for (int j = 28; j < 44; j += 3) {
       for (int i = 4; i < 92; i += 5) {

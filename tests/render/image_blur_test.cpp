@@ -22,18 +22,24 @@ void reference_blur(std::vector<float>& image, int width, int height, double sig
   for (int i = 0; i <= radius; ++i) sum += (i == 0 ? 1 : 2) * std::exp(-0.5 * i * i / (sigma * sigma));
   for (int i = 0; i <= radius; ++i) w[static_cast<std::size_t>(i)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)) / sum);
   std::vector<float> tmp(image.size());
-  const auto at = [&](const std::vector<float>& im, int x, int y) { return im[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; };
+  const auto at = [&](const std::vector<float>& im, int x, int y) {
+    return im[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+  };
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       float acc = w[0] * at(image, x, y);
-      for (int i = 1; i <= radius; ++i) acc += w[static_cast<std::size_t>(i)] * (at(image, std::max(0, x - i), y) + at(image, std::min(width - 1, x + i), y));
+      for (int i = 1; i <= radius; ++i) {
+        acc += w[static_cast<std::size_t>(i)] * (at(image, std::max(0, x - i), y) + at(image, std::min(width - 1, x + i), y));
+      }
       tmp[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = acc;
     }
   }
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       float acc = w[0] * at(tmp, x, y);
-      for (int i = 1; i <= radius; ++i) acc += w[static_cast<std::size_t>(i)] * (at(tmp, x, std::max(0, y - i)) + at(tmp, x, std::min(height - 1, y + i)));
+      for (int i = 1; i <= radius; ++i) {
+        acc += w[static_cast<std::size_t>(i)] * (at(tmp, x, std::max(0, y - i)) + at(tmp, x, std::min(height - 1, y + i)));
+      }
       image[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = acc;
     }
   }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "render/renderer.h"
+#include "support/require_gl.h"
 #include "viz/canvas.h"
 
 namespace rescuesim::render_test {
@@ -27,12 +28,12 @@ inline std::unique_ptr<Renderer> try_renderer(Quality q, std::string& reason) {
   }
 }
 
-/// Declares `var`, a renderer of quality `q`, or skips the test saying why there is none.
-#define RS_RENDERER_OR_SKIP(var, q)                                                \
-  std::string var##_reason;                                                        \
-  std::unique_ptr<::rescuesim::Renderer> var =                                     \
-      ::rescuesim::render_test::try_renderer(q, var##_reason);                     \
-  if (!var) GTEST_SKIP() << "no headless OpenGL here: " << var##_reason
+/// Declares `var`, a renderer of quality `q`, or skips the test saying why there is none (fails
+/// instead when RESCUESIM_REQUIRE_GL=1, support/require_gl.h).
+#define RS_RENDERER_OR_SKIP(var, q)                                                                     \
+  std::string var##_reason;                                                                             \
+  std::unique_ptr<::rescuesim::Renderer> var = ::rescuesim::render_test::try_renderer(q, var##_reason); \
+  RS_GL_OR_SKIP(var != nullptr, var##_reason)
 
 /// A camera whose body frame sits at `p` (world, m) with heading `yaw` and `pitch` (rad,
 /// positive pitch looks down).
@@ -57,7 +58,9 @@ inline WorldSpec floor_spec() {
   return s;
 }
 
-inline std::size_t at(int w, int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); }
+inline std::size_t at(int w, int x, int y) {
+  return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+}
 
 /// Grey level (0..255) of a colour pixel.
 inline double grey(const ColorImage& img, int x, int y) {

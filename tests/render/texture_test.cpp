@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
+#include "import/mesh/mesh.h"
 #include "render_support.h"
-#include "world/mesh/mesh.h"
 
 namespace rescuesim {
 namespace {

@@ -44,7 +44,9 @@ int joint(const RobotSpec& spec, const char* name) {
 
 /// Sets both flippers' position targets (rad; positive lowers the tips).
 void set_flippers(Rig& rig, double q) {
-  for (const auto& name : rig.spec().flipper_joints) rig.robot().joint_target[static_cast<std::size_t>(joint(rig.spec(), name.c_str()))] = q;
+  for (const auto& name : rig.spec().flipper_joints) {
+    rig.robot().joint_target[static_cast<std::size_t>(joint(rig.spec(), name.c_str()))] = q;
+  }
 }
 
 /// Drives at (v, w) until `done` or `seconds` pass; returns the time it took (or `seconds`).
@@ -93,7 +95,7 @@ TEST(TrackedRobot, ItsBeltsCarryItAtTheSprocketsSurfaceSpeed) {
   EXPECT_NEAR((rig.robot().base.X_WB.p - parked).norm(), 0.0, 0.002);
 }
 
-// On a floor patch the belts grip with the patch's friction (physics.cpp's floor-contact callback
+// On a floor patch the belts grip with the patch's friction (physics_contacts.cpp's floor-contact callback
 // reaches the multibody solver too): asked for 1 m/s at once (the drive's ramp lifted), the belts
 // run at once and slip until the robot catches up, so it gathers speed at mu g, the friction (the
 // belt's 1.0 times the ground's) times g. After 0.2 s: on wet tiles (0.25) 0.49 m/s, on sand (0.4)

@@ -50,7 +50,9 @@ struct Fixture {
   }
 };
 
-double beam_angle(const SensorSpec& s, int i) { return s.lidar.min_angle + i * (s.lidar.max_angle - s.lidar.min_angle) / (s.lidar.samples - 1); }
+double beam_angle(const SensorSpec& s, int i) {
+  return s.lidar.min_angle + i * (s.lidar.max_angle - s.lidar.min_angle) / (s.lidar.samples - 1);
+}
 
 TEST(LidarWall, CentreBeamReadsTheDistanceAndOthersTheCosineLaw) {
   const SensorSpec s = test_lidar();
@@ -59,7 +61,9 @@ TEST(LidarWall, CentreBeamReadsTheDistanceAndOthersTheCosineLaw) {
   const msg::LaserScan scan = f.scan(s, rng);
   ASSERT_EQ(scan.ranges.size(), 201u);
   EXPECT_NEAR(scan.ranges[100], 2.0, 1e-4);
-  for (int i = 0; i < 201; ++i) EXPECT_NEAR(scan.ranges[static_cast<std::size_t>(i)], 2.0 / std::cos(beam_angle(s, i)), 1e-4) << "beam " << i;
+  for (int i = 0; i < 201; ++i) {
+    EXPECT_NEAR(scan.ranges[static_cast<std::size_t>(i)], 2.0 / std::cos(beam_angle(s, i)), 1e-4) << "beam " << i;
+  }
 }
 
 TEST(LidarWall, HeaderAndLimitsFollowTheSpec) {

@@ -70,7 +70,9 @@ struct Fixture {
   }
 };
 
-double beam_angle(const SensorSpec& s, int i) { return s.lidar.min_angle + i * (s.lidar.max_angle - s.lidar.min_angle) / (s.lidar.samples - 1); }
+double beam_angle(const SensorSpec& s, int i) {
+  return s.lidar.min_angle + i * (s.lidar.max_angle - s.lidar.min_angle) / (s.lidar.samples - 1);
+}
 
 /// True when a reading is the wall's return for beam angle a.
 bool is_wall(float r, double a) { return std::abs(r - kWall / std::cos(a)) < 1e-4; }

@@ -1,15 +1,15 @@
 // Robot lamps from an SDF model's link lights, end to end: loaded, placed in the render scene on
-// their links and switched by /lights (the parts: tests/world/sdf, tests/render/darkness_test.cpp).
+// their links and switched by /lights (the parts: tests/import/sdf, tests/render/darkness_test.cpp).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
+#include "import/sdf/sdf_import.h"
 #include "render/render_scene.h"
 #include "sim/simulation.h"
 #include "support/rig.h"
-#include "world/sdf/sdf_import.h"
 
 namespace rescuesim {
 namespace {

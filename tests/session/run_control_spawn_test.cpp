@@ -91,7 +91,8 @@ TEST(RunControlSpawn, AURDFRobotFromItsPackageIsSpawnedDrivenAndDeleted) {
   const Pose3 X = free_cell(*session, {tb3});
   // a URDF robot of its own, through a YAML entry with its drive (the raw URDF has none)
   SpawnRequest r = request("tb3b", "", X);
-  r.resource_string = std::string("{urdf: ") + kBurger + ", drive: {type: diff_drive, left: [wheel_left_joint], right: [wheel_right_joint]}}";
+  r.resource_string =
+      std::string("{urdf: ") + kBurger + ", drive: {type: diff_drive, left: [wheel_left_joint], right: [wheel_right_joint]}}";
   std::string name;
   const Result ok = c.spawn(r, name);
   ASSERT_TRUE(ok.is_ok()) << ok.error_message;
@@ -203,7 +204,8 @@ TEST(RunControlSpawn, BadRequestsGetTheirCodesAndSayWhy) {
   r = request("b", "", X);
   r.resource_string = "<robot name='x'><link name='a'></robot>";
   EXPECT_EQ(code_of(r), code::kResourceParseError);
-  r.resource_string = "<robot name='x'><link name='a'><visual><geometry><mesh filename='package://turtlebot3_description/meshes/none.stl'/></geometry></visual></link></robot>";
+  r.resource_string = "<robot name='x'><link name='a'><visual><geometry><mesh "
+                      "filename='package://turtlebot3_description/meshes/none.stl'/></geometry></visual></link></robot>";
   EXPECT_EQ(code_of(r), code::kMissingAssets);
   r.resource_string = "{model: no_such_robot}";
   EXPECT_EQ(code_of(r), code::kResourceParseError);

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "core/error.h"
-#include "mission/datagram_json.h"
 #include "msgs/base64.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
 #include "session/session.h"
+#include "team/team_datagrams.h"
 
 namespace rescuesim {
 namespace {

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "import/scenario/scenario.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim::testing {
 

@@ -29,10 +29,10 @@ msg::JointState command(std::vector<std::string> names, std::vector<double> posi
 
 /// The reason command_joints gives for refusing `c` ("" when it accepts it).
 std::string refusal(Simulation& sim, const msg::JointState& c, int robot = 0) {
-  std::string why;
-  if (sim.command_joints(robot, c, &why)) return "";
-  EXPECT_FALSE(why.empty());
-  return why;
+  const CommandOutcome outcome = sim.command_joints(robot, c);
+  if (outcome) return "";
+  EXPECT_FALSE(outcome.reason.empty());
+  return outcome.reason;
 }
 
 TEST(JointCommand, OnlyControlledJointsThatNothingElseDrivesAreCommandable) {

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <string>
 
+#include "import/scenario/scenario.h"
+#include "import/sdf/sdf_import.h"
 #include "sensors/lidar.h"
 #include "sim/simulation.h"
-#include "world/scenario/scenario.h"
-#include "world/sdf/sdf_import.h"
 
 namespace rescuesim {
 namespace {

@@ -12,10 +12,10 @@
 #include <map>
 
 #include "core/parallel.h"
+#include "import/scenario/scenario.h"
 #include "msgs/digest.h"
 #include "robots/rescue_robot.h"
 #include "support/rig.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim {
 namespace {
@@ -296,7 +296,9 @@ std::pair<std::uint64_t, std::uint64_t> fingerprint(double seconds) {
   o.seed = sc.seed;
   Simulation sim(compile_scenario(sc, spec, models), o);
   std::uint64_t all = 0;
-  sim.bus().subscribe("", [&](const Topic& t, const msg::Message& m) { all = all * 1099511628211ull ^ (msg::digest(m) + static_cast<std::uint64_t>(t.id)); });
+  sim.bus().subscribe("", [&](const Topic& t, const msg::Message& m) {
+    all = all * 1099511628211ull ^ (msg::digest(m) + static_cast<std::uint64_t>(t.id));
+  });
   // drive a fixed pattern so everything moves: contacts, head, rubble
   for (int k = 0; k < static_cast<int>(seconds * 10); ++k) {
     msg::Twist t;

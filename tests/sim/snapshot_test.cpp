@@ -27,7 +27,9 @@ std::string first_difference(const Recording& a, const Recording& b) {
   for (std::size_t i = 0; i < std::min(a.messages.size(), b.messages.size()); ++i) {
     if (a.messages[i] != b.messages[i]) return "message " + std::to_string(i) + " (topic " + std::to_string(a.messages[i].first) + ")";
   }
-  if (a.messages.size() != b.messages.size()) return "count " + std::to_string(a.messages.size()) + " vs " + std::to_string(b.messages.size());
+  if (a.messages.size() != b.messages.size()) {
+    return "count " + std::to_string(a.messages.size()) + " vs " + std::to_string(b.messages.size());
+  }
   return "none";
 }
 

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "import/urdf/urdf_import.h"
 #include "sim/simulation.h"
-#include "world/urdf/urdf_import.h"
 
 namespace rescuesim {
 namespace {
@@ -15,7 +15,8 @@ namespace {
 RobotSpec burger() {
   UrdfOptions o;
   o.resolver = ResourceResolver({std::string(RESCUESIM_SOURCE_DIR) + "/worlds/robots"}, false);
-  RobotSpec spec = load_urdf(std::string(RESCUESIM_SOURCE_DIR) + "/worlds/robots/turtlebot3_description/urdf/turtlebot3_burger.urdf", o).spec;
+  RobotSpec spec =
+      load_urdf(std::string(RESCUESIM_SOURCE_DIR) + "/worlds/robots/turtlebot3_description/urdf/turtlebot3_burger.urdf", o).spec;
   configure_diff_drive(spec, {"wheel_left_joint"}, {"wheel_right_joint"}, 0, 0, {});
   spec.drive.max_linear = 0.22;
   spec.drive.max_angular = 2.84;

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "import/scenario/scenario.h"
+#include "import/svg/svg_world.h"
 #include "robots/rescue_robot.h"
-#include "world/scenario/scenario.h"
-#include "world/svg/svg_world.h"
 #include "world/world.h"
 
 namespace rescuesim {
@@ -19,7 +19,8 @@ namespace {
 /// wall keeps the world from being empty.
 SvgLoadResult load(const std::string& body) {
   return load_svg_world_from_string("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10m\" height=\"5m\" viewBox=\"0 0 1000 500\">\n" +
-                                        body + "\n<line x1=\"0\" y1=\"0\" x2=\"1000\" y2=\"0\" stroke=\"#000\" stroke-width=\"5\"/>\n</svg>\n",
+                                        body +
+                                        "\n<line x1=\"0\" y1=\"0\" x2=\"1000\" y2=\"0\" stroke=\"#000\" stroke-width=\"5\"/>\n</svg>\n",
                                     "ground.svg");
 }
 
@@ -136,7 +137,8 @@ TEST(Ground, AFootprintWithoutAreaIsAnError) {
   EXPECT_NE(line.find("needs a footprint with an area"), std::string::npos) << line;
   // a rect of negative width is an error of the drawing (one of zero width, which SVG does not
   // draw, is left out with a warning, as for any rect)
-  const std::string negative = load_error(R"svg(<rect x="100" y="100" width="-200" height="100" data-kind="ground" data-material="sand"/>)svg");
+  const std::string negative =
+      load_error(R"svg(<rect x="100" y="100" width="-200" height="100" data-kind="ground" data-material="sand"/>)svg");
   EXPECT_NE(negative.find("ground.svg:2"), std::string::npos) << negative;
   EXPECT_NE(negative.find("negative width or height"), std::string::npos) << negative;
   // a spec built in code: validation names it

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "world/svg/svg_world.h"
+#include "import/svg/svg_world.h"
 
 namespace rescuesim {
 namespace {
@@ -164,7 +164,8 @@ std::string format(const Diagnostics& d) {
 /// A drawing 10 m x 5 m at 100 units per metre: world (x, y) = (u / 100, (500 - v) / 100).
 SvgLoadResult load(const std::string& body) {
   return load_svg_world_from_string("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10m\" height=\"5m\" viewBox=\"0 0 1000 500\">\n" +
-                                        body + "\n<line x1=\"0\" y1=\"0\" x2=\"1000\" y2=\"0\" stroke=\"#000\" stroke-width=\"5\"/>\n</svg>\n",
+                                        body +
+                                        "\n<line x1=\"0\" y1=\"0\" x2=\"1000\" y2=\"0\" stroke=\"#000\" stroke-width=\"5\"/>\n</svg>\n",
                                     "smoke.svg");
 }
 
@@ -179,7 +180,8 @@ std::string load_error(const std::string& body) {
 
 TEST(MediaSvg, AreasWithDataKindBecomeMediaAndWriteBackTheSame) {
   const auto r = load(R"svg(
-  <rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="0.75" id="plume" data-growth="0.02" data-drift-x="0.1" data-drift-y="-0.05"/>
+  <rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="0.75" id="plume"
+        data-growth="0.02" data-drift-x="0.1" data-drift-y="-0.05"/>
   <polygon points="500,400 700,400 600,200" data-kind="dust" data-density="2" data-bottom="0.2" data-height="50cm"/>)svg");
   ASSERT_EQ(r.world.media.size(), 2u);
   const MediumSpec& smoke = r.world.media[0];
@@ -234,14 +236,16 @@ TEST(MediaSvg, BadMediaAreErrorsNamingTheFileLineAndElement) {
   const std::string none = load_error(R"svg(<rect x="200" y="100" width="100" height="300" data-kind="smoke"/>)svg");
   EXPECT_NE(none.find("smoke.svg:2: <rect>: a smoke volume needs data-density"), std::string::npos) << none;
   // a height of zero or below
-  const std::string flat = load_error(R"svg(<rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="1" data-height="0"/>)svg");
+  const std::string flat =
+      load_error(R"svg(<rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="1" data-height="0"/>)svg");
   EXPECT_NE(flat.find("smoke.svg:2: <rect> attribute data-height: '0' is not a positive length in metres"), std::string::npos) << flat;
   // fewer than three points
   const std::string line = load_error(R"svg(<polyline points="100,100 300,100" data-kind="dust" data-density="1" id="d"/>)svg");
   EXPECT_NE(line.find("smoke.svg:2: <polyline id=\"d\">: a dust footprint needs an area"), std::string::npos) << line;
   EXPECT_NE(line.find("(it has 2 points)"), std::string::npos) << line;
   // shrinking
-  const std::string shrink = load_error(R"svg(<rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="1" data-growth="-0.1"/>)svg");
+  const std::string shrink =
+      load_error(R"svg(<rect x="200" y="100" width="100" height="300" data-kind="smoke" data-density="1" data-growth="-0.1"/>)svg");
   EXPECT_NE(shrink.find("smoke.svg:2: <rect> attribute data-growth: '-0.1' is not a growth rate"), std::string::npos) << shrink;
 
   // the same classes in a spec built in memory (scenario, API): validate names the medium
@@ -251,7 +255,9 @@ TEST(MediaSvg, BadMediaAreErrorsNamingTheFileLineAndElement) {
     change(c.media[0]);
     return format(validate(c));
   };
-  EXPECT_NE(problem([](MediumSpec& m) { m.density = NAN; }).find("smoke.svg:2: <rect id=\"s\">: error: density nan is not an extinction coefficient"),
+  EXPECT_NE(problem([](MediumSpec& m) {
+              m.density = NAN;
+            }).find("smoke.svg:2: <rect id=\"s\">: error: density nan is not an extinction coefficient"),
             std::string::npos);
   EXPECT_NE(problem([](MediumSpec& m) { m.density = -0.5; }).find("density -0.5 is not an extinction coefficient"), std::string::npos);
   EXPECT_NE(problem([](MediumSpec& m) { m.height = 0; }).find("height 0 m is not positive"), std::string::npos);

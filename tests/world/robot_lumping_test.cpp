@@ -89,7 +89,8 @@ TEST(RobotLumping, RobotWithoutFixedJointsIsUnchanged) {
 TEST(RobotLumping, InertiaTensorRoundTripsThroughPrincipalAxes) {
   LinkSpec l;
   Eigen::Matrix3d I;
-  I << 2.2124416e-03, -1.2294101e-05, 3.4938785e-05, -1.2294101e-05, 2.1193702e-03, -5.0120904e-06, 3.4938785e-05, -5.0120904e-06, 2.0064271e-03;
+  I << 2.2124416e-03, -1.2294101e-05, 3.4938785e-05, -1.2294101e-05, 2.1193702e-03, -5.0120904e-06, 3.4938785e-05, -5.0120904e-06,
+      2.0064271e-03;
   set_inertia_tensor(l, I);
   EXPECT_TRUE(inertia_tensor(l).isApprox(I, 1e-12));
   EXPECT_NEAR(l.inertia_axes.norm(), 1.0, 1e-12);

@@ -177,7 +177,8 @@ TEST(InitialState, PlacesLinksByForwardKinematicsFromTheStartPose) {
   spec.head_joints = {"pan"};
   World w;
   // the robot starts at (1, 2) facing +y
-  w.robots.push_back(RobotInstance{"robot", spec, Pose3{Vec3(1, 2, 0), Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitZ()))}, false, ""});
+  w.robots.push_back(
+      RobotInstance{"robot", spec, Pose3{Vec3(1, 2, 0), Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitZ()))}, false, ""});
   DynamicObject box;
   box.X_WO = Pose3{Vec3(3, 0, 0.1), Quat::Identity()};
   w.dynamics.push_back(box);

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <set>
 
-#include "world/svg/svg_world.h"
+#include "import/svg/svg_world.h"
 #include "world/terrain.h"
 
 namespace rescuesim {
@@ -69,7 +69,8 @@ TEST(Terrain, StairsTreadsFollowFromTheSlopeAndTheRiser) {
     EXPECT_NEAR(solids[static_cast<std::size_t>(k)].X_WS.p.x(), -1.2 + (k + 0.5) * tread, 1e-12);
   }
   EXPECT_NEAR(top(solids[3]), 0.8, 1e-12);
-  EXPECT_NEAR(solids[3].X_WS.p.x() - 0.5 * solids[3].geometry.size.x(), -1.2 + 3 * tread, 1e-12);  // the landing starts after the third tread
+  EXPECT_NEAR(solids[3].X_WS.p.x() - 0.5 * solids[3].geometry.size.x(), -1.2 + 3 * tread,
+              1e-12);  // the landing starts after the third tread
   EXPECT_NEAR(solids[3].X_WS.p.x() + 0.5 * solids[3].geometry.size.x(), 1.2, 1e-12);
 }
 
@@ -211,7 +212,8 @@ TEST(TerrainSvg, BadTerrainIsAnErrorNamingTheElement) {
   const std::string neg = load_error(R"svg(<rect x="100" y="100" width="240" height="120" data-kind="curb" data-height="-0.2"/>)svg");
   EXPECT_NE(neg.find("arena.svg:2"), std::string::npos) << neg;
   EXPECT_NE(neg.find("data-height"), std::string::npos) << neg;
-  const std::string pattern = load_error(R"svg(<rect x="100" y="100" width="240" height="120" data-kind="stepfield" data-pattern="cubic"/>)svg");
+  const std::string pattern =
+      load_error(R"svg(<rect x="100" y="100" width="240" height="120" data-kind="stepfield" data-pattern="cubic"/>)svg");
   EXPECT_NE(pattern.find("unknown pattern 'cubic'; expected half-cubic or full-cubic"), std::string::npos) << pattern;
 
   auto problems = [](const std::string& body) { return format(validate(load(body).world)); };

@@ -15,8 +15,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "import/svg/svg_world.h"
 #include "viz/world_plot.h"
-#include "world/svg/svg_world.h"
 
 namespace rescuesim::nav {
 
@@ -64,7 +64,8 @@ std::vector<Sample> read_trajectory(const std::filesystem::path& file) {
     if (f.size() < 8) throw Error({file.string(), n, "trajectory row"}, "expected t,robot,x,y,yaw,odom_x,odom_y,odom_yaw,...");
     if (first_robot.empty()) first_robot = f[1];
     if (f[1] != first_robot) continue;
-    out.push_back({std::stod(f[0]), {std::stod(f[2]), std::stod(f[3]), std::stod(f[4])}, {std::stod(f[5]), std::stod(f[6]), std::stod(f[7])}});
+    out.push_back(
+        {std::stod(f[0]), {std::stod(f[2]), std::stod(f[3]), std::stod(f[4])}, {std::stod(f[5]), std::stod(f[6]), std::stod(f[7])}});
   }
   if (out.empty()) throw Error({file.string(), 0, ""}, "no trajectory samples");
   return out;

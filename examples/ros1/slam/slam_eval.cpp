@@ -15,11 +15,11 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "robots/rescue_robot.h"
+#include "import/scenario/scenario.h"
 #include "mission/map_metrics.h"
+#include "robots/rescue_robot.h"
 #include "viz/canvas.h"
 #include "viz/world_plot.h"
-#include "world/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 using namespace rescuesim;
@@ -40,7 +40,9 @@ Trajectory read_trajectory(const fs::path& file) {
   Trajectory tr;
   std::string line;
   std::getline(in, line);
-  if (line.rfind("t,gt_x,gt_y,gt_yaw,odom_x", 0) != 0) throw Error(file.string() + ":1: not a slam_recorder trajectory (header '" + line + "')");
+  if (line.rfind("t,gt_x,gt_y,gt_yaw,odom_x", 0) != 0) {
+    throw Error(file.string() + ":1: not a slam_recorder trajectory (header '" + line + "')");
+  }
   for (int n = 2; std::getline(in, line); ++n) {
     std::vector<std::string> f;
     std::stringstream s(line);
@@ -111,9 +113,12 @@ int main(int argc, char** argv) {
   double laser_height = -1, ignore_margin = 0.3, wall_time = -1, rate = -1;
   int tolerance = 1;
   app.add_option("--scenario", scenario_file, "scenario YAML of the run (its world and robot)")->required()->check(CLI::ExistingFile);
-  app.add_option("--run", run_dir, "folder with map.yaml, map.pgm and trajectory.csv (from slam_recorder)")->required()->check(CLI::ExistingDirectory);
+  app.add_option("--run", run_dir, "folder with map.yaml, map.pgm and trajectory.csv (from slam_recorder)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
   app.add_option("-o,--out", out_dir, "where to write map.png, slam.png and slam_metrics.json (default: --run)");
-  app.add_option("--tolerance-cells", tolerance, "a map cell matches a true one this many cells away (Chebyshev)")->check(CLI::Range(0, 10));
+  app.add_option("--tolerance-cells", tolerance, "a map cell matches a true one this many cells away (Chebyshev)")
+      ->check(CLI::Range(0, 10));
   app.add_option("--laser-height", laser_height, "height of the laser plane above the floor (m; default: from the robot model)");
   app.add_option("--ignore-margin", ignore_margin, "cells this close to a victim count neither way (m)")->check(CLI::Range(0.0, 5.0));
   app.add_option("--wall-time", wall_time, "wall-clock seconds the run took, recorded in slam_metrics.json")->check(CLI::NonNegativeNumber);
@@ -197,14 +202,17 @@ int main(int argc, char** argv) {
          "ignore_margin of a victim are not counted. recall: true occupied cells that a beam of the robot's laser from "
          "the true trajectory (every 0.1 s) hits first, with an occupied SLAM cell within tolerance_cells."}};
     auto pose_json = [](const Pose2& p) { return json{{"x", p.x}, {"y", p.y}, {"yaw", p.yaw}}; };
-    m["ate"] = {
-        {"rmse_m", ate.rmse},
-        {"max_m", ate.max},
-        {"pairs", ate.pairs},
-        {"alignment", "start: the first SLAM pose (map -> base_link) placed on the first ground-truth pose; no fitting"},
-        {"X_world_map", pose_json(ate.X_WM)},
-        {"least_squares", {{"rmse_m", ate_fit.rmse}, {"max_m", ate_fit.max}, {"alignment", "rigid 2-D least-squares fit (Umeyama, no scale) of the SLAM positions to the true ones"}, {"X_world_map", pose_json(ate_fit.X_WM)}}},
-        {"odometry_only", {{"rmse_m", ate_odom.rmse}, {"max_m", ate_odom.max}, {"alignment", "start"}}}};
+    m["ate"] = {{"rmse_m", ate.rmse},
+                {"max_m", ate.max},
+                {"pairs", ate.pairs},
+                {"alignment", "start: the first SLAM pose (map -> base_link) placed on the first ground-truth pose; no fitting"},
+                {"X_world_map", pose_json(ate.X_WM)},
+                {"least_squares",
+                 {{"rmse_m", ate_fit.rmse},
+                  {"max_m", ate_fit.max},
+                  {"alignment", "rigid 2-D least-squares fit (Umeyama, no scale) of the SLAM positions to the true ones"},
+                  {"X_world_map", pose_json(ate_fit.X_WM)}}},
+                {"odometry_only", {{"rmse_m", ate_odom.rmse}, {"max_m", ate_odom.max}, {"alignment", "start"}}}};
     fs::create_directories(out_dir);
     write_file_atomic(out_dir / "slam_metrics.json", m.dump(2) + "\n");
 

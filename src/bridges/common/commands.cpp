@@ -50,17 +50,22 @@ std::string twist_problem(const msg::Twist& t) {
   static const char* const kNames[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
   for (int i = 0; i < 6; ++i) {
     const double v = i < 3 ? t.linear[i] : t.angular[i - 3];
-    if (!std::isfinite(v)) return fmt::format("{} is {} (geometry_msgs/Twist values must be finite; the robot keeps its last command)", kNames[i], v);
+    if (!std::isfinite(v)) {
+      return fmt::format("{} is {} (geometry_msgs/Twist values must be finite; the robot keeps its last command)", kNames[i], v);
+    }
   }
   return {};
 }
 
 std::string head_problem(const RobotSpec& spec, const std::vector<double>& positions) {
   if (positions.size() != spec.head_joints.size()) {
-    return fmt::format("{} positions, expected {} (rad, in the order {})", positions.size(), spec.head_joints.size(), joined(spec.head_joints));
+    return fmt::format("{} positions, expected {} (rad, in the order {})", positions.size(), spec.head_joints.size(),
+                       joined(spec.head_joints));
   }
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    if (!std::isfinite(positions[i])) return fmt::format("data[{}] ({}) is {} (positions must be finite)", i, spec.head_joints[i], positions[i]);
+    if (!std::isfinite(positions[i])) {
+      return fmt::format("data[{}] ({}) is {} (positions must be finite)", i, spec.head_joints[i], positions[i]);
+    }
   }
   return {};
 }
@@ -89,7 +94,7 @@ CommandOutcome CommandGate::velocity(int robot, const std::string& topic, const 
     warn(topic + "#angular", fmt::format("{} angular.z = {:g} rad/s is beyond the robot's max_angular: clamped to {:g} rad/s", topic,
                                          t.angular.z(), std::copysign(d.max_angular, t.angular.z())));
   }
-  if (const CommandOutcome r = host_.submit_velocity(robot, t); !r) return reject(topic, "refused", "refused by the host: " + r.reason);
+  if (const CommandOutcome r = host_.command_velocity(robot, t); !r) return reject(topic, "refused", "refused by the host: " + r.reason);
   ++received_;
   return CommandOutcome::ok();
 }
@@ -110,7 +115,9 @@ CommandOutcome CommandGate::head(int robot, const std::string& topic, const std:
                        js.name, positions[i], positions[i] * kDeg, limit, limit * kDeg));
     }
   }
-  if (const CommandOutcome r = host_.submit_head(robot, positions); !r) return reject(topic, "refused", "refused by the host: " + r.reason);
+  if (const CommandOutcome r = host_.command_head(robot, positions); !r) {
+    return reject(topic, "refused", "refused by the host: " + r.reason);
+  }
   ++received_;
   return CommandOutcome::ok();
 }
@@ -135,7 +142,7 @@ CommandOutcome CommandGate::input(std::size_t index, const std::string& topic, c
 }
 
 CommandOutcome CommandGate::joints(int robot, const std::string& topic, const msg::JointState& command) {
-  if (const CommandOutcome r = host_.submit_joints(robot, command); !r) return reject(topic, "joints", r.reason);
+  if (const CommandOutcome r = host_.command_joints(robot, command); !r) return reject(topic, "joints", r.reason);
   // accepted: say which position targets were clamped to their joint's limits
   const RobotSpec& spec = host_.world().robots.at(static_cast<std::size_t>(robot)).spec;
   for (std::size_t i = 0; i < command.name.size() && i < command.position.size(); ++i) {

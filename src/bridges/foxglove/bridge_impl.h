@@ -81,7 +81,8 @@ struct ChannelState {
 
 /// What a client channel publishes to.
 struct CommandTarget {
-  enum class Kind { twist, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
+  /// cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
+  enum class Kind { twist, head, joints, flippers, host };
   Kind kind = Kind::twist;
   int robot = 0;                            ///< -1: none (no target, a host input of no robot, or the robot was deleted)
   std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
@@ -124,7 +125,8 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
  public:
   explicit FoxgloveBridge(const FoxgloveOptions& options)
       : options_(options),
-        outbox_({.per_topic = std::max<std::size_t>(options.bridge_queue, 1), .byte_budget = options.bridge_queue_bytes, .lossless = false}) {}
+        outbox_(
+            {.per_topic = std::max<std::size_t>(options.bridge_queue, 1), .byte_budget = options.bridge_queue_bytes, .lossless = false}) {}
   ~FoxgloveBridge() override { stop(); }
 
   std::string name() const override { return "foxglove"; }

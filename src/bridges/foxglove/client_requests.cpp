@@ -73,7 +73,9 @@ void FoxgloveBridge::on_close(ClientId client) {
     auto c = channels_.find(channel);
     if (c == channels_.end()) continue;
     c->second.subscribers.erase(client);
-    if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+    if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) {
+      --wanted_[static_cast<std::size_t>(c->second.topic)];
+    }
   }
   clients_.erase(it);
 }
@@ -166,7 +168,9 @@ void FoxgloveBridge::unsubscribe(ClientId client, const Unsubscribe& u) {
       auto c = channels_.find(it->second);
       if (c != channels_.end()) {
         c->second.subscribers.erase(client);
-        if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) --wanted_[static_cast<std::size_t>(c->second.topic)];
+        if (c->second.topic != kNoTopic && static_cast<std::size_t>(c->second.topic) < kMaxTopics) {
+          --wanted_[static_cast<std::size_t>(c->second.topic)];
+        }
       }
       cs.subscriptions.erase(it);
     }

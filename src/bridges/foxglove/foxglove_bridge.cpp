@@ -398,7 +398,8 @@ void FoxgloveBridge::handle(const OutboxItem& item) {
   deliver(subs, stamp, payload);
 }
 
-void FoxgloveBridge::deliver(const std::vector<std::pair<ClientId, std::uint32_t>>& subscribers, std::uint64_t stamp, const Payload& payload) {
+void FoxgloveBridge::deliver(const std::vector<std::pair<ClientId, std::uint32_t>>& subscribers, std::uint64_t stamp,
+                             const Payload& payload) {
   for (const auto& [client, subscription] : subscribers) {
     const std::size_t dropped = server_->send_data(client, message_data_header(subscription, stamp), payload);
     if (dropped > 0) note_drops(client, dropped);
@@ -417,11 +418,11 @@ void FoxgloveBridge::note_drops(ClientId client, std::size_t n) {
     warn = it->second.drop_warning->allow();
   }
   if (!warn) return;
-  server_->send_status(client, status(StatusLevel::warning,
-                                                "rescuesim: this connection reads too slowly; " + std::to_string(total) +
-                                                    " messages dropped so far, oldest first (per-client queue limit " +
-                                                    mib(options_.client_queue_bytes) + " or " + std::to_string(options_.client_queue_messages) +
-                                                    " messages). Subscribe to fewer topics (images are large) or use a faster link."));
+  server_->send_status(
+      client, status(StatusLevel::warning, "rescuesim: this connection reads too slowly; " + std::to_string(total) +
+                                               " messages dropped so far, oldest first (per-client queue limit " +
+                                               mib(options_.client_queue_bytes) + " or " + std::to_string(options_.client_queue_messages) +
+                                               " messages). Subscribe to fewer topics (images are large) or use a faster link."));
   std::uint64_t held = 0;
   if (client_log_.allow(&held)) log::info("foxglove: client {} is slow: {} messages dropped so far", client, total);
 }

@@ -36,8 +36,11 @@ struct FoxgloveOptions {
   std::size_t max_client_frame = 1 << 20;   ///< bytes: larger client messages are discarded with a status error
   std::size_t client_queue_bytes = 8 << 20; ///< bytes of data queued per client before the oldest is dropped
   std::size_t client_queue_messages = 512;  ///< data messages queued per client before the oldest is dropped
-  std::size_t bridge_queue = 64;            ///< per topic: messages waiting for the serialiser thread before the topic's oldest is dropped (as ROS 1/2 queue_size)
-  std::size_t bridge_queue_bytes = 32 << 20;  ///< bytes (Outbox::approx_bytes) waiting for the serialiser thread over all topics; 0: no budget
+  /// per topic: messages waiting for the serialiser thread before the topic's oldest is dropped
+  /// (as ROS 1/2 queue_size)
+  std::size_t bridge_queue = 64;
+  /// bytes (Outbox::approx_bytes) waiting for the serialiser thread over all topics; 0: no budget
+  std::size_t bridge_queue_bytes = 32 << 20;
 };
 
 /// The bridge; throws rescuesim::Error on start() when the port cannot be bound.

@@ -48,7 +48,9 @@ void run_foxglove_probe(const std::string& host, int port, const std::vector<std
     const auto endpoints = resolver.resolve(host, std::to_string(port), ec);
     if (!ec) net::connect(ws.next_layer(), endpoints, ec);
     if (!ec) break;
-    if (Clock::now() > give_up || stop.load()) throw Error("bench-probe: cannot connect to the Foxglove server at " + where + ": " + ec.message());
+    if (Clock::now() > give_up || stop.load()) {
+      throw Error("bench-probe: cannot connect to the Foxglove server at " + where + ": " + ec.message());
+    }
     boost::system::error_code ignored;
     ws.next_layer().close(ignored);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -21,7 +21,8 @@ json vec3(const Vec3& v) { return {{"x", round_to(v.x(), 1e5)}, {"y", round_to(v
 json pose(const Pose3& X) {
   const Quat q = X.q.normalized();
   return {{"position", vec3(X.p)},
-          {"orientation", {{"x", round_to(q.x(), 1e6)}, {"y", round_to(q.y(), 1e6)}, {"z", round_to(q.z(), 1e6)}, {"w", round_to(q.w(), 1e6)}}}};
+          {"orientation",
+           {{"x", round_to(q.x(), 1e6)}, {"y", round_to(q.y(), 1e6)}, {"z", round_to(q.z(), 1e6)}, {"w", round_to(q.w(), 1e6)}}}};
 }
 
 json color(const Vec3& c, double a = 1.0) {
@@ -43,7 +44,8 @@ void add_shape(Primitives& p, const Geometry& g, const Pose3& X_FG, const Vec3& 
     case Geometry::Type::box: p.cubes.push_back({{"pose", pose(X_FG)}, {"size", vec3(g.size)}, {"color", color(rgb)}}); return;
     case Geometry::Type::sphere: p.spheres.push_back({{"pose", pose(X_FG)}, {"size", vec3(g.size)}, {"color", color(rgb)}}); return;
     case Geometry::Type::cylinder:
-      p.cylinders.push_back({{"pose", pose(X_FG)}, {"size", vec3(g.size)}, {"bottom_scale", 1.0}, {"top_scale", 1.0}, {"color", color(rgb)}});
+      p.cylinders.push_back(
+          {{"pose", pose(X_FG)}, {"size", vec3(g.size)}, {"bottom_scale", 1.0}, {"top_scale", 1.0}, {"color", color(rgb)}});
       return;
     case Geometry::Type::convex:
     case Geometry::Type::mesh: break;
@@ -132,7 +134,8 @@ SceneBuilder::SceneBuilder(const World& world, SceneFrames frames) : frames_(std
   for (auto& [name, p] : groups) all.push_back(entity(name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", name}}));
   for (auto& [v, p] : victims) {
     const Victim& victim = world.victims.at(static_cast<std::size_t>(v));
-    all.push_back(entity("victim/" + victim.name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", "victim"}, {"name", victim.name}}));
+    all.push_back(
+        entity("victim/" + victim.name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", "victim"}, {"name", victim.name}}));
   }
   // each robot link's shapes in its own frame: /tf carries them along. A robot with a
   // description (URDF) is drawn by the 3D panel from /robot_description with its real meshes;

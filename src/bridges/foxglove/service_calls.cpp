@@ -76,7 +76,9 @@ std::string offered() {
 void FoxgloveBridge::service_call(ClientId client, const ServiceCallRequest& r) {
   if (!control_) return fail_call(client, r.service, r.call, std::string("no services: ") + control::kNoControl);
   const std::optional<SimService> service = sim_service_of(r.service);
-  if (!service) return fail_call(client, r.service, r.call, "unknown service id " + std::to_string(r.service) + " (offered: " + offered() + ")");
+  if (!service) {
+    return fail_call(client, r.service, r.call, "unknown service id " + std::to_string(r.service) + " (offered: " + offered() + ")");
+  }
   const std::string& name = sim_service_name(*service);
   if (r.encoding != "json") {
     return fail_call(client, r.service, r.call, name + ": encoding '" + shown(r.encoding) + "' is not supported (its requests are json)");

@@ -255,8 +255,9 @@ void header_value(const json& v, const std::string& path, control::EntityState& 
     std::int64_t sec = 0;
     if (const json* js = ot.find("sec")) {
       constexpr std::int64_t lo = std::numeric_limits<std::int32_t>::min(), hi = std::numeric_limits<std::int32_t>::max();
-      const bool fits = js->is_number_unsigned() ? js->get<std::uint64_t>() <= static_cast<std::uint64_t>(hi)
-                                                 : js->is_number_integer() && js->get<std::int64_t>() >= lo && js->get<std::int64_t>() <= hi;
+      const bool fits = js->is_number_unsigned()
+                            ? js->get<std::uint64_t>() <= static_cast<std::uint64_t>(hi)
+                            : js->is_number_integer() && js->get<std::int64_t>() >= lo && js->get<std::int64_t>() <= hi;
       if (!fits) throw Error(ot.path("sec") + ": expected a 32-bit integer, got " + shown(*js));
       sec = js->get<std::int64_t>();
     }
@@ -311,10 +312,13 @@ control::EntityFilters filters_value(const json& v, const std::string& path) {
   }
   if (const json* bounds = o.find("bounds")) {
     const Object b(*bounds, o.path("bounds"), {"type", "points"});
-    f.bounds.type = static_cast<std::uint8_t>(unsigned_field(b, "type", 3, control::Bounds::kEmpty, "0 EMPTY, 1 BOX, 2 CONVEX_HULL, 3 SPHERE"));
+    f.bounds.type =
+        static_cast<std::uint8_t>(unsigned_field(b, "type", 3, control::Bounds::kEmpty, "0 EMPTY, 1 BOX, 2 CONVEX_HULL, 3 SPHERE"));
     if (const json* points = b.find("points")) {
       const json& a = array_value(*points, b.path("points"));
-      for (std::size_t i = 0; i < a.size(); ++i) f.bounds.points.push_back(vector3_value(a[i], b.path("points") + "[" + std::to_string(i) + "]"));
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        f.bounds.points.push_back(vector3_value(a[i], b.path("points") + "[" + std::to_string(i) + "]"));
+      }
     }
   }
   return f;
@@ -338,7 +342,8 @@ SimRequest decode(SimService s, const json& j) {
       }
       const Object os(*state, "state", {"state"});
       if (!os.find("state")) throw Error("state.state: missing (0 STOPPED, 1 PLAYING, 2 PAUSED, 3 QUITTING)");
-      const auto v = unsigned_field(os, "state", 5, 0, "a SimulationState: 0 STOPPED, 1 PLAYING, 2 PAUSED, 3 QUITTING, 4 NO_WORLD, 5 LOADING_WORLD");
+      const auto v =
+          unsigned_field(os, "state", 5, 0, "a SimulationState: 0 STOPPED, 1 PLAYING, 2 PAUSED, 3 QUITTING, 4 NO_WORLD, 5 LOADING_WORLD");
       return SetSimulationStateRequest{static_cast<control::RunState>(v)};
     }
     case SimService::step_simulation: {
@@ -494,7 +499,8 @@ std::string encode_sim_response(const SimResponse& r) {
       break;
     case SimService::get_simulator_features:
       // GetSimulatorFeatures has no Result: only the features
-      j["features"] = {{"features", r.features.features}, {"spawn_formats", r.features.spawn_formats}, {"custom_info", r.features.custom_info}};
+      j["features"] = {
+          {"features", r.features.features}, {"spawn_formats", r.features.spawn_formats}, {"custom_info", r.features.custom_info}};
       break;
     default:
       j["result"] = result_json(r.result);

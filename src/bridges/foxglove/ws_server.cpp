@@ -131,7 +131,9 @@ class Server final : public WsServer {
     if (!ec) acceptor_.listen(net::socket_base::max_listen_connections, ec);
     if (ec) {
       throw Error("foxglove: cannot listen on " + host + ":" + std::to_string(port) + ": " + ec.message() +
-                  (ec == net::error::address_in_use ? " (another program, or another rescuesim, uses it: pick another port with --foxglove=PORT)" : ""));
+                  (ec == net::error::address_in_use
+                       ? " (another program, or another rescuesim, uses it: pick another port with --foxglove=PORT)"
+                       : ""));
     }
     port_ = acceptor_.local_endpoint().port();
     accept();

@@ -23,9 +23,8 @@ bool latched(const mcap::Channel& c) {
 
 }  // namespace
 
-McapPlayer::McapPlayer(const std::filesystem::path& path, const ModelMap& models)
-    : reader_(path), run_(rebuild_run(reader_, models)) {
-  host_ = std::make_unique<ReplayHost>(run_.world, run_.scenario.seed);
+McapPlayer::McapPlayer(const std::filesystem::path& path, const RebuildWorld& rebuild) : reader_(path), replayed_(rebuild(reader_)) {
+  host_ = std::make_unique<ReplayHost>(replayed_.world, replayed_.seed);
   // every recorded topic is on the Bus before bridges start (they advertise what they see then)
   for (const auto& [id, channel] : reader_.channels()) route(channel);
 }
@@ -62,7 +61,9 @@ PlayResult McapPlayer::play(double rate, const std::atomic<bool>* stop, const st
   std::optional<std::uint64_t> first;
   std::uint64_t now_ns = static_cast<std::uint64_t>(host_->time().ns);
   PlayProgress p;
-  if (reader_.statistics()) p.duration = 1e-9 * static_cast<double>(reader_.statistics()->message_end_time - reader_.statistics()->message_start_time);
+  if (reader_.statistics()) {
+    p.duration = 1e-9 * static_cast<double>(reader_.statistics()->message_end_time - reader_.statistics()->message_start_time);
+  }
   Throttle decode_log;
   const auto stopped = [&] { return stop && stop->load(std::memory_order_relaxed); };
 

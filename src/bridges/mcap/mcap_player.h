@@ -1,7 +1,8 @@
 #pragma once
-/// Replay of a rescuesim recording: the run's world is rebuilt from the recording (see
-/// run_record.h) and put behind a ReplayHost (a Bus and a clock; no physics, no ray scene);
-/// every recorded topic is advertised on that Bus; then the recorded messages are decoded and
+/// Replay of a rescuesim recording: the run's world is rebuilt from the recording by the caller
+/// (run_record/run_record.h rebuilds a rescuesim run's from its scenario and world.svg, so that
+/// this transport parses no scenario) and put behind a ReplayHost (a Bus and a clock; no
+/// physics, no ray scene); every recorded topic is advertised on that Bus; then the recorded messages are decoded and
 /// published on it in file (= log-time) order, paced to the wall clock, so bridges attached to
 /// the host (ROS 1, ROS 2, Foxglove, even a recorder) re-publish the recording as if it were
 /// running. The host's clock is set to each message's log time before it is published, so
@@ -16,8 +17,8 @@
 
 #include "bridges/mcap/mcap_reader.h"
 #include "bridges/mcap/replay_host.h"
-#include "bridges/mcap/run_record.h"
 #include "msgs/serialize.h"
+#include "world/world.h"
 
 namespace rescuesim {
 
@@ -38,17 +39,27 @@ struct PlayResult {
   bool interrupted = false;     ///< stopped by the caller
 };
 
+/// The world a recording's messages came from, and its run's seed: what the player's host needs.
+struct ReplayWorld {
+  World world;
+  std::uint64_t seed = 0;
+};
+
+/// Rebuilds the world from the open recording (run_record.h's rebuild_run for a rescuesim
+/// recording); throws Error when it cannot.
+using RebuildWorld = std::function<ReplayWorld(const mcap::McapReader&)>;
+
 class McapPlayer {
  public:
-  /// Opens and checks the recording, rebuilds its world and advertises its topics.
-  /// Throws Error naming the file for a damaged file or one rescuesim did not record.
-  McapPlayer(const std::filesystem::path& path, const ModelMap& models);
+  /// Opens and checks the recording, rebuilds its world with `rebuild` and advertises its
+  /// topics. Throws Error naming the file for a damaged file, or what `rebuild` throws.
+  McapPlayer(const std::filesystem::path& path, const RebuildWorld& rebuild);
   ~McapPlayer();
 
   /// What bridges attach to (before play()): the Bus, the world, the replay clock.
   ReplayHost& host() { return *host_; }
   const mcap::McapReader& reader() const { return reader_; }
-  const RecordedRun& run() const { return run_; }
+  const World& world() const { return replayed_.world; }
 
   /// Publishes every message, the one at log time t at wall time (t - t_first) / rate after
   /// the start (rate: sim seconds per wall second, > 0). Returns when done or once `stop` is
@@ -64,8 +75,8 @@ class McapPlayer {
   const Route& route(const mcap::Channel& channel);
 
   mcap::McapReader reader_;
-  RecordedRun run_;
-  std::unique_ptr<ReplayHost> host_;           ///< on run_.world
+  ReplayWorld replayed_;
+  std::unique_ptr<ReplayHost> host_;           ///< on replayed_.world
   std::map<std::uint16_t, Route> routes_;      ///< by channel id
 };
 

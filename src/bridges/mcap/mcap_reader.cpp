@@ -102,12 +102,16 @@ std::size_t McapReader::chunk_count() const {
 void McapReader::add_schema(const Schema& s, std::uint64_t offset, const char* where) {
   if (s.id == 0) return;  // id 0 is invalid and ignored, as the spec says
   const auto [it, inserted] = schemas_.emplace(s.id, s);
-  if (!inserted && !same(it->second, s)) fail(offset, where, "schema " + std::to_string(s.id) + " was declared before with different fields");
+  if (!inserted && !same(it->second, s)) {
+    fail(offset, where, "schema " + std::to_string(s.id) + " was declared before with different fields");
+  }
 }
 
 void McapReader::add_channel(const Channel& c, std::uint64_t offset, const char* where, bool schema_needed) {
   const auto [it, inserted] = channels_.emplace(c.id, c);
-  if (!inserted && !same(it->second, c)) fail(offset, where, "channel " + std::to_string(c.id) + " was declared before with different fields");
+  if (!inserted && !same(it->second, c)) {
+    fail(offset, where, "channel " + std::to_string(c.id) + " was declared before with different fields");
+  }
   if (schema_needed && c.schema_id != 0 && !schemas_.count(c.schema_id)) {
     fail(offset, where, "channel " + std::to_string(c.id) + " (" + c.topic + ") refers to schema " + std::to_string(c.schema_id) +
                             ", which no Schema record declared before it");
@@ -122,7 +126,9 @@ std::uint64_t McapReader::scan_data_section() {
   std::vector<std::uint8_t> prefix, content;
   bool header_seen = false;
   for (;;) {
-    if (pos == size_) fail(pos, "", std::string("the file ends without a Data End record, summary or footer: it is truncated") + kTruncatedHint);
+    if (pos == size_) {
+      fail(pos, "", std::string("the file ends without a Data End record, summary or footer: it is truncated") + kTruncatedHint);
+    }
     if (size_ - pos < kRecordPrefix) {
       fail(pos, "", "the file ends " + std::to_string(size_ - pos) + " bytes into a record's 9-byte opcode and length: it is truncated" +
                         kTruncatedHint);
@@ -137,7 +143,8 @@ std::uint64_t McapReader::scan_data_section() {
                           " bytes later: it is truncated" + kTruncatedHint);
     }
     if (len > options_.max_record_bytes) {
-      fail(pos, name, "a record of " + std::to_string(len) + " bytes is over this reader's limit of " + std::to_string(options_.max_record_bytes));
+      fail(pos, name,
+           "a record of " + std::to_string(len) + " bytes is over this reader's limit of " + std::to_string(options_.max_record_bytes));
     }
     read_at(pos + kRecordPrefix, len, content);
     if (!header_seen && op != static_cast<std::uint8_t>(Op::header)) fail(pos, name, "the first record after the magic must be a Header");
@@ -152,7 +159,9 @@ std::uint64_t McapReader::scan_data_section() {
         case Op::channel: add_channel(parse_channel(content), pos, "Channel"); break;
         case Op::message: {
           const MessageView m = parse_message(content);
-          if (!channels_.count(m.channel_id)) fail(pos, name, "refers to channel " + std::to_string(m.channel_id) + ", not declared before it");
+          if (!channels_.count(m.channel_id)) {
+            fail(pos, name, "refers to channel " + std::to_string(m.channel_id) + ", not declared before it");
+          }
           message_records_.push_back({pos, op, len});
           break;
         }
@@ -207,8 +216,8 @@ void McapReader::scan_summary(std::uint64_t data_end) {
   std::vector<std::uint8_t> bytes;
   read_at(size_ - kMagic.size(), kMagic.size(), bytes);
   if (!std::equal(kMagic.begin(), kMagic.end(), bytes.begin())) {
-    fail(size_ - kMagic.size(), "magic", "the file does not end with the MCAP magic (it ends with " + hex_bytes(bytes) + "): it is truncated or damaged" +
-                                             kTruncatedHint);
+    fail(size_ - kMagic.size(), "magic",
+         "the file does not end with the MCAP magic (it ends with " + hex_bytes(bytes) + "): it is truncated or damaged" + kTruncatedHint);
   }
   const std::uint64_t footer_at = size_ - tail;
   read_at(footer_at, kFooterRecordSize, bytes);
@@ -218,8 +227,9 @@ void McapReader::scan_summary(std::uint64_t data_end) {
   }
   const Footer footer = parse_footer(std::span(bytes).subspan(kRecordPrefix));
   if (footer.summary_start != 0 && footer.summary_start != data_end) {
-    fail(footer_at, "Footer", "summary_start is " + std::to_string(footer.summary_start) + " but the summary starts right after Data End, at " +
-                                  std::to_string(data_end));
+    fail(footer_at, "Footer",
+         "summary_start is " + std::to_string(footer.summary_start) + " but the summary starts right after Data End, at " +
+             std::to_string(data_end));
   }
   const std::uint64_t offsets_at = footer.summary_offset_start != 0 ? footer.summary_offset_start : footer_at;
   if (offsets_at < data_end || offsets_at > footer_at) {
@@ -266,7 +276,9 @@ void McapReader::scan_summary(std::uint64_t data_end) {
     record_ops[pos] = op;
     try {
       if (in_offsets) {
-        if (op != static_cast<std::uint8_t>(Op::summary_offset)) fail(pos, name, "only Summary Offset records may follow summary_offset_start");
+        if (op != static_cast<std::uint8_t>(Op::summary_offset)) {
+          fail(pos, name, "only Summary Offset records may follow summary_offset_start");
+        }
         offsets.push_back(parse_summary_offset(content));
       } else {
         switch (static_cast<Op>(op)) {
@@ -361,7 +373,8 @@ void McapReader::read_messages(const std::function<bool(const Channel&, const Me
     if (chunk.uncompressed_crc != 0) {
       const std::uint32_t actual = crc32(records);
       if (actual != chunk.uncompressed_crc) {
-        fail(p.offset, "Chunk", "the CRC-32 of its uncompressed records is " + hex32(actual) + " but the chunk says " + hex32(chunk.uncompressed_crc));
+        fail(p.offset, "Chunk",
+             "the CRC-32 of its uncompressed records is " + hex32(actual) + " but the chunk says " + hex32(chunk.uncompressed_crc));
       }
     }
     std::uint64_t at = 0;

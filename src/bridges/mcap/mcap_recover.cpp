@@ -73,7 +73,8 @@ RecoveryReport recover_mcap(const std::filesystem::path& input, const std::files
     throw Error({file, 0, "offset 0"}, "not an MCAP file: it does not start with the MCAP magic 89 4D 43 41 50 30 0D 0A");
   }
   if (head.size() < kMagic.size()) {
-    throw Error({file, 0, "offset 0"}, "the file ends " + std::to_string(head.size()) + " bytes into the 8-byte MCAP magic: nothing to recover");
+    throw Error({file, 0, "offset 0"},
+                "the file ends " + std::to_string(head.size()) + " bytes into the 8-byte MCAP magic: nothing to recover");
   }
   std::vector<std::uint8_t> prefix, content;
   std::uint64_t pos = kMagic.size();
@@ -100,7 +101,8 @@ RecoveryReport recover_mcap(const std::filesystem::path& input, const std::files
   std::map<std::uint16_t, std::uint16_t> schema_ids, channel_ids;  // input id -> output id
   const auto add_schema = [&](const Schema& s) {
     if (s.id == 0 || schema_ids.count(s.id)) return;  // id 0 is invalid; a repeated declaration is the same schema
-    schema_ids[s.id] = writer->add_schema(s.name, s.encoding, std::string_view(reinterpret_cast<const char*>(s.data.data()), s.data.size()));
+    schema_ids[s.id] =
+        writer->add_schema(s.name, s.encoding, std::string_view(reinterpret_cast<const char*>(s.data.data()), s.data.size()));
     ++report.schemas;
   };
   const auto add_channel = [&](const Channel& c) {
@@ -133,7 +135,8 @@ RecoveryReport recover_mcap(const std::filesystem::path& input, const std::files
       // the opcode byte is there (the file does not end at pos), the length is not
       std::vector<std::uint8_t> op_byte;
       in.read(pos, 1, op_byte);
-      stop(pos, op_name(op_byte.at(0)), "the file ends " + std::to_string(in.size() - pos) + " bytes into the record's 9-byte opcode and length");
+      stop(pos, op_name(op_byte.at(0)),
+           "the file ends " + std::to_string(in.size() - pos) + " bytes into the record's 9-byte opcode and length");
       break;
     }
     const std::uint8_t op = prefix[0];
@@ -144,8 +147,9 @@ RecoveryReport recover_mcap(const std::filesystem::path& input, const std::files
       break;
     }
     if (!in.read(pos + kRecordPrefix, len, content)) {
-      stop(pos, name, "the record is " + std::to_string(len) + " bytes but the file ends " + std::to_string(in.size() - pos - kRecordPrefix) +
-                          " bytes later (torn by the kill)");
+      stop(pos, name,
+           "the record is " + std::to_string(len) + " bytes but the file ends " + std::to_string(in.size() - pos - kRecordPrefix) +
+               " bytes later (torn by the kill)");
       break;
     }
     if (op == static_cast<std::uint8_t>(Op::data_end)) {
@@ -212,7 +216,8 @@ RecoveryReport recover_mcap(const std::filesystem::path& input, const std::files
               c.channels.push_back(parse_channel(body));
               const Channel& ch = c.channels.back();
               if (ch.schema_id != 0 && !schemas_known.count(ch.schema_id)) {
-                damage = "channel " + std::to_string(ch.id) + " inside refers to schema " + std::to_string(ch.schema_id) + ", not declared before it";
+                damage = "channel " + std::to_string(ch.id) + " inside refers to schema " + std::to_string(ch.schema_id) +
+                         ", not declared before it";
               }
               channels_known[ch.id] = true;
             } else if (rop == static_cast<std::uint8_t>(Op::message)) {

@@ -16,17 +16,17 @@ std::string ReplayHost::frame_name(int robot, const std::string& frame) const {
   return world_.robots.size() > 1 ? world_.robots[static_cast<std::size_t>(robot)].name + "/" + frame : frame;
 }
 
-CommandOutcome ReplayHost::submit_velocity(int, const msg::Twist&) {
+CommandOutcome ReplayHost::command_velocity(int, const msg::Twist&) {
   ++discarded_;
   return CommandOutcome::ok();
 }
 
-CommandOutcome ReplayHost::submit_head(int, const std::vector<double>&) {
+CommandOutcome ReplayHost::command_head(int, const std::vector<double>&) {
   ++discarded_;
   return CommandOutcome::ok();
 }
 
-CommandOutcome ReplayHost::submit_joints(int, const msg::JointState&) {
+CommandOutcome ReplayHost::command_joints(int, const msg::JointState&) {
   ++discarded_;
   return CommandOutcome::ok();
 }

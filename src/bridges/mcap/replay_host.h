@@ -30,9 +30,9 @@ class ReplayHost final : public BridgeHost {
   std::string topic_name(int robot, const std::string& relative) const override;
   std::string frame_name(int robot, const std::string& frame) const override;
   /// Counted and discarded (accepted: a replay has nothing to apply them to, and says so once).
-  CommandOutcome submit_velocity(int robot, const msg::Twist& twist) override;
-  CommandOutcome submit_head(int robot, const std::vector<double>& positions) override;
-  CommandOutcome submit_joints(int robot, const msg::JointState& command) override;
+  CommandOutcome command_velocity(int robot, const msg::Twist& twist) override;
+  CommandOutcome command_head(int robot, const std::vector<double>& positions) override;
+  CommandOutcome command_joints(int robot, const msg::JointState& command) override;
 
  private:
   const World& world_;

@@ -74,7 +74,8 @@ std::optional<int> master_pid() {
 
 class Ros1Bridge final : public Bridge {
  public:
-  explicit Ros1Bridge(const Ros1Options& options) : options_(options), outbox_({.per_topic = std::max<std::size_t>(1, options.queue_size)}) {}
+  explicit Ros1Bridge(const Ros1Options& options)
+      : options_(options), outbox_({.per_topic = std::max<std::size_t>(1, options.queue_size)}) {}
   /// Without stop(), the Bus subscription is left to the simulation (which then must not publish
   /// again): stop() belongs on the simulation thread, the destructor may run anywhere.
   ~Ros1Bridge() override { shut_down(); }
@@ -102,7 +103,8 @@ class Ros1Bridge final : public Bridge {
   };
   /// A command topic of a robot.
   struct Input {
-    enum class Kind { velocity, head, joints, flippers, host };  ///< cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
+    /// cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
+    enum class Kind { velocity, head, joints, flippers, host };
     std::string topic;
     int robot = 0;                            ///< index into world().robots; the layout watcher keeps it current
     Kind kind = Kind::velocity;
@@ -114,7 +116,9 @@ class Ros1Bridge final : public Bridge {
     // first publisher it connects to, and publishers of the other type then refuse it
     bool adopted = false;                     ///< connected since it was made: its type is set
     std::string connected_type{};             ///< the type of the last message received
-    std::string robot_name{};                 ///< the robot's name (RobotInstance::name), which follows it when its index changes; "" for Kind::host
+    /// the robot's name (RobotInstance::name), which follows it when its index changes; "" for
+    /// Kind::host
+    std::string robot_name{};
   };
   /// The type a command subscription asks its publishers for: "*" for cmd_vel (either type).
   static std::string subscribed_type(const Input& in) { return in.kind == Input::Kind::velocity ? "*" : in.type->ros1_name; }

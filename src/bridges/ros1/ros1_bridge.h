@@ -28,7 +28,9 @@ namespace rescuesim {
 struct Ros1Options {
   std::string node_name = "rescuesim";
   bool use_sim_time = false;       ///< set the /use_sim_time parameter to true on start
-  std::size_t queue_size = 64;     ///< per topic: most messages buffered before the oldest of that topic is dropped (bridges/common/outbox.h)
+  /// per topic: most messages buffered before the oldest of that topic is dropped
+  /// (bridges/common/outbox.h)
+  std::size_t queue_size = 64;
   double master_timeout = 3.0;     ///< s to wait for the master on start() before giving up
   double master_check_period = 1.0;  ///< s between checks that the master is (still) there
   double service_timeout = 5.0;    ///< s a service call waits for the simulation's answer before it fails

@@ -236,7 +236,8 @@ void Ros1SimServices::advertise(ros::NodeHandle& nh) {
 
 bool Ros1SimServices::register_again() {
   // what ServiceManager::advertiseService tells the master
-  const std::string service_api = "rosrpc://" + ros::network::getHost() + ":" + std::to_string(ros::ConnectionManager::instance()->getTCPPort());
+  const std::string service_api =
+      "rosrpc://" + ros::network::getHost() + ":" + std::to_string(ros::ConnectionManager::instance()->getTCPPort());
   for (const SimServiceInfo& s : sim_services()) {
     XmlRpc::XmlRpcValue args, result, payload;
     args[0] = ros::this_node::getName();

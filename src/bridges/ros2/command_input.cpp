@@ -56,6 +56,8 @@ Decoded<std::vector<double>> decode_head_command(std::span<const std::uint8_t> c
   return {std::move(a.value->data), {}};
 }
 
-Decoded<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr) { return decode<msg::JointState>("sensor_msgs/JointState", cdr); }
+Decoded<msg::JointState> decode_joint_command(std::span<const std::uint8_t> cdr) {
+  return decode<msg::JointState>("sensor_msgs/JointState", cdr);
+}
 
 }  // namespace rescuesim::ros2

@@ -66,48 +66,57 @@ void reply(const ReplyHandle& handle, const typename S::Response& response, Wire
 template <class S, class F>
 void serve(ServiceRegistry& registry, const std::shared_ptr<Context>& ctx, const std::string& name, F compute) {
   const control::InterfaceInfo& info = control::info(S::id);
-  registry.add_service(name, info.ros_type, [ctx, name, compute](const RequestHeader&, std::span<const std::uint8_t> body, ReplyHandle handle) {
-    auto decoded = control::decode_request<S>(body, ctx->version);
-    if (!decoded.value) {
-      ++ctx->undecodable;
-      std::uint64_t held = 0;
-      if (ctx->warning.allow(&held)) log::warn("ROS 2 bridge: {}: malformed request: {} ({} more held back)", name, decoded.problem, held);
-      if (auto r = failure<S>(control::Result::fail(control::code::kOperationFailed, "malformed request: " + decoded.problem))) {
-        reply<S>(handle, *r, ctx->version);
-      }
-      return;
-    }
-    const bool posted = ctx->control->post([ctx, handle, compute, request = std::move(*decoded.value)](SimControl& c) {
-      reply<S>(handle, compute(request, c), ctx->version);
-    });
-    if (!posted) {
-      if (auto r = failure<S>(control::Result::fail(control::code::kOperationFailed, "the simulation takes no requests now (the run has ended, or too many requests wait)"))) {
-        reply<S>(handle, *r, ctx->version);
-      }
-    }
-  });
+  registry.add_service(
+      name, info.ros_type, [ctx, name, compute](const RequestHeader&, std::span<const std::uint8_t> body, ReplyHandle handle) {
+        auto decoded = control::decode_request<S>(body, ctx->version);
+        if (!decoded.value) {
+          ++ctx->undecodable;
+          std::uint64_t held = 0;
+          if (ctx->warning.allow(&held)) {
+            log::warn("ROS 2 bridge: {}: malformed request: {} ({} more held back)", name, decoded.problem, held);
+          }
+          if (auto r = failure<S>(control::Result::fail(control::code::kOperationFailed, "malformed request: " + decoded.problem))) {
+            reply<S>(handle, *r, ctx->version);
+          }
+          return;
+        }
+        const bool posted = ctx->control->post([ctx, handle, compute, request = std::move(*decoded.value)](SimControl& c) {
+          reply<S>(handle, compute(request, c), ctx->version);
+        });
+        if (!posted) {
+          if (auto r = failure<S>(
+                  control::Result::fail(control::code::kOperationFailed,
+                                        "the simulation takes no requests now (the run has ended, or too many requests wait)"))) {
+            reply<S>(handle, *r, ctx->version);
+          }
+        }
+      });
 }
 
 /// StepSimulation: answered when its steps are done (or refused at once).
 void serve_step(ServiceRegistry& registry, const std::shared_ptr<Context>& ctx, const std::string& name) {
   using S = iface::StepSimulation;
-  registry.add_service(name, control::info(S::id).ros_type, [ctx, name](const RequestHeader&, std::span<const std::uint8_t> body, ReplyHandle handle) {
-    auto decoded = control::decode_request<S>(body, ctx->version);
-    if (!decoded.value) {
-      ++ctx->undecodable;
-      reply<S>(handle, control::Result::fail(control::code::kOperationFailed, "malformed request: " + decoded.problem), ctx->version);
-      return;
-    }
-    const std::uint64_t steps = decoded.value->steps;
-    const bool posted = ctx->control->post([ctx, handle, steps](SimControl& c) {
-      control::StepJob job;
-      job.steps = steps;
-      job.done = [ctx, handle](const control::Result& r, std::uint64_t) { reply<S>(handle, r, ctx->version); };
-      const control::Result r = c.start_steps(std::move(job), false);
-      if (!r.is_ok()) reply<S>(handle, r, ctx->version);
-    });
-    if (!posted) reply<S>(handle, control::Result::fail(control::code::kOperationFailed, "the simulation takes no requests now"), ctx->version);
-  });
+  registry.add_service(
+      name, control::info(S::id).ros_type,
+      [ctx, name](const RequestHeader&, std::span<const std::uint8_t> body, const ReplyHandle& handle) {
+        auto decoded = control::decode_request<S>(body, ctx->version);
+        if (!decoded.value) {
+          ++ctx->undecodable;
+          reply<S>(handle, control::Result::fail(control::code::kOperationFailed, "malformed request: " + decoded.problem), ctx->version);
+          return;
+        }
+        const std::uint64_t steps = decoded.value->steps;
+        const bool posted = ctx->control->post([ctx, handle, steps](SimControl& c) {
+          control::StepJob job;
+          job.steps = steps;
+          job.done = [ctx, handle](const control::Result& r, std::uint64_t) { reply<S>(handle, r, ctx->version); };
+          const control::Result r = c.start_steps(std::move(job), false);
+          if (!r.is_ok()) reply<S>(handle, r, ctx->version);
+        });
+        if (!posted) {
+          reply<S>(handle, control::Result::fail(control::code::kOperationFailed, "the simulation takes no requests now"), ctx->version);
+        }
+      });
 }
 
 /// `<A>_Feedback` {uint64 completed_steps, uint64 remaining_steps} as a CDR message.
@@ -129,7 +138,8 @@ std::vector<std::uint8_t> result_response(std::int8_t status, const control::Res
 /// `feedback_every` steps; cancel ends the job.
 void serve_simulate_steps(ServiceRegistry& registry, const std::shared_ptr<Context>& ctx, const std::string& name) {
   ActionCallbacks cb;
-  cb.unknown_result_response = result_response(control::goal_status::kUnknown, control::Result::fail(control::code::kNotFound, "unknown goal"), ctx->version);
+  cb.unknown_result_response =
+      result_response(control::goal_status::kUnknown, control::Result::fail(control::code::kNotFound, "unknown goal"), ctx->version);
   cb.on_goal = [ctx](GoalHandle goal) {
     std::uint64_t steps = 0;
     try {
@@ -243,8 +253,10 @@ std::function<std::uint64_t()> register_control_services(ServiceRegistry& servic
   const std::string& ns = options.sim_services_ns;
   using R = control::Result;
 
-  serve<iface::GetSimulatorFeatures>(services, ctx, join(ns, "get_simulator_features"), [](const control::Empty&, SimControl& s) { return s.features(); });
-  serve<iface::ResetSimulation>(services, ctx, join(ns, "reset_simulation"), [](const control::ResetSimulationRequest& q, SimControl& s) { return s.reset(q.scope); });
+  serve<iface::GetSimulatorFeatures>(services, ctx, join(ns, "get_simulator_features"),
+                                     [](const control::Empty&, SimControl& s) { return s.features(); });
+  serve<iface::ResetSimulation>(services, ctx, join(ns, "reset_simulation"),
+                                [](const control::ResetSimulationRequest& q, SimControl& s) { return s.reset(q.scope); });
   serve<iface::GetSimulationState>(services, ctx, join(ns, "get_simulation_state"), [](const control::Empty&, SimControl& s) {
     return control::GetSimulationStateResponse{s.run_state(), R::ok()};
   });
@@ -289,11 +301,12 @@ std::function<std::uint64_t()> register_control_services(ServiceRegistry& servic
     out.result = s.named_poses(t, out.poses);
     return out;
   });
-  serve<iface::GetNamedPoseBounds>(services, ctx, join(ns, "get_named_pose_bounds"), [](const control::NamedPoseBoundsRequest& q, SimControl& s) {
-    control::BoundsResponse out;
-    out.result = s.named_pose_bounds(q.name, out.bounds);
-    return out;
-  });
+  serve<iface::GetNamedPoseBounds>(services, ctx, join(ns, "get_named_pose_bounds"),
+                                   [](const control::NamedPoseBoundsRequest& q, SimControl& s) {
+                                     control::BoundsResponse out;
+                                     out.result = s.named_pose_bounds(q.name, out.bounds);
+                                     return out;
+                                   });
   serve<iface::GetSpawnables>(services, ctx, join(ns, "get_spawnables"), [](const control::GetSpawnablesRequest& q, SimControl& s) {
     control::GetSpawnablesResponse out;
     out.result = s.spawnables(q.sources, out.spawnables);
@@ -304,12 +317,14 @@ std::function<std::uint64_t()> register_control_services(ServiceRegistry& servic
     out.result = s.spawn(q, out.entity_name);
     return out;
   });
-  serve<iface::DeleteEntity>(services, ctx, join(ns, "delete_entity"), [](const control::EntityRequest& q, SimControl& s) { return s.remove(q.entity); });
-  serve<iface::GetAvailableWorlds>(services, ctx, join(ns, "get_available_worlds"), [](const control::GetAvailableWorldsRequest& q, SimControl& s) {
-    control::GetAvailableWorldsResponse out;
-    out.result = s.available_worlds(q.additional_sources, out.worlds);
-    return out;
-  });
+  serve<iface::DeleteEntity>(services, ctx, join(ns, "delete_entity"),
+                             [](const control::EntityRequest& q, SimControl& s) { return s.remove(q.entity); });
+  serve<iface::GetAvailableWorlds>(services, ctx, join(ns, "get_available_worlds"),
+                                   [](const control::GetAvailableWorldsRequest& q, SimControl& s) {
+                                     control::GetAvailableWorldsResponse out;
+                                     out.result = s.available_worlds(q.additional_sources, out.worlds);
+                                     return out;
+                                   });
   serve<iface::GetCurrentWorld>(services, ctx, join(ns, "get_current_world"), [](const control::Empty&, SimControl& s) {
     control::WorldResponse out;
     out.result = s.current_world(out.world);

@@ -437,7 +437,9 @@ void Ros2Bridge::receive(Input& in, std::span<const std::uint8_t> bytes) {
     apply(*decoded.value);
   };
   switch (in.kind) {
-    case Input::Kind::velocity: take(ros2::decode_twist(bytes), [&](const msg::Twist& t) { gate_->velocity(in.robot, in.topic, t); }); break;
+    case Input::Kind::velocity:
+      take(ros2::decode_twist(bytes), [&](const msg::Twist& t) { gate_->velocity(in.robot, in.topic, t); });
+      break;
     case Input::Kind::velocity_stamped:
       take(ros2::decode_twist_stamped(bytes), [&](const ros2::StampedTwist& t) {
         // a stamp from the future, NaN and the drive's limits: the gate's, as for every velocity command

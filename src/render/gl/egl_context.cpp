@@ -67,7 +67,8 @@ std::vector<Candidate> candidate_displays(std::string& problems) {
       for (EGLint i = 0; i < count; ++i) {
         const char* ext = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
         if (has_extension(ext, "EGL_MESA_device_software") || !has_extension(ext, "EGL_EXT_device_drm")) continue;
-        const char* node = has_extension(ext, "EGL_EXT_device_drm_render_node") ? eglQueryDeviceStringEXT(devices[i], kDrmRenderNodeFile) : nullptr;
+        const char* node =
+            has_extension(ext, "EGL_EXT_device_drm_render_node") ? eglQueryDeviceStringEXT(devices[i], kDrmRenderNodeFile) : nullptr;
         if (node == nullptr) continue;
         const EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
         if (d != EGL_NO_DISPLAY) out.push_back({d, fmt::format("EGL device {}", node)});
@@ -142,7 +143,10 @@ EglContext::EglContext() {
     description_ = fmt::format("{} via {}", renderer != nullptr ? renderer : "unknown renderer", c.platform);
     return;
   }
-  if (!offered.empty()) throw Error(SourceRef{"", 0, "Renderer::create_headless"}, fmt::format("OpenGL 4.5 core is not available: the driver offers {}", offered));
+  if (!offered.empty()) {
+    throw Error(SourceRef{"", 0, "Renderer::create_headless"},
+                fmt::format("OpenGL 4.5 core is not available: the driver offers {}", offered));
+  }
   if (problems.size() >= 2) problems.resize(problems.size() - 2);
   throw Error(SourceRef{"", 0, "Renderer::create_headless"}, fmt::format("no EGL display could be opened: {}", problems));
 }

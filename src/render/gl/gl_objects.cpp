@@ -89,8 +89,8 @@ Shader::Shader(GLenum stage, const char* name, const std::string& source) {
   GLint ok = GL_FALSE;
   glGetShaderiv(id(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    throw Error(SourceRef{"", 0, "gl::Shader"},
-                fmt::format("the {} {} shader does not compile:\n{}", name, stage == GL_VERTEX_SHADER ? "vertex" : "fragment", shader_log(id())));
+    throw Error(SourceRef{"", 0, "gl::Shader"}, fmt::format("the {} {} shader does not compile:\n{}", name,
+                                                            stage == GL_VERTEX_SHADER ? "vertex" : "fragment", shader_log(id())));
   }
 }
 
@@ -105,7 +105,9 @@ Program::Program(const char* name, const std::string& vertex_source, const std::
   glDetachShader(id(), fs.id());
   GLint ok = GL_FALSE;
   glGetProgramiv(id(), GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) throw Error(SourceRef{"", 0, "gl::Program"}, fmt::format("the {} program does not link:\n{}", name, program_log(id())));
+  if (ok != GL_TRUE) {
+    throw Error(SourceRef{"", 0, "gl::Program"}, fmt::format("the {} program does not link:\n{}", name, program_log(id())));
+  }
 }
 
 }  // namespace rescuesim::gl

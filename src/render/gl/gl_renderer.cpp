@@ -240,7 +240,8 @@ void GlRenderer::build_color_programs(int lights, bool spots) {
                                            fog_boxes_, fog_pieces_);
     const std::string common = header + shaders::kLightUniforms;
     const std::string fog_code = media ? shaders::kFogFunctions : "";
-    color_[k] = Program(media ? "colour through media" : "colour", !per_pixel ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
+    color_[k] = Program(media ? "colour through media" : "colour",
+                        !per_pixel ? common + shaders::kGouraudVertex : std::string(shaders::kSceneVertex),
                         common + fog_code + shaders::kColorFragment);
     color_model_[k] = color_[k].uniform("u_model");
     // samplers of different types may not share a texture unit
@@ -363,7 +364,8 @@ SizeTargets& GlRenderer::targets(int width, int height) {
 void GlRenderer::do_load(const RenderScene& scene) {
   context_.make_current();
   if (scene.materials.size() > static_cast<std::size_t>(kMaxMaterials)) {
-    throw Error(SourceRef{"", 0, "Renderer::load"}, fmt::format("the scene has {} materials; at most {} are supported", scene.materials.size(), kMaxMaterials));
+    throw Error(SourceRef{"", 0, "Renderer::load"},
+                fmt::format("the scene has {} materials; at most {} are supported", scene.materials.size(), kMaxMaterials));
   }
   scene_.upload(scene);
 
@@ -489,7 +491,8 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
   if (n + boxes > kMaxFogPieces || n * sides > kMaxFogSides) {
     throw Error(SourceRef{"", 0, "Renderer::load"},
                 fmt::format("the smoke and dust make {} convex pieces, {} of up to {} sides; the cameras draw at most {} pieces and {} "
-                            "sides in all (fewer media, or footprints with fewer corners)", n + boxes, n, sides, kMaxFogPieces, kMaxFogSides));
+                            "sides in all (fewer media, or footprints with fewer corners)",
+                            n + boxes, n, sides, kMaxFogPieces, kMaxFogSides));
   }
   if (n == fog_pieces_ && sides == fog_sides_ && boxes == fog_boxes_) return false;
   fog_pieces_ = n;
@@ -499,8 +502,9 @@ bool GlRenderer::compile_fog(const std::vector<FogPiece>& pieces) {
   depth_fog_ = Program();
   thermal_fog_ = Program();
   if (fog()) {
-    const std::string head = fmt::format("#version 450 core\n#define MEDIA 1\n#define MEDIA_PIECES {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n{}",
-                                         n, std::max(sides, 1), boxes, shaders::kFogFunctions);
+    const std::string head =
+        fmt::format("#version 450 core\n#define MEDIA 1\n#define MEDIA_PIECES {}\n#define MEDIA_SIDES {}\n#define MEDIA_BOXES {}\n{}", n,
+                    std::max(sides, 1), boxes, shaders::kFogFunctions);
     fog_sky_ = Program("fog sky", shaders::kFullscreenVertex, head + shaders::kFogSkyFragment);
     depth_fog_ = Program("depth through fog", shaders::kFogVertex, head + shaders::kDepthFogFragment);
     thermal_fog_ = Program("thermal through fog", shaders::kFogVertex, head + shaders::kThermalFogFragment);
@@ -563,19 +567,23 @@ std::array<int, 4> media_window(std::span<const FogPiece> pieces, const Eigen::M
   for (const FogPiece& piece : pieces) {
     clip.clear();
     for (const Vec2& c : piece.corners) {
-      for (double z : {piece.bottom, piece.top}) clip.push_back(view_proj * Eigen::Vector4f(static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(z), 1.0f));
+      for (double z : {piece.bottom, piece.top}) {
+        clip.push_back(view_proj * Eigen::Vector4f(static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(z), 1.0f));
+      }
     }
     // wholly behind the eye: no ray of the view enters it; partly: it may cover any pixel
     const auto in_front = std::count_if(clip.begin(), clip.end(), [](const Eigen::Vector4f& q) { return q.w() > 1e-4f; });
     if (in_front == 0) continue;
     if (in_front < static_cast<std::ptrdiff_t>(clip.size())) return {0, 0, w, h};
     for (const Eigen::Vector4f& q : clip) {
-      const Eigen::Vector2f px((q.x() / q.w() + 1.0f) * 0.5f * static_cast<float>(w), (q.y() / q.w() + 1.0f) * 0.5f * static_cast<float>(h));
+      const Eigen::Vector2f px((q.x() / q.w() + 1.0f) * 0.5f * static_cast<float>(w),
+                               (q.y() / q.w() + 1.0f) * 0.5f * static_cast<float>(h));
       lo = lo.cwiseMin(px), hi = hi.cwiseMax(px);
     }
   }
   if (lo.x() > hi.x()) return {0, 0, 0, 0};
-  const int x0 = std::clamp(static_cast<int>(std::floor(lo.x())) - 1, 0, w), y0 = std::clamp(static_cast<int>(std::floor(lo.y())) - 1, 0, h);
+  const int x0 = std::clamp(static_cast<int>(std::floor(lo.x())) - 1, 0, w),
+            y0 = std::clamp(static_cast<int>(std::floor(lo.y())) - 1, 0, h);
   const int x1 = std::clamp(static_cast<int>(std::ceil(hi.x())) + 1, 0, w), y1 = std::clamp(static_cast<int>(std::ceil(hi.y())) + 1, 0, h);
   return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
@@ -659,7 +667,8 @@ void GlRenderer::do_update(const RenderScene& scene) {
     set_lights(scene, false);
   }
   // media that grow or drift are cut again at the scene's time
-  const bool moving = std::any_of(media_.begin(), media_.end(), [](const MediumSpec& m) { return m.growth != 0 || m.drift != Vec2::Zero(); });
+  const bool moving =
+      std::any_of(media_.begin(), media_.end(), [](const MediumSpec& m) { return m.growth != 0 || m.drift != Vec2::Zero(); });
   if (fog() && moving && scene.time != fog_time_) {
     context_.make_current();
     upload_fog(fog_pieces(media_, scene.time), scene.time);
@@ -757,7 +766,9 @@ void GlRenderer::blur(GLuint src_tex, GLuint tmp_fbo, GLuint tmp_tex, GLuint dst
     blur_weights_.assign(static_cast<std::size_t>(radius) + 1, 0.0f);
     double sum = 0;
     for (int i = 0; i <= radius; ++i) sum += (i == 0 ? 1.0 : 2.0) * std::exp(-0.5 * i * i / (sigma * sigma));
-    for (int i = 0; i <= radius; ++i) blur_weights_[static_cast<std::size_t>(i)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)) / sum);
+    for (int i = 0; i <= radius; ++i) {
+      blur_weights_[static_cast<std::size_t>(i)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)) / sum);
+    }
     blur_sigma_ = sigma;
   }
   const int radius = std::max(1, static_cast<int>(blur_weights_.size()) - 1);

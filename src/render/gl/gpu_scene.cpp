@@ -19,7 +19,9 @@ struct Vertex {
 Eigen::AlignedBox3d transformed(const Eigen::AlignedBox3d& box, const Eigen::Matrix4f& X) {
   Eigen::AlignedBox3d out;
   if (box.isEmpty()) return out;
-  for (int c = 0; c < 8; ++c) out.extend((X * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).cast<float>().homogeneous()).head<3>().cast<double>());
+  for (int c = 0; c < 8; ++c) {
+    out.extend((X * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).cast<float>().homogeneous()).head<3>().cast<double>());
+  }
   return out;
 }
 

@@ -9,7 +9,8 @@ namespace rescuesim::gl::shaders {
 
 const char* const kFogFunctions = R"(
 #if MEDIA_PIECES > 0
-uniform vec4 u_fog_edge[MEDIA_PIECES * MEDIA_SIDES];  // (nx, ny, s): a side n.p <= c of a piece's footprint as s = n.eye - c for this view (m)
+// u_fog_edge: (nx, ny, s), a side n.p <= c of a piece's footprint as s = n.eye - c for this view (m)
+uniform vec4 u_fog_edge[MEDIA_PIECES * MEDIA_SIDES];
 uniform vec4 u_fog_slab[MEDIA_PIECES];                // bottom - eye z, top - eye z (m)
 uniform vec4 u_fog_sigma[MEDIA_PIECES];               // extinction (1/m): visible, near infrared, long-wave infrared; scattering albedo
 #endif
@@ -24,9 +25,10 @@ uniform vec4 u_fog_box_sigma[MEDIA_BOXES];            // as u_fog_sigma
 // visible, near infrared, long-wave infrared, and in w the visible depth weighted by each
 // medium's scattering albedo. A box (a rectangular footprint, turned or not) clips the segment
 // with the inverse of d in its own frame (three slabs: a rotation of d and no division of its
-// own; for a box along the world's axes the rotation is exact and changes nothing); any other piece against its floor-to-top slab and its sides
-// (Cyrus-Beck, a division per side). Every piece has MEDIA_SIDES sides (padded with ones that
-// hold everything), so the loops have constant bounds and constant uniform indices.
+// own; for a box along the world's axes the rotation is exact and changes nothing); any other
+// piece against its floor-to-top slab and its sides (Cyrus-Beck, a division per side). Every
+// piece has MEDIA_SIDES sides (padded with ones that hold everything), so the loops have
+// constant bounds and constant uniform indices.
 // Every fragment of a program with media pays for this, so the cameras take their clear
 // programs when no medium is in view, and the sky pass is scissored to the media's window. A
 // window test here (skip pixels outside it) was slower, not faster, on llvmpipe, which runs both

@@ -64,7 +64,8 @@ class GlfwViewerWindow final : public ViewerWindow {
     glfwSetErrorCallback(on_glfw_error);
     if (glfwInit() != GLFW_TRUE) {
       g_window_open = false;
-      throw Error(SourceRef{"", 0, "ViewerWindow::open"}, fmt::format("no display: {}", g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error));
+      throw Error(SourceRef{"", 0, "ViewerWindow::open"},
+                  fmt::format("no display: {}", g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error));
     }
     // a core 3.3 context is what ImGui's OpenGL 3 backend and every platform (macOS too) offer
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);

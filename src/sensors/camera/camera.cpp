@@ -264,8 +264,8 @@ std::size_t check_image(const msg::Image& m, std::initializer_list<const char*> 
   for (const char* e : encodings) known = known || m.encoding == e;
   if (!known) throw Error(SourceRef{"", 0, who}, fmt::format("cannot decode an image with encoding '{}'", m.encoding));
   if (m.step < m.width * bytes || m.data.size() < static_cast<std::size_t>(m.height) * m.step) {
-    throw Error(SourceRef{"", 0, who}, fmt::format("a {}x{} {} image needs {} bytes per row and {} rows of data", m.width, m.height, m.encoding,
-                                                   m.width * bytes, m.height));
+    throw Error(SourceRef{"", 0, who}, fmt::format("a {}x{} {} image needs {} bytes per row and {} rows of data", m.width, m.height,
+                                                   m.encoding, m.width * bytes, m.height));
   }
   return bytes;
 }
@@ -333,7 +333,9 @@ ThermalImage thermal_image_of(const msg::Image& m) {
   img.height = static_cast<int>(m.height);
   img.kelvin.resize(static_cast<std::size_t>(m.width) * m.height);
   for (std::uint32_t y = 0; y < m.height; ++y) {
-    for (std::uint32_t x = 0; x < m.width; ++x) img.kelvin[static_cast<std::size_t>(y) * m.width + x] = pixel<std::uint16_t>(m, x, y) * 0.01f;
+    for (std::uint32_t x = 0; x < m.width; ++x) {
+      img.kelvin[static_cast<std::size_t>(y) * m.width + x] = pixel<std::uint16_t>(m, x, y) * 0.01f;
+    }
   }
   return img;
 }

@@ -139,7 +139,8 @@ void RenderCameraService::sample(const World& world, const State& state, const S
   work_.notify_one();
 }
 
-void RenderCameraService::deliver(const World& world, State& state, SimTime now, const std::function<void(TopicId, msg::Message)>& publish) {
+void RenderCameraService::deliver(const World& world, State& state, SimTime now,
+                                  const std::function<void(TopicId, msg::Message)>& publish) {
   for (;;) {
     std::shared_ptr<Job> job;
     {

@@ -155,7 +155,8 @@ async function main() {
   await expectStatus(bad, "advertise wrong schema",
     JSON.stringify({ op: "advertise", channels: [{ id: 6, topic: "/cmd_vel", encoding: "cdr", schemaName: "std_msgs/msg/String" }] }));
   await expectStatus(bad, "advertise bad encoding",
-    JSON.stringify({ op: "advertise", channels: [{ id: 7, topic: "/cmd_vel", encoding: "protobuf", schemaName: "geometry_msgs/msg/Twist" }] }));
+    JSON.stringify({ op: "advertise",
+                     channels: [{ id: 7, topic: "/cmd_vel", encoding: "protobuf", schemaName: "geometry_msgs/msg/Twist" }] }));
   // advertisements that are fine get no reply; commands on them do when they are bad
   bad.ws.send(JSON.stringify({ op: "advertise", channels: [
     { id: 1, topic: "/cmd_vel", encoding: "cdr", schemaName: "geometry_msgs/msg/Twist" },

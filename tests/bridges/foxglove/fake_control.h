@@ -84,8 +84,8 @@ class FakeControl final : public control::SimControl {
   control::SimulatorFeatures features() const override {
     note("features");
     namespace f = control::feature;
-    return {{f::kSimulationReset, f::kSimulationStateGetting, f::kSimulationStateSetting, f::kSimulationStatePause, f::kStepSimulationSingle,
-             f::kStepSimulationMultiple, f::kEntityStateGetting, f::kEntityStateSetting},
+    return {{f::kSimulationReset, f::kSimulationStateGetting, f::kSimulationStateSetting, f::kSimulationStatePause,
+             f::kStepSimulationSingle, f::kStepSimulationMultiple, f::kEntityStateGetting, f::kEntityStateSetting},
             {"urdf", "sdf"},
             "fake"};
   }
@@ -102,7 +102,8 @@ class FakeControl final : public control::SimControl {
   control::Result start_steps(control::StepJob job, bool action) override {
     note("start_steps " + std::to_string(job.steps) + (action ? " action" : ""));
     if (state != control::RunState::paused) {
-      return control::Result::fail(action ? control::code::kIncorrectState : control::code::kOperationFailed, "the simulation is not paused");
+      return control::Result::fail(action ? control::code::kIncorrectState : control::code::kOperationFailed,
+                                   "the simulation is not paused");
     }
     if (job_) return control::Result::fail(control::code::kOperationFailed, "stepping already");
     job_ = std::move(job);

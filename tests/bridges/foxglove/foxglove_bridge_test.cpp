@@ -18,13 +18,13 @@
 
 #include "bridges/foxglove/foxglove_bridge.h"
 #include "bridges/foxglove/server_rig.h"
+#include "import/scenario/scenario.h"
 #include "mission/mission.h"
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
 #include "support/rig.h"
-#include "world/scenario/scenario.h"
 
 namespace rescuesim {
 namespace {
@@ -55,7 +55,8 @@ struct BridgeLine {
 BridgeLine bridge_line(const std::string& out) {
   std::smatch m;
   BridgeLine b;
-  const std::regex re(R"(bridge foxglove: (\d+) messages sent, (\d+) dropped \(slow subscribers\), (\d+) commands received, (\d+) rejected)");
+  const std::regex re(
+      R"(bridge foxglove: (\d+) messages sent, (\d+) dropped \(slow subscribers\), (\d+) commands received, (\d+) rejected)");
   if (std::regex_search(out, m, re)) b = {std::stol(m[1]), std::stol(m[2]), std::stol(m[3]), std::stol(m[4])};
   return b;
 }
@@ -393,13 +394,15 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
             std::string::npos)
       << advertised;
   ASSERT_EQ(statuses["foreign"].size(), 1u) << d["statuses"];
-  EXPECT_NE(statuses["foreign"][0].find("does not take this topic; it takes /slider/cmd_vel (geometry_msgs/msg/Twist), /slider/head/command "
-                                        "(std_msgs/msg/Float64MultiArray), /slider/joint_command (sensor_msgs/msg/JointState), "
-                                        "/rescue/cmd_vel (geometry_msgs/msg/Twist), /rescue/head/command (std_msgs/msg/Float64MultiArray)"),
-            std::string::npos)
+  EXPECT_NE(
+      statuses["foreign"][0].find("does not take this topic; it takes /slider/cmd_vel (geometry_msgs/msg/Twist), /slider/head/command "
+                                  "(std_msgs/msg/Float64MultiArray), /slider/joint_command (sensor_msgs/msg/JointState), "
+                                  "/rescue/cmd_vel (geometry_msgs/msg/Twist), /rescue/head/command (std_msgs/msg/Float64MultiArray)"),
+      std::string::npos)
       << statuses["foreign"][0];
   ASSERT_EQ(statuses["wheel"].size(), 1u) << d["statuses"];
-  EXPECT_NE(statuses["wheel"][0].find("/slider/joint_command: rejected: 'wheel' is a drive wheel"), std::string::npos) << statuses["wheel"][0];
+  EXPECT_NE(statuses["wheel"][0].find("/slider/joint_command: rejected: 'wheel' is a drive wheel"), std::string::npos)
+      << statuses["wheel"][0];
   ASSERT_EQ(statuses["malformed"].size(), 1u) << d["statuses"];
   EXPECT_NE(statuses["malformed"][0].find("position[0]: expected a number"), std::string::npos) << statuses["malformed"][0];
   EXPECT_EQ(d["statuses"].size(), 4u) << d["statuses"];  // nothing about the json and cdr channels or commands
@@ -454,7 +457,8 @@ TEST_F(FoxgloveServer, AMissionsReportsAndDatagramsComeFromAClientToo) {
   // the malformed report: one status error naming the field; nothing charged for it
   ASSERT_EQ(d["statuses"].size(), 1u) << d["statuses"];
   EXPECT_EQ(d["statuses"][0]["phase"], "malformed");
-  EXPECT_NE(d["statuses"][0]["message"].get<std::string>().find("/robot/rescue/report: geometry_msgs/PoseStamped: pose.position.x: expected a number"),
+  EXPECT_NE(d["statuses"][0]["message"].get<std::string>().find(
+                "/robot/rescue/report: geometry_msgs/PoseStamped: pose.position.x: expected a number"),
             std::string::npos)
       << d["statuses"][0];
   EXPECT_EQ(mission.referee().counts()[ReportOutcome::false_report], 0u);
@@ -471,7 +475,8 @@ TEST(FoxgloveCli, PortFlagTakesAnOptionalValue) {
   EXPECT_NE(plain.err.find("127.0.0.1:8765"), std::string::npos) << plain.err;
   // --foxglove 0 and --foxglove=0: a free port
   for (const char* flag : {"--foxglove 0", "--foxglove=0"}) {
-    const auto r = testing::rescuesim(std::string("--log-level info run room.yaml ") + flag + " --duration 0.2 --no-cameras --out out", dir);
+    const auto r =
+        testing::rescuesim(std::string("--log-level info run room.yaml ") + flag + " --duration 0.2 --no-cameras --out out", dir);
     EXPECT_EQ(r.exit_code, 0) << flag << r.err;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(listening on ws://127\.0\.0\.1:(\d+))"))) << flag << r.err;
@@ -496,8 +501,8 @@ TEST(FoxgloveProbe, TheBenchsClientReportsEveryScanWithItsStamp) {
   testing::write_room(dir);
   Background sim(dir, "run room.yaml --foxglove=0 --no-cameras --duration 60 --out out");
   ASSERT_GT(sim.port(), 0) << sim.err();
-  const auto r = testing::run_command(std::string("'") + RESCUESIM_EXE + "' bench-probe --transport foxglove --port " + std::to_string(sim.port()) +
-                             " --topic /scan=sensor_msgs/LaserScan --seconds 3");
+  const auto r = testing::run_command(std::string("'") + RESCUESIM_EXE + "' bench-probe --transport foxglove --port " +
+                                      std::to_string(sim.port()) + " --topic /scan=sensor_msgs/LaserScan --seconds 3");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("probe ready"), std::string::npos) << r.err;
   std::vector<long long> stamps;

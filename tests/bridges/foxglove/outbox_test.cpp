@@ -106,7 +106,9 @@ Outcome run_through_bridge(Rig& rig, FoxgloveOptions options, double last_x, int
   while (bridge.stats().sent == 0 && !done && std::chrono::steady_clock::now() < deadline) {
     rig.pose(rig.probe, 0);
     const auto next = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-    while (bridge.stats().sent == 0 && !done && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    while (bridge.stats().sent == 0 && !done && std::chrono::steady_clock::now() < next) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
   }
   EXPECT_GT(bridge.stats().sent, 0u) << "the client never subscribed";
 

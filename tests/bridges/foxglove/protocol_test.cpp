@@ -69,13 +69,14 @@ TEST(FoxgloveProtocol, StatusSurvivesInvalidUtf8FromAClient) {
 }
 
 TEST(FoxgloveProtocol, ParsesSubscribeUnsubscribeAndClientAdvertise) {
-  const auto sub = std::get<Subscribe>(parse_client_text(R"({"op":"subscribe","subscriptions":[{"id":0,"channelId":3},{"id":1,"channelId":5}]})"));
+  const auto sub =
+      std::get<Subscribe>(parse_client_text(R"({"op":"subscribe","subscriptions":[{"id":0,"channelId":3},{"id":1,"channelId":5}]})"));
   ASSERT_EQ(sub.subscriptions.size(), 2u);
   EXPECT_EQ(sub.subscriptions[1], std::make_pair(1u, 5u));
   const auto unsub = std::get<Unsubscribe>(parse_client_text(R"({"op":"unsubscribe","subscriptionIds":[0,1]})"));
   EXPECT_EQ(unsub.subscription_ids, (std::vector<std::uint32_t>{0, 1}));
-  const auto adv = std::get<ClientAdvertise>(
-      parse_client_text(R"({"op":"advertise","channels":[{"id":2,"topic":"/cmd_vel","encoding":"json","schemaName":"geometry_msgs/msg/Twist"}]})"));
+  const auto adv = std::get<ClientAdvertise>(parse_client_text(
+      R"({"op":"advertise","channels":[{"id":2,"topic":"/cmd_vel","encoding":"json","schemaName":"geometry_msgs/msg/Twist"}]})"));
   ASSERT_EQ(adv.channels.size(), 1u);
   EXPECT_EQ(adv.channels[0].topic, "/cmd_vel");
   EXPECT_EQ(adv.channels[0].encoding, "json");
@@ -108,7 +109,8 @@ TEST(FoxgloveProtocol, ClientBinaryFramesAreCheckedBeforeUse) {
   const std::vector<std::uint8_t> short_frame = {0x01, 0x2a, 0};
   EXPECT_NE(error_of([&] { parse_client_binary(short_frame); }).find("at least 5 bytes"), std::string::npos);
   const std::vector<std::uint8_t> unknown = {0x7f, 0, 0, 0, 0};
-  EXPECT_EQ(error_of([&] { parse_client_binary(unknown); }), "unknown binary opcode 0x7f (accepted: 0x01 client message data, 0x02 service call request)");
+  EXPECT_EQ(error_of([&] { parse_client_binary(unknown); }),
+            "unknown binary opcode 0x7f (accepted: 0x01 client message data, 0x02 service call request)");
 }
 
 TEST(FoxgloveProtocol, ServiceCallRequestIsIdsEncodingAndPayload) {
@@ -147,8 +149,9 @@ TEST(FoxgloveProtocol, MalformedServiceCallsKeepTheirIdsWhenTheyHaveThem) {
     } catch (const ServiceCallError& e) {
       EXPECT_EQ(e.service, 3u);
       EXPECT_EQ(e.call, 9u);
-      EXPECT_EQ(e.message(), frame == &ten ? "a service call request needs at least 13 bytes (opcode, service id, call id, encoding length), got 10"
-                                           : "service call request: encoding length 4294967295 runs past the end (2 bytes left)");
+      EXPECT_EQ(e.message(), frame == &ten
+                                 ? "a service call request needs at least 13 bytes (opcode, service id, call id, encoding length), got 10"
+                                 : "service call request: encoding length 4294967295 runs past the end (2 bytes left)");
     }
   }
 }
@@ -266,8 +269,10 @@ TEST(FoxgloveProtocol, MalformedJointStatesAreErrorsThatSayWhere) {
   }
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of("[1]")); }).find("JSON object"), std::string::npos);
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"position":[0.1]})")); }).find("missing 'name'"), std::string::npos);
-  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":"lift"})")); }).find("name: expected an array"), std::string::npos);
-  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":[3]})")); }).find("name[0]: expected a string"), std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":"lift"})")); }).find("name: expected an array"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":[3]})")); }).find("name[0]: expected a string"),
+            std::string::npos);
   EXPECT_NE(error_of([] { decode_joint_state("json", bytes_of(R"({"name":["lift"],"position":["high"]})")); })
                 .find("sensor_msgs/JointState: position[0]: expected a number"),
             std::string::npos);

@@ -133,7 +133,8 @@ TEST_F(FoxgloveServices, PanelCallsPauseStepReadAndTeleportThroughSimControl) {
       {"wrongShape", "/set_simulation_state: state: expected an object {\"state\": N} (a SimulationState), got 2"},
       {"unknownField", "/step_simulation: request: unknown field 'stepz' (fields: steps)"},
       {"unknownId", "unknown service id 99 (offered: 1 /reset_simulation, 2 /get_simulation_state, 3 /set_simulation_state, "
-                    "4 /step_simulation, 5 /get_entities, 6 /get_entity_state, 7 /set_entity_state, 8 /get_simulator_features, 9 /spawn_entity, 10 /delete_entity)"},
+                    "4 /step_simulation, 5 /get_entities, 6 /get_entity_state, 7 /set_entity_state, 8 /get_simulator_features, 9 "
+                    "/spawn_entity, 10 /delete_entity)"},
       {"wrongEncoding", "/get_simulation_state: encoding 'cdr' is not supported (its requests are json)"},
       {"truncated", "service call request: encoding length 4294967295 runs past the end (2 bytes left)"},
   };

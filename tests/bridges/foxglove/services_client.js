@@ -85,7 +85,8 @@ async function calls() {
         schemas[k] = `unparsable: ${e.message}`;
       }
     }
-    return { id: s.id, name: s.name, type: s.type, request: { ...s.request, schema: undefined }, response: { ...s.response, schema: undefined },
+    return { id: s.id, name: s.name, type: s.type,
+             request: { ...s.request, schema: undefined }, response: { ...s.response, schema: undefined },
              schemaTypes: schemas, requestSchema: s.requestSchema ?? null };
   });
   const r = out.results;
@@ -97,7 +98,8 @@ async function calls() {
   r.robot = await call(c, "/get_entity_state", { entity: "robot" });
   r.nobody = await call(c, "/get_entity_state", { entity: "nobody" });
   r.entities = await call(c, "/get_entities", { filters: { filter: "rob.*", categories: [{ category: 1 }] } });
-  r.teleport = await call(c, "/set_entity_state", { entity: "robot", state: { pose: { position: { x: 2, y: 1, z: 0 }, orientation: { z: 0, w: 1 } } } });
+  r.teleport = await call(c, "/set_entity_state",
+                          { entity: "robot", state: { pose: { position: { x: 2, y: 1, z: 0 }, orientation: { z: 0, w: 1 } } } });
   r.reset = await call(c, "/reset_simulation", {});
   r.features = await call(c, "/get_simulator_features", {});
   // bad calls: each answered with a serviceCallFailure

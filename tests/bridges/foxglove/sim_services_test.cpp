@@ -148,10 +148,12 @@ TEST(FoxgloveSimServices, SetEntityStateSetsWhatIsGivenOrWhatTheFlagsSay) {
   EXPECT_FALSE(r.set_pose);
   EXPECT_TRUE(r.set_twist);
   // null in a float field is NaN, for SimControl to refuse (INVALID_POSE)
-  r = std::get<SetEntityStateRequest>(decode(SimService::set_entity_state, R"({"entity": "robot", "state": {"pose": {"position": {"x": null}}}})"));
+  r = std::get<SetEntityStateRequest>(
+      decode(SimService::set_entity_state, R"({"entity": "robot", "state": {"pose": {"position": {"x": null}}}})"));
   EXPECT_TRUE(std::isnan(r.state.pose.p.x()));
-  EXPECT_EQ(error_of(SimService::set_entity_state, R"({"entity": "robot", "state": {}})"),
-            "/set_entity_state: nothing to set: give state.pose, state.twist or state.acceleration (or set_pose, set_twist, set_acceleration)");
+  EXPECT_EQ(
+      error_of(SimService::set_entity_state, R"({"entity": "robot", "state": {}})"),
+      "/set_entity_state: nothing to set: give state.pose, state.twist or state.acceleration (or set_pose, set_twist, set_acceleration)");
 }
 
 TEST(FoxgloveSimServices, MalformedRequestsNameTheServiceAndTheField) {
@@ -159,7 +161,8 @@ TEST(FoxgloveSimServices, MalformedRequestsNameTheServiceAndTheField) {
   EXPECT_EQ(error_of(SimService::set_simulation_state, "[1]"), "/set_simulation_state: request: expected an object, got [1]");
   EXPECT_EQ(error_of(SimService::set_simulation_state, R"({"state": 2})"),
             "/set_simulation_state: state: expected an object {\"state\": N} (a SimulationState), got 2");
-  EXPECT_EQ(error_of(SimService::set_simulation_state, "{}"), "/set_simulation_state: state: missing (a SimulationState: {\"state\": 2} pauses)");
+  EXPECT_EQ(error_of(SimService::set_simulation_state, "{}"),
+            "/set_simulation_state: state: missing (a SimulationState: {\"state\": 2} pauses)");
   EXPECT_EQ(error_of(SimService::set_simulation_state, R"({"state": {"state": "paused"}})"),
             "/set_simulation_state: state.state: expected an integer 0..5 (a SimulationState: 0 STOPPED, 1 PLAYING, 2 PAUSED, 3 QUITTING, "
             "4 NO_WORLD, 5 LOADING_WORLD), got \"paused\"");
@@ -171,7 +174,8 @@ TEST(FoxgloveSimServices, MalformedRequestsNameTheServiceAndTheField) {
             "/step_simulation: steps: expected an integer 0..18446744073709551615, got 1.5");
   EXPECT_EQ(error_of(SimService::reset_simulation, R"({"scope": 256})"),
             "/reset_simulation: scope: expected an integer 0..255 (a bit field), got 256");
-  EXPECT_EQ(error_of(SimService::get_simulation_state, R"({"x": 1})"), "/get_simulation_state: request: unknown field 'x' (it has no fields)");
+  EXPECT_EQ(error_of(SimService::get_simulation_state, R"({"x": 1})"),
+            "/get_simulation_state: request: unknown field 'x' (it has no fields)");
   EXPECT_EQ(error_of(SimService::get_entity_state, "{}"), "/get_entity_state: entity: missing (a string)");
   EXPECT_EQ(error_of(SimService::get_entity_state, R"({"entity": 7})"), "/get_entity_state: entity: expected a string, got 7");
   EXPECT_EQ(error_of(SimService::get_entities, R"({"filters": {"categories": [1]}})"),
@@ -267,8 +271,9 @@ TEST(FoxgloveSimServices, CallsRunOnTheControlAndStepsAnswerWhenDone) {
   run_sim_request(set, fake, reply);
   EXPECT_EQ(fake.last_set.linear, Vec3(0.1, 0, 0));
   EXPECT_EQ(replies.size(), 9u);
-  EXPECT_EQ(fake.calls, (std::vector<std::string>{"start_steps 3", "set_run_state 2", "start_steps 3", "entity_state robot", "entity_state nobody",
-                                                  "run_state", "reset 2", "features", "set_entity_state robot twist"}));
+  EXPECT_EQ(fake.calls,
+            (std::vector<std::string>{"start_steps 3", "set_run_state 2", "start_steps 3", "entity_state robot", "entity_state nobody",
+                                      "run_state", "reset 2", "features", "set_entity_state robot twist"}));
 }
 
 
@@ -288,7 +293,8 @@ TEST(FoxgloveSimServices, SpawnTakesBothWireVersionsAndDeleteNamesItsEntity) {
   EXPECT_EQ(a.pose.p, Vec3(3, 1, 0));
   EXPECT_EQ(a.pose.q.w(), 1.0);  // the orientation left out is the identity
   // 2.x: a Resource
-  const SimRequest two = decode_sim_request(SimService::spawn_entity, bytes(R"({"name": "b", "resource": {"resource_string": "<robot/>"}})"));
+  const SimRequest two =
+      decode_sim_request(SimService::spawn_entity, bytes(R"({"name": "b", "resource": {"resource_string": "<robot/>"}})"));
   EXPECT_EQ(std::get<SpawnEntityRequest>(two).spawn.resource_string, "<robot/>");
   EXPECT_TRUE(std::get<SpawnEntityRequest>(two).spawn.uri.empty());
   try {
@@ -305,7 +311,8 @@ TEST(FoxgloveSimServices, SpawnTakesBothWireVersionsAndDeleteNamesItsEntity) {
   run_sim_request(DeleteEntityRequest{"p3at_1"}, fake, [&](SimResponse r) { replies.push_back(std::move(r)); });
   ASSERT_EQ(replies.size(), 2u);
   EXPECT_EQ(fake.calls, (std::vector<std::string>{"spawn p3at rescue_robot robot 3", "remove p3at_1"}));
-  EXPECT_EQ(json::parse(encode_sim_response(replies[0])), json::parse(R"({"result": {"result": 1, "error_message": ""}, "entity_name": "p3at_1"})"));
+  EXPECT_EQ(json::parse(encode_sim_response(replies[0])),
+            json::parse(R"({"result": {"result": 1, "error_message": ""}, "entity_name": "p3at_1"})"));
   EXPECT_EQ(json::parse(encode_sim_response(replies[1])), json::parse(R"({"result": {"result": 1, "error_message": ""}})"));
 }
 

@@ -139,7 +139,9 @@ TEST_F(FoxgloveSpawn, ASpawnedRobotsChannelsAreAdvertisedAndADeletedOnesUnadvert
   const auto& stamps = d["scanStamps"];
   ASSERT_EQ(stamps.size(), 11u);
   EXPECT_EQ(stamps[0].get<std::int64_t>(), spawned_at.ns + 5'000'000);
-  for (std::size_t i = 1; i < stamps.size(); ++i) EXPECT_EQ(stamps[i].get<std::int64_t>(), spawned_at.ns + static_cast<std::int64_t>(i) * 100'000'000) << i;
+  for (std::size_t i = 1; i < stamps.size(); ++i) {
+    EXPECT_EQ(stamps[i].get<std::int64_t>(), spawned_at.ns + static_cast<std::int64_t>(i) * 100'000'000) << i;
+  }
   // every channel of the deleted robot unadvertised, nothing else; nothing after that
   std::set<std::uint32_t> unadvertised;
   for (const auto& id : d["unadvertised"]) unadvertised.insert(id.get<std::uint32_t>());

@@ -21,8 +21,8 @@ std::vector<std::uint8_t> quarter_second_file(WriterOptions o, const std::functi
   for (int i = 0; i < 40; ++i) {
     if (before_each) before_each(i);
     const std::uint8_t data[4] = {static_cast<std::uint8_t>(i), 0, 0, 0};
-    w.write_message(c, static_cast<std::uint32_t>(i + 1), static_cast<std::uint64_t>(i) * kSecond / 4, static_cast<std::uint64_t>(i) * kSecond / 4,
-                    data);
+    w.write_message(c, static_cast<std::uint32_t>(i + 1), static_cast<std::uint64_t>(i) * kSecond / 4,
+                    static_cast<std::uint64_t>(i) * kSecond / 4, data);
   }
   w.close();
   return bytes;

@@ -10,7 +10,8 @@ namespace {
 
 /// Records `args` into dir/name with the rescuesim executable.
 testing::CommandResult record(const std::filesystem::path& dir, const std::string& name, const std::string& args) {
-  return testing::rescuesim("run -q " + args + " --record '" + (dir / name).string() + "' --out '" + (dir / (name + ".out")).string() + "'");
+  return testing::rescuesim("run -q " + args + " --record '" + (dir / name).string() + "' --out '" + (dir / (name + ".out")).string() +
+                            "'");
 }
 
 TEST(RecordingDeterminism, SameSeedSameBytesWithCameras) {
@@ -24,7 +25,9 @@ TEST(RecordingDeterminism, SameSeedSameBytesWithCameras) {
   EXPECT_TRUE(bytes == testing::read_bytes(dir / "b.mcap")) << "the two recordings differ";
   mcap::McapReader r(dir / "a.mcap");
   std::uint64_t images = 0;
-  for (const auto& [id, n] : r.statistics()->channel_message_counts) images += r.channels().at(id).topic == "/camera/color/image_raw" ? n : 0;
+  for (const auto& [id, n] : r.statistics()->channel_message_counts) {
+    images += r.channels().at(id).topic == "/camera/color/image_raw" ? n : 0;
+  }
   EXPECT_GE(images, 10u);
 }
 

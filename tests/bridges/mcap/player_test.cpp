@@ -11,6 +11,7 @@
 #include "bridges/mcap/mcap_bridge.h"
 #include "mcap_test_support.h"
 #include "robots/rescue_robot.h"
+#include "run_record/run_record.h"
 #include "session/session.h"
 
 namespace rescuesim {
@@ -38,16 +39,18 @@ class Player : public ::testing::Test {
 };
 
 TEST_F(Player, RebuildsTheSimulationWithTheRecordedTopics) {
-  McapPlayer player(dir_ / "run.mcap", builtin_models());
-  EXPECT_EQ(player.run().scenario.seed, 7u);
-  EXPECT_EQ(player.run().world.robots.size(), 1u);
+  RecordedRun run;
+  McapPlayer player(dir_ / "run.mcap", rebuild_into(run, builtin_models()));
+  EXPECT_EQ(run.scenario.seed, 7u);
+  EXPECT_EQ(player.world().robots.size(), 1u);
   EXPECT_EQ(player.host().time().ns, 0);
   for (const auto& [id, c] : player.reader().channels()) EXPECT_NE(player.host().bus().find(c.topic), kNoTopic) << c.topic;
   EXPECT_TRUE(player.host().bus().topic(player.host().bus().find("/tf_static")).latched);
 }
 
 TEST_F(Player, PublishesEveryMessageInOrderWithTheClockFollowing) {
-  McapPlayer player(dir_ / "run.mcap", builtin_models());
+  RecordedRun run;
+  McapPlayer player(dir_ / "run.mcap", rebuild_into(run, builtin_models()));
   ReplayHost& sim = player.host();
   std::map<std::string, std::uint64_t> counts;
   std::vector<msg::LaserScan> scans;
@@ -77,7 +80,8 @@ TEST_F(Player, PublishesEveryMessageInOrderWithTheClockFollowing) {
 }
 
 TEST_F(Player, StopsWhenAsked) {
-  McapPlayer player(dir_ / "run.mcap", builtin_models());
+  RecordedRun run;
+  McapPlayer player(dir_ / "run.mcap", rebuild_into(run, builtin_models()));
   std::atomic<bool> stop{false};
   std::uint64_t n = 0;
   player.host().bus().subscribe("", [&](const Topic&, const msg::Message&) {
@@ -89,7 +93,8 @@ TEST_F(Player, StopsWhenAsked) {
 }
 
 TEST_F(Player, RecordingAReplayGivesTheSameMessages) {
-  McapPlayer player(dir_ / "run.mcap", builtin_models());
+  RecordedRun run;
+  McapPlayer player(dir_ / "run.mcap", rebuild_into(run, builtin_models()));
   McapOptions o;
   o.path = dir_ / "replayed.mcap";
   McapRecorder recorder(o);
@@ -102,7 +107,8 @@ TEST_F(Player, RecordingAReplayGivesTheSameMessages) {
 
 TEST_F(Player, TheReplayHostHasNoSimulationAndDiscardsCommands) {
   // the player and its ReplayHost alone: a Bus, the recorded world and a clock, no physics
-  McapPlayer player(dir_ / "run.mcap", builtin_models());
+  RecordedRun run;
+  McapPlayer player(dir_ / "run.mcap", rebuild_into(run, builtin_models()));
   BridgeHost& host = player.host();
   EXPECT_EQ(host.time().ns, 0);
   EXPECT_EQ(host.world().robots.size(), 1u);
@@ -116,8 +122,8 @@ TEST_F(Player, TheReplayHostHasNoSimulationAndDiscardsCommands) {
   // commands are taken (a bridge counts them received) and discarded: nothing is simulated
   msg::Twist t;
   t.linear.x() = 0.5;
-  EXPECT_TRUE(host.submit_velocity(0, t));
-  EXPECT_TRUE(host.submit_head(0, {0, 0, 0, 0}));
+  EXPECT_TRUE(host.command_velocity(0, t));
+  EXPECT_TRUE(host.command_head(0, {0, 0, 0, 0}));
   EXPECT_EQ(player.host().discarded(), 2u);
   // the clock is the log time of the message being published
   std::int64_t clock_at_last_scan = -1;
@@ -133,7 +139,8 @@ TEST(PlayerBadInput, ForeignMcapIsNotARescuesimRecording) {
     w.add_channel(w.add_schema("std_msgs/msg/String", "ros2msg", "string data"), "/chatter", "cdr");
   }
   try {
-    McapPlayer player(dir / "foreign.mcap", builtin_models());
+    RecordedRun run;
+    McapPlayer player(dir / "foreign.mcap", rebuild_into(run, builtin_models()));
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("foreign.mcap: not a rescuesim recording"), std::string::npos) << e.what();

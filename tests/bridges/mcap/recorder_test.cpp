@@ -8,10 +8,10 @@
 
 #include <map>
 
-#include "bridges/mcap/run_record.h"
 #include "mcap_test_support.h"
 #include "msgs/serialize.h"
 #include "robots/rescue_robot.h"
+#include "run_record/run_record.h"
 #include "session/session.h"
 #include "sim/simulation.h"
 #include "sim/slider_robot.h"
@@ -211,7 +211,8 @@ TEST(RecorderDescription, ARobotsDescriptionIsALatchedStringChannel) {
   sim.step_until(SimTime::from_seconds(0.5));
   recorder.stop();
   mcap::McapReader r(o.path);
-  const auto c = std::find_if(r.channels().begin(), r.channels().end(), [](const auto& c) { return c.second.topic == "/robot_description"; });
+  const auto c =
+      std::find_if(r.channels().begin(), r.channels().end(), [](const auto& c) { return c.second.topic == "/robot_description"; });
   ASSERT_NE(c, r.channels().end());
   const mcap::Schema& schema = r.schemas().at(c->second.schema_id);
   EXPECT_EQ(schema.name, "std_msgs/msg/String");
@@ -221,7 +222,9 @@ TEST(RecorderDescription, ARobotsDescriptionIsALatchedStringChannel) {
   EXPECT_NE(c->second.metadata[0].second.find("durability: 1"), std::string::npos);  // transient local, like /tf_static
   std::vector<std::string> texts;
   r.read_messages([&](const mcap::Channel& ch, const mcap::MessageView& m) {
-    if (ch.topic == "/robot_description") texts.push_back(std::get<msg::String>(msg::from_cdr(*msg::find_type("std_msgs/String"), m.data)).data);
+    if (ch.topic == "/robot_description") {
+      texts.push_back(std::get<msg::String>(msg::from_cdr(*msg::find_type("std_msgs/String"), m.data)).data);
+    }
     return true;
   });
   ASSERT_EQ(texts.size(), 1u);

@@ -23,7 +23,9 @@ std::string js_missing() {
   if (testing::run_command("node --version").exit_code != 0) return "node is not installed";
   const auto modules = std::filesystem::path(RESCUESIM_JS_DIR) / "node_modules";
   for (const char* m : {"@mcap/core", "@mcap/nodejs", "@mcap/support", "@foxglove/rosmsg", "@foxglove/rosmsg2-serialization"}) {
-    if (!std::filesystem::exists(modules / m)) return std::string(m) + " is not in " + modules.string() + " (scripts/install-test-js.sh installs it)";
+    if (!std::filesystem::exists(modules / m)) {
+      return std::string(m) + " is not in " + modules.string() + " (scripts/install-test-js.sh installs it)";
+    }
   }
   return "";
 }
@@ -31,8 +33,8 @@ std::string js_missing() {
 /// What read_recording.js saw in `file` (`mode`: "" or "--stream").
 json read_with_node(const std::filesystem::path& file, const std::string& mode = "") {
   // a time limit, so a stuck reader fails the test instead of hanging it
-  const auto r = testing::run_command("NODE_PATH='" + std::string(RESCUESIM_JS_DIR) + "/node_modules' timeout 120 node '" + kScript.string() + "' '" +
-                                      file.string() + "' " + mode);
+  const auto r = testing::run_command("NODE_PATH='" + std::string(RESCUESIM_JS_DIR) + "/node_modules' timeout 120 node '" +
+                                      kScript.string() + "' '" + file.string() + "' " + mode);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return json::parse(r.out);
 }

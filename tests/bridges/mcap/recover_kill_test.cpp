@@ -39,8 +39,8 @@ TEST(RecoverKilledRun, LosesAtMostAChunkBudgetOfSimTime) {
   const std::string run = std::string("exec '") + RESCUESIM_EXE + "' run --realtime --duration 600 --no-cameras --record '" + rec +
                           "' --record-chunk-seconds 1 --record-chunk-wall-seconds 1 --out '" + (dir / "out").string() + "'";
   const auto r = testing::run_command("script -qfc \"" + run + "\" '" + log + "' </dev/null >/dev/null 2>&1 & s=$!; p=; " +
-                                      "for i in $(seq 1 1200); do p=$(pgrep -P $s); " +
-                                      "t=$(tr '\\r' '\\n' < '" + log + "' 2>/dev/null | grep -o '[0-9.]*/600 s' | tail -1 | cut -d/ -f1); " +
+                                      "for i in $(seq 1 1200); do p=$(pgrep -P $s); " + "t=$(tr '\\r' '\\n' < '" + log +
+                                      "' 2>/dev/null | grep -o '[0-9.]*/600 s' | tail -1 | cut -d/ -f1); " +
                                       "[ -n \"$t\" ] && awk -v t=\"$t\" 'BEGIN { exit !(t >= 2.5) }' && break; sleep 0.05; done; " +
                                       "kill -STOP $p; sleep 0.5; kill -9 $p; sleep 0.2; kill -9 $s 2>/dev/null; wait $s; true");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -96,7 +96,8 @@ TEST_F(Recover, ACutThroughAChunkKeepsTheChunksBeforeIt) {
   EXPECT_EQ(r.messages_per_topic.at("/b"), 12u);
   EXPECT_EQ(r.kept_bytes, chunks_[5].chunk_start_offset);
   EXPECT_EQ(r.dropped_bytes(), 20u);
-  EXPECT_NE(r.dropped_reason.find("offset " + std::to_string(chunks_[5].chunk_start_offset) + " (Chunk)"), std::string::npos) << r.dropped_reason;
+  EXPECT_NE(r.dropped_reason.find("offset " + std::to_string(chunks_[5].chunk_start_offset) + " (Chunk)"), std::string::npos)
+      << r.dropped_reason;
   expect_first_messages(25);
 }
 
@@ -163,7 +164,8 @@ TEST_F(Recover, RefusesWhatIsNotARecording) {
 
 TEST_F(Recover, TheCommandWritesFileMcapAndSaysWhatItDropped) {
   const auto part = dir_ / "run.mcap.part";
-  testing::write_bytes(part, std::vector<std::uint8_t>(whole_.begin(), whole_.begin() + static_cast<long>(chunks_[5].chunk_start_offset + 20)));
+  testing::write_bytes(part,
+                       std::vector<std::uint8_t>(whole_.begin(), whole_.begin() + static_cast<long>(chunks_[5].chunk_start_offset + 20)));
   std::filesystem::remove(dir_ / "run.mcap");
   const auto r = testing::rescuesim("recover '" + part.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -190,7 +192,8 @@ TEST_F(Recover, TheCommandRefusesBadInputWithExitCode2) {
 
 TEST_F(Recover, ReplayOfAPartFileSaysToRecoverIt) {
   const auto part = dir_ / "cut.mcap.part";
-  testing::write_bytes(part, std::vector<std::uint8_t>(whole_.begin(), whole_.begin() + static_cast<long>(chunks_[5].chunk_start_offset + 20)));
+  testing::write_bytes(part,
+                       std::vector<std::uint8_t>(whole_.begin(), whole_.begin() + static_cast<long>(chunks_[5].chunk_start_offset + 20)));
   const auto r = testing::rescuesim("replay '" + part.string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;

@@ -21,14 +21,16 @@ TEST(ReplayFoxglove, ClientSeesTheRecording) {
   if (testing::rescuesim("replay --help").out.find("--foxglove") == std::string::npos) GTEST_SKIP() << "built without the Foxglove bridge";
   const auto dir = testing::temp_dir("mcap-replay-foxglove");
   const std::string file = (dir / "run.mcap").string();
-  ASSERT_EQ(testing::rescuesim("run --duration 4 --no-cameras -q --record '" + file + "' --out '" + (dir / "out").string() + "'").exit_code, 0);
+  ASSERT_EQ(testing::rescuesim("run --duration 4 --no-cameras -q --record '" + file + "' --out '" + (dir / "out").string() + "'").exit_code,
+            0);
 
   // the client starts first and retries until the server is up; the replay takes 4 s
   const int port = free_local_port();  // a port the kernel has just handed out, not one from the pid
   const std::string script = std::string(RESCUESIM_SOURCE_DIR) + "/tests/bridges/mcap/replay_foxglove.js";
-  const auto r = testing::run_command("( NODE_PATH='" + modules.string() + "' timeout 60 node '" + script + "' ws://127.0.0.1:" +
-                                      std::to_string(port) + " 6 > '" + (dir / "client.json").string() + "' & c=$!; sleep 0.5; '" +
-                                      RESCUESIM_EXE + "' replay '" + file + "' --foxglove " + std::to_string(port) + " -q; e=$?; wait $c; exit $e )");
+  const auto r = testing::run_command("( NODE_PATH='" + modules.string() + "' timeout 60 node '" + script +
+                                      "' ws://127.0.0.1:" + std::to_string(port) + " 6 > '" + (dir / "client.json").string() +
+                                      "' & c=$!; sleep 0.5; '" + RESCUESIM_EXE + "' replay '" + file + "' --foxglove " +
+                                      std::to_string(port) + " -q; e=$?; wait $c; exit $e )");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("commands received through foxglove are ignored"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("replayed 2374 messages"), std::string::npos) << r.out;

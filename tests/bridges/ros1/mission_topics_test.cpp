@@ -80,20 +80,26 @@ TEST(Ros1MissionTopics, ReportsDatagramsAndRelaysFromRostopicPub) {
 
   // a report 1 m from the victim (0.6, 0.8) in the map frame: accepted, +1
   const std::string report = "rostopic pub -1 /rescue/report geometry_msgs/PoseStamped \"{header: {frame_id: map}, pose: {position: {x: " +
-                             std::to_string(victim.x() + 0.6) + ", y: " + std::to_string(victim.y() + 0.8) + ", z: " + std::to_string(victim.z()) + "}}}\"";
+                             std::to_string(victim.x() + 0.6) + ", y: " + std::to_string(victim.y() + 0.8) +
+                             ", z: " + std::to_string(victim.z()) + "}}}\"";
   const CommandResult pub = master.run(report, kToolSeconds);
   EXPECT_EQ(pub.exit_code, 0) << pub.err;
   ASSERT_TRUE(wait_until([&] { return count(answers) >= 1; }, kPatience)) << "no answer to the report";
 
   // a datagram to the base and a relay drop
-  EXPECT_EQ(master.run("rostopic pub -1 /rescue/comms/send std_msgs/String \"data: '{\\\"to\\\": \\\"base\\\", \\\"text\\\": \\\"v1 at 3,0\\\"}'\"",
-                       kToolSeconds).exit_code, 0);
+  EXPECT_EQ(
+      master
+          .run("rostopic pub -1 /rescue/comms/send std_msgs/String \"data: '{\\\"to\\\": \\\"base\\\", \\\"text\\\": \\\"v1 at 3,0\\\"}'\"",
+               kToolSeconds)
+          .exit_code,
+      0);
   EXPECT_EQ(master.run("rostopic pub -1 /rescue/drop_relay std_msgs/String \"data: ''\"", kToolSeconds).exit_code, 0);
   ASSERT_TRUE(wait_until([&] { return count(results) >= 2; }, kPatience)) << "no answers to the send and the relay drop";
 
   // the latched score, read back over ROS 1
   // (rostopic prints a long string as YAML folded with an escaped line break: unfold it)
-  const std::string score = std::regex_replace(master.run("rostopic echo -n 1 /rescue/score", kToolSeconds).out, std::regex(R"(\\\n\s*)"), "");
+  const std::string score =
+      std::regex_replace(master.run("rostopic echo -n 1 /rescue/score", kToolSeconds).out, std::regex(R"(\\\n\s*)"), "");
   stop = true;
   stepper.join();
   bridge->stop();

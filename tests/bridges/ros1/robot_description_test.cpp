@@ -134,13 +134,15 @@ TEST(Ros1JointCommand, TheSlidersDescriptionAndJointCommandsThroughRealTools) {
   EXPECT_NE(info.find("/rescuesim_slider"), std::string::npos) << info;
 
   // a wheel is cmd_vel's: refused, and nothing moves
-  auto wheel = master.spawn({"rostopic", "pub", "-r", "10", "/joint_command", "sensor_msgs/JointState", "{name: [wheel], velocity: [1.0]}"});
+  auto wheel =
+      master.spawn({"rostopic", "pub", "-r", "10", "/joint_command", "sensor_msgs/JointState", "{name: [wheel], velocity: [1.0]}"});
   EXPECT_TRUE(wait_until([&] { return bridge->stats().rejected > 0; }, kPatience)) << wheel->output();
   wheel->interrupt();
   EXPECT_EQ(bridge->stats().received, 0u);
 
   // the prismatic joint goes where it is told, within its limits
-  auto lift_cmd = master.spawn({"rostopic", "pub", "-r", "10", "/joint_command", "sensor_msgs/JointState", "{name: [lift], position: [0.15]}"});
+  auto lift_cmd =
+      master.spawn({"rostopic", "pub", "-r", "10", "/joint_command", "sensor_msgs/JointState", "{name: [lift], position: [0.15]}"});
   EXPECT_TRUE(wait_until([&] { return std::abs(lift.load() - 0.15) < 1e-3; }, kPatience))
       << "lift at " << lift.load() << " m, target " << lift_target.load() << "\n"
       << lift_cmd->output();

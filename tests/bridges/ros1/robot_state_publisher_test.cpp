@@ -55,7 +55,9 @@ with open(sys.argv[1], "w") as f:
 TEST(Ros1RobotStatePublisher, TfMatchesRobotStatePublisherOnTheSameUrdfAndJointStates) {
   const std::string missing = ros1_tools_missing();
   if (!missing.empty()) GTEST_SKIP() << missing;
-  if (!fs::exists(kRobotStatePublisher)) GTEST_SKIP() << kRobotStatePublisher << " is not installed (Debian package ros-robot-state-publisher)";
+  if (!fs::exists(kRobotStatePublisher)) {
+    GTEST_SKIP() << kRobotStatePublisher << " is not installed (Debian package ros-robot-state-publisher)";
+  }
   const fs::path dir = temp_dir("ros1-rsp");
   const fs::path yaml = write_turtlebot3(dir, "ros1_rsp");
   write_text(dir / "compare_tf.py", kCompareTfPy);
@@ -74,7 +76,8 @@ TEST(Ros1RobotStatePublisher, TfMatchesRobotStatePublisherOnTheSameUrdfAndJointS
   // robot_state_publisher reads /robot_description (the parameter) and our /joint_states
   auto rsp = master.spawn({kRobotStatePublisher, "/tf:=/rsp/tf", "/tf_static:=/rsp/tf_static"});
   // base_link, caster_back_link, imu_link, base_scan (fixed) and the two wheels (moving)
-  const CommandResult r = master.run("/usr/bin/python3 '" + (dir / "compare_tf.py").string() + "' '" + (dir / "tf.json").string() + "' 6", 120);
+  const CommandResult r =
+      master.run("/usr/bin/python3 '" + (dir / "compare_tf.py").string() + "' '" + (dir / "tf.json").string() + "' 6", 120);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err << "\nrobot_state_publisher:\n" << rsp->output();
   const auto frames = nlohmann::json::parse(slurp(dir / "tf.json"));
   ASSERT_EQ(frames.size(), 6u) << frames.dump(2) << "\nrobot_state_publisher:\n" << rsp->output();

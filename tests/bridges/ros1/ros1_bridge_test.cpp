@@ -93,7 +93,8 @@ TEST_F(Ros1Run, EverySensorTopicCarriesWhatTheScenarioConfigures) {
   std::counting_semaphore<> slots(4);
   std::map<std::string, std::future<std::string>> pending;
   for (const auto& [topic, options] : topics) {
-    pending[topic] = std::async(std::launch::async, [this, &slots, topic, options] {
+    // init-captures: clang (clang-tidy) before 16 cannot capture a structured binding by name
+    pending[topic] = std::async(std::launch::async, [this, &slots, topic = topic, options = options] {
       slots.acquire();
       const std::string out = echo(topic, options);
       slots.release();
@@ -230,7 +231,9 @@ TEST_F(Ros1Run, FlipperCommandsFromRostopicMoveTheTrackedRobotsFlippers) {
     int index = 0;
     for (std::size_t at = js.find("name:"); (at = js.find("\n  - ", at)) != std::string::npos && at < js.find("position:"); ++index) {
       at += 5;
-      if (js.compare(at, std::string(joint).size(), joint) == 0 && static_cast<std::size_t>(index) < q.size()) return q[static_cast<std::size_t>(index)];
+      if (js.compare(at, std::string(joint).size(), joint) == 0 && static_cast<std::size_t>(index) < q.size()) {
+        return q[static_cast<std::size_t>(index)];
+      }
     }
     return std::nan("");
   };
@@ -241,8 +244,9 @@ TEST_F(Ros1Run, FlipperCommandsFromRostopicMoveTheTrackedRobotsFlippers) {
   EXPECT_NEAR(flipper("left_flipper_joint"), -170 * M_PI / 180, 0.02);  // stowed
   auto cmd = master_->spawn({"rostopic", "pub", "-r", "10", "/flippers/command", "std_msgs/Float64MultiArray", "{data: [-0.5, -0.3]}"});
   // both tips up, in the air: each flipper stands at its own target
-  EXPECT_TRUE(wait_until([&] { return std::abs(flipper("left_flipper_joint") + 0.5) < 0.02 && std::abs(flipper("right_flipper_joint") + 0.3) < 0.02; },
-                         kPatience))
+  EXPECT_TRUE(wait_until(
+      [&] { return std::abs(flipper("left_flipper_joint") + 0.5) < 0.02 && std::abs(flipper("right_flipper_joint") + 0.3) < 0.02; },
+      kPatience))
       << echo("/joint_states");
   cmd->interrupt();
   EXPECT_EQ(sim_.interrupt(), 0) << sim_.output();
@@ -315,8 +319,9 @@ TEST_F(Ros1Run, CmdVelDrivesTheRobotAndBadCommandsAreRefused) {
   EXPECT_NEAR(x_now(), x0, 0.03) << "the robot moved on refused commands";
   // the String publisher on head/command cannot connect (md5 mismatch): rescuesim says so and goes on
   EXPECT_TRUE(sim_.says("publisher(s) (", kPatience)) << sim_.output();
-  EXPECT_TRUE(std::regex_search(sim_.output(), std::regex("ROS 1: /head/command has \\d publisher\\(s\\) \\(.*/rostopic_.*\\) but rescuesim is "
-                                                          "connected to \\d")))
+  EXPECT_TRUE(
+      std::regex_search(sim_.output(), std::regex("ROS 1: /head/command has \\d publisher\\(s\\) \\(.*/rostopic_.*\\) but rescuesim is "
+                                                  "connected to \\d")))
       << sim_.output();
   other_head->interrupt();
   EXPECT_TRUE(sim_.running());

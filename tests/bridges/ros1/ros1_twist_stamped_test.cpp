@@ -65,12 +65,13 @@ TEST(Ros1TwistStamped, DrivesAsTwistDoesAndFutureStampsNanAndOtherTypesAreRefuse
     for (int i = 0; i < kSteps; ++i) sim.step();
     return sim.state().robots[0].base.X_WB.p.x() - x0;
   };
-  const std::string stamp_now = "{secs: " + std::to_string(sim.time().sec_part()) + ", nsecs: " + std::to_string(sim.time().nsec_part()) + "}";
+  const std::string stamp_now =
+      "{secs: " + std::to_string(sim.time().sec_part()) + ", nsecs: " + std::to_string(sim.time().nsec_part()) + "}";
 
   const double by_twist = drive_from_start("geometry_msgs/Twist", "{linear: {x: 0.3}}");
   const BridgeStats after_twist = bridge->stats();
-  const double by_stamped =
-      drive_from_start("geometry_msgs/TwistStamped", "{header: {stamp: " + stamp_now + ", frame_id: base_link}, twist: {linear: {x: 0.3}}}");
+  const double by_stamped = drive_from_start("geometry_msgs/TwistStamped",
+                                             "{header: {stamp: " + stamp_now + ", frame_id: base_link}, twist: {linear: {x: 0.3}}}");
   const BridgeStats after_stamped = bridge->stats();
   EXPECT_GT(after_stamped.received, after_twist.received);
   EXPECT_EQ(after_stamped.rejected, 0u) << log.text();

@@ -59,7 +59,8 @@ TEST(Ros1Velocity, TheConnectionHeaderSaysWhichTypeArrives) {
   EXPECT_EQ(why, "a std_msgs/String message: cmd_vel takes geometry_msgs/Twist or geometry_msgs/TwistStamped");
   // the right name with another layout's MD5, and a wildcard MD5, say nothing of the layout
   EXPECT_FALSE(velocity_type("geometry_msgs/TwistStamped", twist_md5(), &why));
-  EXPECT_EQ(why.rfind("a geometry_msgs/TwistStamped with MD5 9f195f881246fdfa2798d1d3eebca84a, expected 98d34b0043a2093cf9d9345ab6eef12e", 0), 0u)
+  EXPECT_EQ(
+      why.rfind("a geometry_msgs/TwistStamped with MD5 9f195f881246fdfa2798d1d3eebca84a, expected 98d34b0043a2093cf9d9345ab6eef12e", 0), 0u)
       << why;
   EXPECT_FALSE(velocity_type("geometry_msgs/Twist", "*", &why));
   EXPECT_EQ(why.rfind("a geometry_msgs/Twist with MD5 *, expected 9f195f881246fdfa2798d1d3eebca84a", 0), 0u) << why;

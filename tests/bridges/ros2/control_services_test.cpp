@@ -197,7 +197,8 @@ TEST_F(ControlServicesTest, StateStepsResetAndEntitiesOverTheWire) {
   EXPECT_EQ(call<iface::DeleteEntity>("/delete_entity", {"robot"}).result, code::kOperationFailed);
   const GetSpawnablesResponse spawnables = call<iface::GetSpawnables>("/get_spawnables", {});
   ASSERT_TRUE(spawnables.result.is_ok());
-  EXPECT_TRUE(std::any_of(spawnables.spawnables.begin(), spawnables.spawnables.end(), [](const Spawnable& s) { return s.uri == "rescue_robot"; }));
+  EXPECT_TRUE(
+      std::any_of(spawnables.spawnables.begin(), spawnables.spawnables.end(), [](const Spawnable& s) { return s.uri == "rescue_robot"; }));
   const WorldResponse w = call<iface::GetCurrentWorld>("/get_current_world", {});
   EXPECT_TRUE(w.result.is_ok());
   EXPECT_EQ(w.world.name, session_->scenario().name);
@@ -398,7 +399,8 @@ TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
   EXPECT_TRUE(result_of(call("/step_simulation", "simulation_interfaces/srv/StepSimulation", body)).is_ok());
   body.clear();
   encode_request<iface::ResetSimulation>({scope::kDefault}, WireVersion::v1, body);
-  const auto reset = decode_response<iface::ResetSimulation>(call("/reset_simulation", "simulation_interfaces/srv/ResetSimulation", body), WireVersion::v1);
+  const auto reset = decode_response<iface::ResetSimulation>(call("/reset_simulation", "simulation_interfaces/srv/ResetSimulation", body),
+                                                             WireVersion::v1);
   EXPECT_TRUE(reset.value && reset.value->is_ok());
   body.clear();
   encode_request<iface::StepSimulation>({100}, WireVersion::v1, body);
@@ -418,7 +420,8 @@ TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
   if (spot) spawn.pose = Pose3{Vec3(spot->x(), spot->y(), 0), Quat::Identity()};
   body.clear();
   encode_request<iface::SpawnEntity>(spawn, WireVersion::v1, body);
-  const auto spawned = decode_response<iface::SpawnEntity>(call("/spawn_entity", "simulation_interfaces/srv/SpawnEntity", body), WireVersion::v1);
+  const auto spawned =
+      decode_response<iface::SpawnEntity>(call("/spawn_entity", "simulation_interfaces/srv/SpawnEntity", body), WireVersion::v1);
   EXPECT_TRUE(spawned.value && spawned.value->result.is_ok()) << (spawned.value ? spawned.value->result.error_message : spawned.problem);
   const int odom = client.create_reader("rt/p3at/odom", "nav_msgs::msg::dds_::Odometry_", {});
   const auto matched_by = std::chrono::steady_clock::now() + 20s;
@@ -441,7 +444,8 @@ TEST(ControlServicesCli, APausedRunIsSteppedResetAndEndedByItsClient) {
 
   body.clear();
   encode_request<iface::SetSimulationState>({RunState::quitting}, WireVersion::v1, body);
-  const auto quit = decode_response<iface::SetSimulationState>(call("/set_simulation_state", "simulation_interfaces/srv/SetSimulationState", body), WireVersion::v1);
+  const auto quit = decode_response<iface::SetSimulationState>(
+      call("/set_simulation_state", "simulation_interfaces/srv/SetSimulationState", body), WireVersion::v1);
   EXPECT_TRUE(quit.value && quit.value->is_ok());
   sim.join();
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;

@@ -69,8 +69,9 @@ TEST_F(DdsServicesTest, ARequestIsAnsweredLaterFromAnotherThread) {
   DdsParticipant server_side(domain(), participant_user_data()), client_side(domain(), participant_user_data());
   ServiceRegistry registry(server_side);
   Inbox inbox;
-  ServiceServer& server = registry.add_service("/reset_simulation", "simulation_interfaces/srv/ResetSimulation",
-                                               [&](const RequestHeader& h, auto body, ReplyHandle r) { inbox.push(h, body, std::move(r)); });
+  ServiceServer& server = registry.add_service(
+      "/reset_simulation", "simulation_interfaces/srv/ResetSimulation",
+      [&](const RequestHeader& h, std::span<const std::uint8_t> body, ReplyHandle r) { inbox.push(h, body, std::move(r)); });
   // the "simulation thread": answers each request with result = 10 + its scope
   std::thread simulation([&] {
     std::unique_lock lock(inbox.mutex);
@@ -281,7 +282,8 @@ TEST_F(DdsServicesTest, ARegistryListsItsEndpointsAndRefusesANameTwice) {
                 .find("service /reset_simulation is registered already"),
             std::string::npos);
   EXPECT_NE(message([&] {
-              registry.add_service("/simulate_steps/_action/get_result", "std_srvs/srv/Empty", [](const RequestHeader&, auto, ReplyHandle) {});
+              registry.add_service("/simulate_steps/_action/get_result", "std_srvs/srv/Empty",
+                                   [](const RequestHeader&, auto, ReplyHandle) {});
             }).find("taken by action /simulate_steps"),
             std::string::npos);
   ActionCallbacks none;

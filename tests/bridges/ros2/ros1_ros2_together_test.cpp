@@ -35,9 +35,10 @@ TEST(Ros1Ros2Together, RostopicAndADdsPeerReadScanWhileThePeerDrives) {
 
   const fs::path yaml = write_room(dir);
   // the Fast DDS peer is built from Humble's IDL: the run speaks Humble
-  auto sim = master.spawn({RESCUESIM_EXE, "run", yaml.string(), "--ros1", "--ros2", "--ros2-distro", "humble", "--ros-domain", std::to_string(domain), "--duration",
-                           "60", "--quiet", "--out", (dir / "out").string()});
-  ASSERT_TRUE(wait_until([&] { return sim->output().find("bridge        ros2 started") != std::string::npos || !sim->running(); }, kPatience));
+  auto sim = master.spawn({RESCUESIM_EXE, "run", yaml.string(), "--ros1", "--ros2", "--ros2-distro", "humble", "--ros-domain",
+                           std::to_string(domain), "--duration", "60", "--quiet", "--out", (dir / "out").string()});
+  ASSERT_TRUE(
+      wait_until([&] { return sim->output().find("bridge        ros2 started") != std::string::npos || !sim->running(); }, kPatience));
   ASSERT_TRUE(sim->running()) << sim->output();
   EXPECT_NE(sim->output().find("bridge        ros1 started"), std::string::npos) << sim->output();
 

@@ -93,7 +93,9 @@ TEST_F(Ros2BridgeTest, NamespacedRobotsLatchedTfStaticAndCommandsForOneRobot) {
   // the late joiner still got /tf_static, with robot2's frames prefixed
   ASSERT_EQ(statics.size(), 1u);
   bool laser2 = false;
-  for (const auto& t : statics[0].transforms) laser2 = laser2 || (t.header.frame_id == "robot2/base_link" && t.child_frame_id == "robot2/laser");
+  for (const auto& t : statics[0].transforms) {
+    laser2 = laser2 || (t.header.frame_id == "robot2/base_link" && t.child_frame_id == "robot2/laser");
+  }
   EXPECT_TRUE(laser2);
   ASSERT_FALSE(odoms.empty());
   EXPECT_EQ(odoms.back().header.frame_id, "robot2/odom");

@@ -108,8 +108,8 @@ Session run_with_peer(const std::string& name, const std::string& mode, bool cam
   const auto t0 = std::chrono::steady_clock::now();
   {
     // the peer is built from Humble's IDL (24-byte Gids, Range without variance): the run speaks Humble
-    Background sim({RESCUESIM_EXE, "run", scenario.string(), "--ros2", "--ros2-distro", "humble", "--ros-domain", std::to_string(domain), "--duration", "40",
-                    "--quiet", "--out", (dir / "run").string()},
+    Background sim({RESCUESIM_EXE, "run", scenario.string(), "--ros2", "--ros2-distro", "humble", "--ros-domain", std::to_string(domain),
+                    "--duration", "40", "--quiet", "--out", (dir / "run").string()},
                    dir / "sim.out", dir / "sim.err");
     EXPECT_TRUE(sim.running());
     const auto peer = testing::run_command(std::string("'") + ROS2_PEER_EXE + "' --domain " + std::to_string(domain) +

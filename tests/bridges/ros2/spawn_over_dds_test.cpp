@@ -69,7 +69,8 @@ TEST(Ros2Spawn, ASpawnedRobotIsOnTheWireDrivenAndGoneWhenDeleted) {
   const int odom_b = ros.create_reader("rt/b/odom", "nav_msgs::msg::dds_::Odometry_", {});
   const int cmd_b = ros.create_writer("rt/b/cmd_vel", "geometry_msgs::msg::dds_::Twist_", {});
   // the bridge made writers and readers for both at once: they match
-  ASSERT_TRUE(step_until(sim, [&] { return ros.matched_writers(odom_a) > 0 && ros.matched_writers(odom_b) > 0 && ros.matched_readers(cmd_b) > 0; }));
+  ASSERT_TRUE(step_until(
+      sim, [&] { return ros.matched_writers(odom_a) > 0 && ros.matched_writers(odom_b) > 0 && ros.matched_readers(cmd_b) > 0; }));
   std::vector<msg::Odometry> odoms;
   ASSERT_TRUE(step_until(sim, [&] {
     for (auto& m : take_all<msg::Odometry>(ros, odom_a, "nav_msgs/Odometry")) odoms.push_back(m);

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "sensors/ray_sensor_world.h"
+#include "support/require_gl.h"
 
 namespace rescuesim {
 namespace {
@@ -40,6 +41,7 @@ struct Scene {
   World world;
   State state;
   std::unique_ptr<Renderer> renderer;
+  std::string gl_problem;  ///< why there is no renderer (the EGL call that failed), or empty
 };
 
 /// A world with a wall whose face is 2.0 m in front of the camera (camera at x = 0.2).
@@ -48,11 +50,12 @@ Scene wall_scene(const SensorSpec& cam, WorldSpec spec = empty_spec()) {
   RobotPlacement p;
   p.model = "box_bot";
   spec.robots.push_back(p);
-  Scene s{compile_with(spec, box_robot({cam})), {}, nullptr};
+  Scene s{compile_with(spec, box_robot({cam})), {}, nullptr, {}};
   s.state = initial_state(s.world);
   try {
     s.renderer = Renderer::create_headless(Quality::low);
   } catch (const Error& e) {
+    s.gl_problem = e.what();
     return s;
   }
   RenderScene rs = build_render_scene(s.world);
@@ -62,8 +65,7 @@ Scene wall_scene(const SensorSpec& cam, WorldSpec spec = empty_spec()) {
   return s;
 }
 
-#define NEED_GL(scene) \
-  if (!(scene).renderer) GTEST_SKIP() << "no EGL/OpenGL 4.5 renderer on this machine"
+#define NEED_GL(scene) RS_GL_OR_SKIP((scene).renderer != nullptr, (scene).gl_problem)
 
 float depth_at(const msg::Image& m, int x, int y) {
   float z;
@@ -155,7 +157,7 @@ TEST(CameraThermal, UniformSurfaceDecodesWithinATenthOfAKelvin) {
     RobotPlacement p;
     p.model = "box_bot";
     spec.robots.push_back(p);
-    Scene out{compile_with(spec, box_robot({cam})), {}, nullptr};
+    Scene out{compile_with(spec, box_robot({cam})), {}, nullptr, {}};
     out.state = initial_state(out.world);
     try {
       out.renderer = Renderer::create_headless(Quality::low);
@@ -163,7 +165,8 @@ TEST(CameraThermal, UniformSurfaceDecodesWithinATenthOfAKelvin) {
       out.renderer->load(rs);
       update_render_scene(rs, out.state);
       out.renderer->update(rs);
-    } catch (const Error&) {
+    } catch (const Error& e) {
+      out.gl_problem = e.what();
     }
     return out;
   }();
@@ -196,7 +199,8 @@ TEST(CameraThermal, VictimIsHotterThanTheWallAndFoundWhenVisible) {
   Rng rng(1, "t");
   const msg::Image m = thermal_mono16(s.renderer->thermal(view, cam.camera.blur_sigma), cam, {}, rng);
   // the victim's torso projects into the image; after the blur it is still well above the wall
-  const Vec2 uv = project(view.k, (view.X_WC * X_BO()).inverse() * s.world.statics[static_cast<std::size_t>(s.world.victims[0].parts[1])].X_WO.p);
+  const Vec2 uv =
+      project(view.k, (view.X_WC * X_BO()).inverse() * s.world.statics[static_cast<std::size_t>(s.world.victims[0].parts[1])].X_WO.p);
   std::uint16_t body, wall;
   std::memcpy(&body, &m.data[(static_cast<std::size_t>(std::lround(uv.y())) * 160 + static_cast<std::size_t>(std::lround(uv.x()))) * 2], 2);
   std::memcpy(&wall, &m.data[(5 * 160 + 80) * 2], 2);

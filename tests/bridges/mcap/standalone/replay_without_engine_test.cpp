@@ -1,9 +1,11 @@
-// Record and replay with no physics engine and no ray scene: this program links rs_mcap and
-// rs_robots (the built-in robot's description) and nothing that steps a world. A ReplayHost
-// stands in for the simulation while recording (known scans published by hand), then
-// McapPlayer plays the file back onto a fresh host's Bus. The `replay_links_no_engine` check
-// (tests/checks) reads this binary's dynamic section and fails if Bullet's dynamics or
-// collision libraries or Embree were linked in.
+// Record and replay with no physics engine, no ray scene and no importer: this program links
+// rs_mcap and rs_robots (the built-in robot's description) and nothing that steps a world or
+// reads a file. Its world is drawn in code and compiled by `world`; a ReplayHost stands in for
+// the simulation while recording (known scans published by hand), then McapPlayer plays the
+// file back onto a fresh host's Bus, handed the same world. The checks `replay_links_no_engine`
+// and `replay_links_no_importer` (tests/checks) read this binary's dynamic section and fail if
+// Bullet's dynamics or collision libraries or Embree, or a parser of the importers (tinyxml2,
+// yaml-cpp, urdfdom, assimp, sdformat), were linked in.
 
 #include <gtest/gtest.h>
 
@@ -13,27 +15,27 @@
 #include "bridges/mcap/mcap_bridge.h"
 #include "bridges/mcap/mcap_player.h"
 #include "bridges/mcap/replay_host.h"
-#include "bridges/mcap/run_record.h"
 #include "robots/rescue_robot.h"
 #include "support/command.h"
-#include "world/scenario/scenario.h"
+#include "world/world.h"
 
 namespace rescuesim {
 namespace {
 
 TEST(ReplayWithoutEngine, ScansRecordedOnAReplayHostComeBackExactly) {
   const auto dir = testing::temp_dir("replay-without-engine");
-  const ModelMap models = builtin_models();
-  Scenario s = default_scenario(models);
-  const WorldSpec spec = build_world(s);
-  const World world = compile_scenario(s, spec, models);
+  WorldSpec spec;
+  spec.name = "hand";
+  spec.materials = default_materials();
+  spec.robots.push_back(RobotPlacement{});
+  const std::uint64_t seed = 7;
+  const World world = compile_world(spec, builtin_models());
 
   // record: five scans at 10 Hz whose ranges are 1 m + k cm (k = scan number)
   McapOptions o;
   o.path = dir / "hand.mcap";
-  describe_run(o, s, spec, false, "test");
   {
-    ReplayHost host(world, s.seed);
+    ReplayHost host(world, seed);
     const TopicId scan = host.bus().advertise("/scan", "sensor_msgs/LaserScan", 10);
     McapRecorder recorder(o);
     recorder.start(host);
@@ -55,7 +57,8 @@ TEST(ReplayWithoutEngine, ScansRecordedOnAReplayHostComeBackExactly) {
   }
 
   // replay: the same five scans, in order, with the host clock at each one's log time
-  McapPlayer player(o.path, models);
+  McapPlayer player(o.path, [&](const mcap::McapReader&) { return ReplayWorld{world, seed}; });
+  EXPECT_EQ(player.world().robots.size(), 1u);
   BridgeHost& host = player.host();
   ASSERT_NE(host.bus().find("/scan"), kNoTopic);
   std::vector<float> first_ranges;

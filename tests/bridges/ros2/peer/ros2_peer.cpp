@@ -337,22 +337,22 @@ int main(int argc, char** argv) {
     if (!node_list.empty()) node_list += ',';
     node_list += json_string(n);
   }
-  std::printf(
-      "{\"mode\":%s,\"ready\":%s,\"commands\":%d,"
-      "\"scan\":{\"count\":%d,\"ranges\":%zu,\"frame\":%s,\"angle_min\":%.6f,\"angle_max\":%.6f,\"angle_increment\":%.8f},"
-      "\"odom\":{\"count\":%d,\"frame\":%s,\"child\":%s,\"t0\":%.6f,\"t1\":%.6f,\"dx\":%.6f,\"dy\":%.6f,\"vx_driving\":%.6f,\"cruise_time\":%.6f,\"cruise_dx\":%.6f},"
-      "\"image\":{\"count\":%d,\"width\":%u,\"height\":%u,\"step\":%u,\"bytes\":%zu,\"encoding\":%s,\"frame\":%s},"
-      "\"clock\":{\"count\":%d,\"increasing\":%s,\"first\":%.6f,\"last\":%.6f},"
-      "\"tf_static\":{\"count\":%d,\"transforms\":%zu,\"laser\":%s},"
-      "\"discovery\":{\"nodes\":[%s],\"writers\":%d,\"readers\":%d,\"gid_is_writer_participant\":%s,"
-      "\"gid_padding_zero\":%s,\"scan_writer_listed\":%s}}\n",
-      json_string(o.mode).c_str(), was_ready ? "true" : "false", commands, scan.count, scan.ranges,
-      json_string(scan.frame).c_str(), scan.angle_min, scan.angle_max, scan.increment, odom.count,
-      json_string(odom.frame).c_str(), json_string(odom.child).c_str(), t0, t1, x1 - x0, y1 - y0, vx_driving, odom.cruise_time, odom.cruise_dx, image.count,
-      image.width, image.height, image.step, image.bytes, json_string(image.encoding).c_str(),
-      json_string(image.frame).c_str(), clock.count, clock.increasing ? "true" : "false", clock.first, clock.last,
-      tf_static.count, tf_static.transforms, tf_static.laser ? "true" : "false", node_list.c_str(), node_writers, node_readers, gid_is_writer_participant ? "true" : "false",
-      gid_padding_zero ? "true" : "false", scan_writer_listed ? "true" : "false");
+  std::printf("{\"mode\":%s,\"ready\":%s,\"commands\":%d,"
+              "\"scan\":{\"count\":%d,\"ranges\":%zu,\"frame\":%s,\"angle_min\":%.6f,\"angle_max\":%.6f,\"angle_increment\":%.8f},"
+              "\"odom\":{\"count\":%d,\"frame\":%s,\"child\":%s,\"t0\":%.6f,\"t1\":%.6f,\"dx\":%.6f,\"dy\":%.6f,\"vx_driving\":%.6f,"
+              "\"cruise_time\":%.6f,\"cruise_dx\":%.6f},"
+              "\"image\":{\"count\":%d,\"width\":%u,\"height\":%u,\"step\":%u,\"bytes\":%zu,\"encoding\":%s,\"frame\":%s},"
+              "\"clock\":{\"count\":%d,\"increasing\":%s,\"first\":%.6f,\"last\":%.6f},"
+              "\"tf_static\":{\"count\":%d,\"transforms\":%zu,\"laser\":%s},"
+              "\"discovery\":{\"nodes\":[%s],\"writers\":%d,\"readers\":%d,\"gid_is_writer_participant\":%s,"
+              "\"gid_padding_zero\":%s,\"scan_writer_listed\":%s}}\n",
+              json_string(o.mode).c_str(), was_ready ? "true" : "false", commands, scan.count, scan.ranges, json_string(scan.frame).c_str(),
+              scan.angle_min, scan.angle_max, scan.increment, odom.count, json_string(odom.frame).c_str(), json_string(odom.child).c_str(),
+              t0, t1, x1 - x0, y1 - y0, vx_driving, odom.cruise_time, odom.cruise_dx, image.count, image.width, image.height, image.step,
+              image.bytes, json_string(image.encoding).c_str(), json_string(image.frame).c_str(), clock.count,
+              clock.increasing ? "true" : "false", clock.first, clock.last, tf_static.count, tf_static.transforms,
+              tf_static.laser ? "true" : "false", node_list.c_str(), node_writers, node_readers,
+              gid_is_writer_participant ? "true" : "false", gid_padding_zero ? "true" : "false", scan_writer_listed ? "true" : "false");
   std::fflush(stdout);
   return was_ready ? 0 : 1;
 }
