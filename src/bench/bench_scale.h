@@ -1,5 +1,5 @@
 #pragma once
-// rescuesim bench --scale (issue 17): the scale scenario (session/scale_scenario.h) for N robots
+// rescuesim bench --scale: the scale scenario (bench/scale_scenario.h) for N robots
 // in turn, each run in a child process: real-time factor, lidar rays/s, peak memory and CPU use
 // per core, beside the ideal of N robots costing N times one robot, as JSON and a PNG plot.
 
