@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/data_dir.h"
+#include "app/program.h"
 #include "bench/bench_command.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -32,23 +33,5 @@ int main(int argc, char** argv) {
   app::Action action;
   bench::add_bench_command(app, action);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? app::kExitOk : app::kExitBadInput;
-  }
-  log::set_level(log_level);
-  if (threads > 0) set_worker_threads(threads);
-  try {
-    // a RESCUESIM_DATA_DIR that is not a data folder is a mistake worth stopping for at once
-    if (const char* d = std::getenv("RESCUESIM_DATA_DIR"); d && *d) app::data_dir();
-    return action ? action() : app::kExitOk;
-  } catch (const Error& e) {
-    std::fprintf(stderr, "rescuesim bench: error: %s\n", e.what());
-    return app::kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "rescuesim bench: failed: %s\n", e.what());
-    return app::kExitFailure;
-  }
+  return app::run_program(app, argc, argv, log_level, threads, action, "rescuesim bench");
 }
