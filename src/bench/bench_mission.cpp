@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bench/bench_figures.h"
-#include "comms/radio_network.h"
+#include "radio/radio_network.h"
 #include "import/scenario/scenario.h"
 #include "raycast/ray_scene.h"
 #include "robots/rescue_robot.h"

@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "bus/topic_id.h"
-#include "comms/radio_network.h"
+#include "radio/radio_network.h"
 #include "mission/map_metrics.h"
 #include "msgs/messages.h"
 #include "mission/referee.h"

@@ -2,7 +2,7 @@
 /// A rescue mission as authored (a scenario's `mission:` block): the referee's rules for victim
 /// reports, the radio link model between robots, base stations and relays, and where the base
 /// stations stand. Plain data; the referee (mission/referee.h) and the radio network
-/// (comms/radio_network.h) act on it. See docs/missions.md for the rules beside RoboCup's and
+/// (radio/radio_network.h) act on it. See docs/missions.md for the rules beside RoboCup's and
 /// SubT's.
 
 #include <cstdint>

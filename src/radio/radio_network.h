@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "world/radio_model.h"
-#include "comms/radio_routes.h"
-#include "comms/wall_count.h"
+#include "radio/radio_routes.h"
+#include "radio/wall_count.h"
 #include "core/pose.h"
 #include "core/sim_time.h"
 

@@ -1,4 +1,4 @@
-#include "comms/radio_routes.h"
+#include "radio/radio_routes.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "comms/wall_count.h"
+#include "radio/wall_count.h"
 
 #include <cmath>
 

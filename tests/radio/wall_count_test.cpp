@@ -2,7 +2,7 @@
 // crossed counts once, grazing a face, ending or starting inside a wall, and what does not
 // count (floor, rubble).
 
-#include "comms/wall_count.h"
+#include "radio/wall_count.h"
 
 #include <gtest/gtest.h>
 

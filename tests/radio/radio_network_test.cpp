@@ -2,7 +2,7 @@
 // delivers, SubT capacity, multi-hop through a robot and through a dropped relay, widest-path
 // routing, bad input, and the same links at 1 and 2 ray-tracing threads.
 
-#include "comms/radio_network.h"
+#include "radio/radio_network.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "comms/radio_network.h"
+#include "radio/radio_network.h"
 
 #include <cmath>
 
