@@ -202,7 +202,7 @@ void BM_Lidar1080(benchmark::State& state) {
   const SensorSpec& spec = world.robots[0].spec.sensors[0];
   Rng rng(1, "scan");
   set_worker_threads(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(sample_lidar(world, s, scene, 0, spec, SimTime{}, rng));
+  for (auto _ : state) benchmark::DoNotOptimize(sample_lidar(world, s, scene, RobotIndex(0), spec, SimTime{}, rng));
   set_worker_threads(0);
   state.SetItemsProcessed(state.iterations() * kBeams);
   state.counters["scans/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

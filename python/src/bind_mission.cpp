@@ -55,8 +55,7 @@ void add_mission_methods(py::class_<EnvCore>& cls) {
            py::dict d;
            d["id"] = r.id;
            d["outcome"] = std::string(report_outcome_name(r.outcome));
-           d["victim"] =
-               or_none(r.victim >= 0, r.victim >= 0 ? py::str(m.referee().victims()[static_cast<std::size_t>(r.victim)].name) : py::str());
+           d["victim"] = or_none(r.victim.valid(), r.victim.valid() ? py::str(m.referee().victims()[r.victim.slot()].name) : py::str());
            d["distance"] = or_none(r.distance_m >= 0, py::float_(r.distance_m));
            d["score_change"] = r.score_change;
            d["score"] = r.score;

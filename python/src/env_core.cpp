@@ -42,7 +42,7 @@ EnvCore::EnvCore(Scenario scenario, ModelMap models, EnvOptions options)
   build(scenario_.seed);
 
   // the observation layout, from the controlled robot's enabled sensors
-  const RobotSpec& spec = session_->sim().world().robots[static_cast<std::size_t>(robot_)].spec;
+  const RobotSpec& spec = session_->sim().world().robot(robot_).spec;
   max_linear_ = spec.drive.max_linear;
   max_angular_ = spec.drive.max_angular;
   ObsField sonar{"sonar", "float32", {0}, 4, ObsField::Kind::sonar, {}, {}};
@@ -153,7 +153,7 @@ void EnvCore::build(std::uint64_t seed) {
   session_ = std::make_unique<Session>(s, models_, so);
   start_ = std::make_unique<SessionSnapshot>(session_->snapshot());
   ++builds_;
-  robot_ = r;
+  robot_ = RobotIndex::at(static_cast<std::size_t>(r));
   robot_name_ = s.robots[static_cast<std::size_t>(r)].name;
   seed_ = seed;
   fresh_ = true;
@@ -166,7 +166,7 @@ void EnvCore::build(std::uint64_t seed) {
 
 void EnvCore::subscribe() {
   Simulation& sim = session_->sim();
-  const RobotSpec& spec = sim.world().robots[static_cast<std::size_t>(robot_)].spec;
+  const RobotSpec& spec = sim.world().robot(robot_).spec;
   for (std::size_t k = 0; k < fields_.size(); ++k) {
     const ObsField& f = fields_[k];
     for (std::size_t j = 0; j < f.sensors.size(); ++j) {
@@ -238,7 +238,7 @@ void EnvCore::reset(std::uint64_t seed) {
   ready_ = true;
   const State& s = session_->sim().state();
   for (std::size_t v = 0; v < s.victims.size(); ++v) found_[v] = s.victims[v].first_seen.ns >= 0;
-  collisions_ = s.robots[static_cast<std::size_t>(robot_)].collisions;
+  collisions_ = s.robot(robot_).collisions;
   done_ = session_->sim().in_trouble();
 }
 
@@ -265,7 +265,7 @@ StepOutcome EnvCore::step(double linear, double angular) {
     found_[v] = seen;
     all_found += seen;
   }
-  const int collisions = s.robots[static_cast<std::size_t>(robot_)].collisions;
+  const int collisions = s.robot(robot_).collisions;
   out.reward = options_.victim_reward * static_cast<double>(new_victims_.size()) - options_.collision_penalty * (collisions - collisions_) -
                options_.time_penalty * options_.control_period;
   collisions_ = collisions;
@@ -282,7 +282,7 @@ EpisodeInfo EnvCore::info() const {
   if (!session_) return i;
   const Simulation& sim = session_->sim();
   const State& s = sim.state();
-  const RobotState& rs = s.robots[static_cast<std::size_t>(robot_)];
+  const RobotState& rs = s.robot(robot_);
   i.sim_time = s.time.seconds();
   i.victims_total = static_cast<int>(s.victims.size());
   for (const auto& v : s.victims) i.victims_found += v.first_seen.ns >= 0;

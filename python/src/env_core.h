@@ -113,7 +113,7 @@ class EnvCore {
   int builds() const { return builds_; }
   EpisodeInfo info() const;
   /// Index of the robot the actions drive (and that reports in a mission).
-  int robot_index() const { return robot_; }
+  RobotIndex robot_index() const { return robot_; }
   /// The simulation of the current episode (null before the first reset()).
   Session* session() const { return session_.get(); }
 
@@ -130,7 +130,7 @@ class EnvCore {
   std::vector<std::uint8_t*> buffers_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<SessionSnapshot> start_;  // session_ as built, before its first step
-  int robot_ = 0;
+  RobotIndex robot_{0};
   std::string robot_name_;
   std::uint64_t seed_ = 0;
   bool fresh_ = false;     // the session was built but not stepped

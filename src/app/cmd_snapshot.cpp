@@ -68,9 +68,8 @@ int snapshot(const SnapshotCommand& c) {
   msg::Image color_msg, thermal_msg, depth_msg;
   const auto keep = [&sim](const SensorSpec* spec, auto& into) {
     if (spec == nullptr || !spec->enabled) return;
-    sim.bus().subscribe(sim.topic_name(0, spec->topic), [&into](const Topic&, const msg::Message& m) {
-      into = std::get<std::decay_t<decltype(into)>>(m);
-    });
+    sim.bus().subscribe(sim.topic_name(RobotIndex(0), spec->topic),
+                        [&into](const Topic&, const msg::Message& m) { into = std::get<std::decay_t<decltype(into)>>(m); });
   };
   keep(laser, scan);
   keep(color, color_msg);
@@ -93,7 +92,7 @@ int snapshot(const SnapshotCommand& c) {
   in.width = c.width;
   const Pose3& X_WB = state.robots[0].base.X_WB;
   const ChasePoints chase = chase_points(X_WB);
-  const Vec3 eye = clear_eye(sim.ray_scene(), chase.eye, chase.target, X_WB.p, 0);
+  const Vec3 eye = clear_eye(sim.ray_scene(), chase.eye, chase.target, X_WB.p, RobotIndex(0));
   in.main = renderer->color(look_at_view(eye, chase.target, Intrinsics::from_hfov(layout.main.w, layout.main.h, 65 * M_PI / 180)));
   in.main_caption = fmt::format("main view: chase camera {} m back, {:.1f} m up{}, quality {}", kChaseBack, eye.z() - X_WB.p.z(),
                                 (eye - chase.eye).norm() > 1e-6 ? " (over wall)" : "", c.quality);

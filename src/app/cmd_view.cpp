@@ -70,7 +70,7 @@ struct OrbitCamera {
       az = heading + std::numbers::pi + yaw;
     }
     const Vec3 eye = t + distance * Vec3(std::cos(pitch) * std::cos(az), std::cos(pitch) * std::sin(az), std::sin(pitch));
-    return look_at_view(follow ? clear_eye(scene, eye, t, X_WB.p, 0) : eye, t, k);
+    return look_at_view(follow ? clear_eye(scene, eye, t, X_WB.p, RobotIndex(0)) : eye, t, k);
   }
   /// Switches between following and a free camera without a jump.
   void set_follow(bool on, const Pose3& X_WB) {
@@ -244,7 +244,7 @@ class Viewer {
   void subscribe_feeds() {
     const auto keep = [this](const SensorSpec* spec, auto& into, bool& fresh) {
       if (spec == nullptr || !spec->enabled) return;
-      sim_.bus().subscribe(sim_.topic_name(0, spec->topic), [&into, &fresh](const Topic&, const msg::Message& m) {
+      sim_.bus().subscribe(sim_.topic_name(RobotIndex(0), spec->topic), [&into, &fresh](const Topic&, const msg::Message& m) {
         into = std::get<std::decay_t<decltype(into)>>(m);
         fresh = true;
       });
@@ -317,7 +317,7 @@ class Viewer {
     CameraView main_view;
     {
       const auto hold = loop_->lock();
-      if (std::exchange(head_moved_, false)) sim_.command_head(0, v_.head);
+      if (std::exchange(head_moved_, false)) sim_.command_head(RobotIndex(0), v_.head);
       state_ = sim_.state();
       trouble_ = sim_.in_trouble();
       main_view = v_.camera.view(state_.robots[0].base.X_WB, Intrinsics::from_hfov(mw, mh, 65 * std::numbers::pi / 180), sim_.ray_scene());

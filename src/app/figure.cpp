@@ -334,7 +334,7 @@ CameraView look_at_view(const Vec3& p_WE, const Vec3& p_WT, const Intrinsics& k)
   return v;
 }
 
-Vec3 clear_eye(const RayScene& scene, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR, int ignore_robot) {
+Vec3 clear_eye(const RayScene& scene, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR, RobotIndex ignore_robot) {
   return clear_eye([&](const Vec3& from, const Vec3& to) { return scene.occluded(from, to, ignore_robot); }, p_WE, p_WT, p_WR);
 }
 

@@ -112,6 +112,6 @@ CameraView look_at_view(const Vec3& p_WE, const Vec3& p_WT, const Intrinsics& k)
 /// render/camera_model.h clear_eye against a ray scene: walls, rubble, victims and other robots
 /// hide; robot `ignore_robot` (an index into World::robots) does not. The chase camera's other
 /// parts (chase_points, kChase*) are in render/camera_model.h.
-Vec3 clear_eye(const RayScene& scene, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR, int ignore_robot = -1);
+Vec3 clear_eye(const RayScene& scene, const Vec3& p_WE, const Vec3& p_WT, const Vec3& p_WR, RobotIndex ignore_robot = {});
 
 }  // namespace rescuesim

@@ -77,7 +77,7 @@ void ViewSimLoop::run() {
         // one Session step at a time: the built-in controllers, the recordings and the mission
         // go with it, as in rescuesim run
         while (sim.time() < target && Clock::now() < span_end && session_.step_until(sim.time() + SimTime{1})) {
-          if (!c.autonomous) sim.command_velocity(0, c.teleop);
+          if (!c.autonomous) sim.command_velocity(RobotIndex(0), c.teleop);
         }
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> g2(control_mutex_);

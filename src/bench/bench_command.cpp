@@ -164,7 +164,7 @@ json bench_rays(const World& world, double seconds) {
   int scans = 0;
   const auto t0 = Clock::now();
   while (since(t0) < seconds) {
-    for (int k = 0; k < 50; ++k) sample_lidar(world, s, scene, 0, laser, SimTime{}, rng);
+    for (int k = 0; k < 50; ++k) sample_lidar(world, s, scene, RobotIndex(0), laser, SimTime{}, rng);
     scans += 50;
   }
   const double rate = scans / since(t0);
@@ -183,7 +183,7 @@ json bench_rays(const World& world, double seconds) {
     int smoky_scans = 0;
     const auto t1 = Clock::now();
     while (since(t1) < seconds) {
-      for (int k = 0; k < 50; ++k) sample_lidar(smoky, s, smoky_scene, 0, laser, SimTime{}, rng);
+      for (int k = 0; k < 50; ++k) sample_lidar(smoky, s, smoky_scene, RobotIndex(0), laser, SimTime{}, rng);
       smoky_scans += 50;
     }
     return smoky_scans / since(t1) * laser.lidar.samples;
@@ -221,7 +221,7 @@ json bench_cameras(const World& world, double seconds) {
   const SensorSpec* head = world.robots[0].spec.find_sensor("color_camera");
   const std::pair<BenchImage, const char*> kinds[3] = {
       {BenchImage::color, "color"}, {BenchImage::depth, "depth"}, {BenchImage::thermal, "thermal"}};
-  CameraView view = camera_view(world, s, 0, *head);
+  CameraView view = camera_view(world, s, RobotIndex(0), *head);
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{640, 480}, {320, 240}}) {
     const double bare = bare_gl_frames_per_second(w, h, static_cast<int>(scene.triangle_count()), seconds);
     view.k = Intrinsics::from_hfov(w, h, 70 * M_PI / 180);

@@ -494,7 +494,7 @@ json measure(const Scenario& def, const ModelMap& models, const BenchControlOpti
     const auto add_remove = [&](Simulation& sim, std::vector<double>& adds, std::vector<double>& removes, int n) {
       for (int k = 0; k < n; ++k) {
         auto t0 = Clock::now();
-        const int index = sim.add_robot(robot());
+        const RobotIndex index = sim.add_robot(robot());
         adds.push_back(since(t0));
         t0 = Clock::now();
         sim.remove_robot(index);

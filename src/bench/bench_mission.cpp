@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "bench/bench_figures.h"
-#include "radio/radio_network.h"
 #include "import/scenario/scenario.h"
+#include "radio/radio_network.h"
 #include "raycast/ray_scene.h"
 #include "robots/rescue_robot.h"
 
@@ -76,8 +76,8 @@ json bench_mission(const std::filesystem::path& scenario_file, double sim_second
       for (int r = 0; r < repeats; ++r) net.update(&walls);
     }) / repeats;
     int linked = 0;
-    for (int a = 0; a < n; ++a) {
-      for (int b = a + 1; b < n; ++b) linked += net.link(a, b).connected;
+    for (RadioNodeIndex a : net.node_indices()) {
+      for (RadioNodeIndex b : net.node_indices()) linked += a < b && net.link(a, b).connected;
     }
     updates.push_back({{"radios", n}, {"links", n * (n - 1) / 2}, {"connected", linked}, {"us_per_update", s * 1e6},
                        {"share_of_real_time_at_link_rate", s * with.mission->radio.link_rate_hz}});

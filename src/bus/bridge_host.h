@@ -52,7 +52,7 @@ struct HostFrames {
 struct HostInput {
   std::string topic;  ///< absolute name ("/robot2/rescue/report")
   std::string type;   ///< ROS 1 type name ("geometry_msgs/PoseStamped"); msgs/serialize.h has its serialisers
-  int robot = -1;     ///< the robot it belongs to, -1 for none
+  RobotIndex robot;   ///< the robot it belongs to; invalid for none
 };
 
 class BridgeHost {
@@ -73,16 +73,16 @@ class BridgeHost {
   virtual HostFrames frames() const = 0;
 
   /// The absolute topic name of a robot's relative topic ("scan" -> "/scan" or "/robot2/scan").
-  virtual std::string topic_name(int robot, const std::string& relative) const = 0;
+  virtual std::string topic_name(RobotIndex robot, const std::string& relative) const = 0;
   /// A robot's frame name ("base_link" -> "base_link" or "robot2/base_link").
-  virtual std::string frame_name(int robot, const std::string& frame) const = 0;
+  virtual std::string frame_name(RobotIndex robot, const std::string& frame) const = 0;
 
   /// cmd_vel for robot `robot` (an index into world().robots), applied at the next step.
-  virtual CommandOutcome command_velocity(int robot, const msg::Twist& twist) = 0;
+  virtual CommandOutcome command_velocity(RobotIndex robot, const msg::Twist& twist) = 0;
   /// Head joint position targets (rad), in RobotSpec::head_joints order.
-  virtual CommandOutcome command_head(int robot, const std::vector<double>& positions) = 0;
+  virtual CommandOutcome command_head(RobotIndex robot, const std::vector<double>& positions) = 0;
   /// Targets for commandable joints by name (see Simulation::command_joints).
-  virtual CommandOutcome command_joints(int robot, const msg::JointState& command) = 0;
+  virtual CommandOutcome command_joints(RobotIndex robot, const msg::JointState& command) = 0;
 
   /// Topics taken beyond the commands above; fixed before bridges start. None by default.
   virtual std::vector<HostInput> inputs() const { return {}; }

@@ -41,7 +41,7 @@ std::size_t Bus::index(TopicId topic, const char* function) const {
   return t;
 }
 
-TopicId Bus::advertise(const std::string& name, const std::string& type, double rate, bool latched, int robot) {
+TopicId Bus::advertise(const std::string& name, const std::string& type, double rate, bool latched, RobotIndex robot) {
   demand_unlocked("advertise");
   const TopicId existing = find(name);
   if (existing != kNoTopic) {
@@ -49,7 +49,7 @@ TopicId Bus::advertise(const std::string& name, const std::string& type, double 
     if (t.type != type) {
       throw Error({"", 0, "topic " + name}, "advertised as " + type + " but it already carries " + t.type);
     }
-    if (robot >= 0) t.robot = robot;  // a robot's index changes when a robot before it is removed
+    if (robot.valid()) t.robot = robot;  // a robot's index changes when a robot before it is removed
     if (t.retired) {
       // back (a robot of that name spawned again): with this advertisement's description
       t.rate = rate;

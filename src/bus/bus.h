@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bus/topic_id.h"  // TopicId, kNoTopic
+#include "core/index.h"    // RobotIndex
 #include "msgs/messages.h"
 
 namespace rescuesim {
@@ -36,7 +37,7 @@ struct Topic {
   std::string type;        ///< ROS 1 type name, e.g. "sensor_msgs/LaserScan"
   double rate = 0;         ///< nominal rate (Hz), 0 when irregular
   bool latched = false;    ///< late subscribers get the last message (like /tf_static)
-  int robot = -1;          ///< the robot it belongs to, -1 for global topics
+  RobotIndex robot;        ///< the robot it belongs to; invalid for global topics
   /// Gone: its robot was deleted while running (DeleteEntity, a reset that removes spawned
   /// robots). The id stays valid and nothing is published on it; bridges drop its writers.
   /// Advertising the name again brings it back.
@@ -53,7 +54,7 @@ class Bus {
 
   /// Declares a topic (or returns the existing one of that name; the type must match, else
   /// throws Error naming the topic). Not from a subscriber callback.
-  TopicId advertise(const std::string& name, const std::string& type, double rate = 0, bool latched = false, int robot = -1);
+  TopicId advertise(const std::string& name, const std::string& type, double rate = 0, bool latched = false, RobotIndex robot = {});
   /// Delivers a message to the topic's subscribers, in subscription order. `topic` must be
   /// one this Bus advertised.
   void publish(TopicId topic, msg::Message message);

@@ -62,8 +62,8 @@ Mission::Mission(const MissionSpec& spec, Simulation& sim)
   const World& world = sim_.world();
   if (world.robots.empty()) throw Error("a mission needs at least one robot");
   const std::vector<Vec3> robots = radio_positions();
-  for (std::size_t r = 0; r < world.robots.size(); ++r) {
-    robot_nodes_.push_back(network_.add_node(world.robots[r].name, RadioNodeKind::robot, robots[r]));
+  for (RobotIndex r : world.robot_indices()) {
+    robot_nodes_.push_back(network_.add_node(world.robot(r).name, RadioNodeKind::robot, robots[r.slot()]));
   }
   std::vector<BaseStationSpec> bases = spec_.bases;
   if (bases.empty()) {
@@ -83,8 +83,7 @@ Mission::Mission(const MissionSpec& spec, Simulation& sim)
 
   Bus& bus = sim_.bus();
   score_topic_ = bus.advertise("/rescue/score", "std_msgs/String", 0, true);
-  for (std::size_t r = 0; r < world.robots.size(); ++r) {
-    const int ri = static_cast<int>(r);
+  for (RobotIndex ri : world.robot_indices()) {
     result_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/report_result"), "std_msgs/String", 0, false, ri));
     status_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/status"), "std_msgs/String", kStatusRate, false, ri));
     inbox_topics_.push_back(bus.advertise(sim_.topic_name(ri, "rescue/comms/inbox"), "std_msgs/String", 0, false, ri));
@@ -108,17 +107,17 @@ std::vector<Vec3> Mission::radio_positions() const {
 
 void Mission::update_links() {
   const std::vector<Vec3> robots = radio_positions();
-  for (std::size_t r = 0; r < robots.size(); ++r) network_.set_position(robot_nodes_[r], robots[r]);
+  for (RobotIndex r : indices<RobotTag>(robots.size())) network_.set_position(robot_nodes_[r], robots[r.slot()]);
   if (spec_.radio.model.kind == RadioModelKind::wss) {
     const WallCounter walls(sim_.ray_scene(), sim_.world());
     network_.update(&walls);
   } else {
     network_.update();
   }
-  for (std::size_t r = 0; r < robots.size(); ++r) {
+  for (RobotIndex r : indices<RobotTag>(robots.size())) {
     const bool c = network_.status(robot_nodes_[r]).hops_to_base.has_value();
-    in_contact_[r] = c;
-    if (c) ++in_contact_updates_[r];
+    in_contact_[r.slot()] = c;
+    if (c) ++in_contact_updates_[r.slot()];
   }
 }
 
@@ -128,7 +127,7 @@ void Mission::after_step() {
     // datagrams queued since the last update go along the routes of that update, then links move on
     const double dt = static_cast<double>(period_ns(spec_.radio.link_rate_hz)) * 1e-9;
     std::vector<std::size_t> before;
-    for (int node : robot_nodes_) before.push_back(network_.inbox(node).size());
+    for (RadioNodeIndex node : robot_nodes_) before.push_back(network_.inbox(node).size());
     network_.deliver(dt);
     publish_inboxes(before);
     update_links();
@@ -141,15 +140,15 @@ void Mission::after_step() {
   }
 }
 
-bool Mission::in_contact(int robot) const { return in_contact_.at(static_cast<std::size_t>(robot)); }
+bool Mission::in_contact(RobotIndex robot) const { return in_contact_.at(robot.slot()); }
 
-ReportReply Mission::report(int robot, const Vec3& p_W) {
+ReportReply Mission::report(RobotIndex robot, const Vec3& p_W) {
   ReportReply reply = judge(robot, p_W);
   publish_reply(robot, reply, p_W);
   return reply;
 }
 
-ReportReply Mission::report(int robot, const Vec3& p_W, msg::Image image) {
+ReportReply Mission::report(RobotIndex robot, const Vec3& p_W, msg::Image image) {
   ReportReply reply = judge(robot, p_W);
   if (const std::string problem = keep_image(robot, reply, std::move(image)); !problem.empty()) {
     reply.message += "; its picture was not kept: " + problem;
@@ -160,12 +159,12 @@ ReportReply Mission::report(int robot, const Vec3& p_W, msg::Image image) {
   return reply;
 }
 
-ReportReply Mission::judge(int robot, const Vec3& p_W) {
+ReportReply Mission::judge(RobotIndex robot, const Vec3& p_W) {
   VictimReport r;
   r.robot = robot;
   r.p_W = p_W;
   r.time = sim_.time();
-  r.in_contact = robot >= 0 && robot < static_cast<int>(in_contact_.size()) && in_contact_[static_cast<std::size_t>(robot)];
+  r.in_contact = robot_nodes_.contains(robot) && in_contact_[robot.slot()];
   const double before = referee_.score();
   const std::uint64_t charged = referee_.counts().charged;
   ReportReply reply = referee_.judge(r);
@@ -173,7 +172,7 @@ ReportReply Mission::judge(int robot, const Vec3& p_W) {
   return reply;
 }
 
-std::string Mission::keep_image(int robot, const ReportReply& reply, msg::Image image) {
+std::string Mission::keep_image(RobotIndex robot, const ReportReply& reply, msg::Image image) {
   if (std::string problem = image_problem(image); !problem.empty()) return problem;
   if (report_image_bytes_ + image.data.size() > kReportImageBytes) {
     return "the run keeps at most " + std::to_string(kReportImageBytes >> 20) + " MiB of report pictures, and has " +
@@ -184,8 +183,8 @@ std::string Mission::keep_image(int robot, const ReportReply& reply, msg::Image 
   return {};
 }
 
-std::string Mission::report_image(int robot, msg::Image image) {
-  const auto r = static_cast<std::size_t>(robot);
+std::string Mission::report_image(RobotIndex robot, msg::Image image) {
+  const auto r = robot.slot();
   std::string problem = image_problem(image);
   std::optional<LastReport>& last = last_report_.at(r);
   if (problem.empty() && last && !last->has_image && last->stamp == image.header.stamp) {
@@ -203,24 +202,22 @@ std::string Mission::report_image(int robot, msg::Image image) {
   return problem;
 }
 
-void Mission::publish_image_result(int robot, std::uint64_t report, const std::string& problem) {
+void Mission::publish_image_result(RobotIndex robot, std::uint64_t report, const std::string& problem) {
   nlohmann::json j;
   j["request"] = "report_image";
   j["accepted"] = problem.empty();
   j["id"] = report > 0 ? nlohmann::json(report) : nlohmann::json(nullptr);
   if (!problem.empty()) j["reason"] = problem;
   j["stamp"] = sim_.time().seconds();
-  sim_.bus().publish(result_topics_.at(static_cast<std::size_t>(robot)),
-                     msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+  sim_.bus().publish(result_topics_.at(robot), msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
 }
 
-void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W) {
-  if (robot >= 0 && robot < static_cast<int>(result_topics_.size())) {
+void Mission::publish_reply(RobotIndex robot, const ReportReply& reply, const Vec3& p_W) {
+  if (result_topics_.contains(robot)) {
     nlohmann::json j;
     j["id"] = reply.id;
     j["outcome"] = std::string(report_outcome_name(reply.outcome));
-    j["victim"] =
-        reply.victim >= 0 ? nlohmann::json(referee_.victims()[static_cast<std::size_t>(reply.victim)].name) : nlohmann::json(nullptr);
+    j["victim"] = reply.victim.valid() ? nlohmann::json(referee_.victims()[reply.victim.slot()].name) : nlohmann::json(nullptr);
     j["distance"] = reply.distance_m >= 0 ? nlohmann::json(reply.distance_m) : nlohmann::json(nullptr);
     j["position"] = {number_or_null(p_W.x()), number_or_null(p_W.y()), number_or_null(p_W.z())};
     j["score_change"] = reply.score_change;
@@ -228,20 +225,19 @@ void Mission::publish_reply(int robot, const ReportReply& reply, const Vec3& p_W
     j["reports_left"] = reply.reports_left;
     j["message"] = reply.message;
     j["stamp"] = sim_.time().seconds();
-    sim_.bus().publish(result_topics_[static_cast<std::size_t>(robot)],
-                       msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
+    sim_.bus().publish(result_topics_[robot], msg::String{j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)});
   }
 }
 
-void Mission::publish_comms_result(int robot, const std::string& json) {
-  sim_.bus().publish(comms_result_topics_.at(static_cast<std::size_t>(robot)), msg::String{json});
+void Mission::publish_comms_result(RobotIndex robot, const std::string& json) {
+  sim_.bus().publish(comms_result_topics_.at(robot), msg::String{json});
 }
 
 void Mission::publish_inboxes(const std::vector<std::size_t>& before) {
-  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
-    const int node = robot_nodes_[r];
+  for (RobotIndex r : robot_nodes_.indices()) {
+    const RadioNodeIndex node = robot_nodes_[r];
     const std::vector<Datagram>& inbox = network_.inbox(node);
-    for (std::size_t i = before[r]; i < inbox.size(); ++i) {
+    for (std::size_t i = before[r.slot()]; i < inbox.size(); ++i) {
       const Datagram& d = inbox[i];
       InboxEntry e;
       e.seq = d.seq;
@@ -257,14 +253,13 @@ void Mission::publish_inboxes(const std::vector<std::size_t>& before) {
     if (inbox.size() > kInboxKeep) network_.trim_inbox(node, kInboxKeep);
   }
   // nor a base's (datagrams "to base" from a ROS team, with no built-in team to read them)
-  for (int node : base_nodes_) {
+  for (RadioNodeIndex node : base_nodes_) {
     if (network_.inbox(node).size() > kInboxKeep) network_.trim_inbox(node, kInboxKeep);
   }
 }
 
 void Mission::add_inputs() {
-  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
-    const int ri = static_cast<int>(r);
+  for (RobotIndex ri : robot_nodes_.indices()) {
     sim_.add_input({sim_.topic_name(ri, "rescue/report"), "geometry_msgs/PoseStamped", ri}, [this, ri](const msg::Message& m) {
       const auto& pose = std::get<msg::PoseStamped>(m);
       const Vec3 p = pose.pose.p;
@@ -279,7 +274,7 @@ void Mission::add_inputs() {
         return;
       }
       // a picture that came first with this stamp goes with it
-      std::optional<msg::Image>& waiting = waiting_image_[static_cast<std::size_t>(ri)];
+      std::optional<msg::Image>& waiting = waiting_image_[ri.slot()];
       const bool paired = waiting && waiting->header.stamp == pose.header.stamp;
       ReportReply reply;
       if (paired) {
@@ -288,7 +283,7 @@ void Mission::add_inputs() {
       } else {
         reply = report(ri, p);
       }
-      last_report_[static_cast<std::size_t>(ri)] = LastReport{pose.header.stamp, reply, paired};
+      last_report_[ri.slot()] = LastReport{pose.header.stamp, reply, paired};
     });
     sim_.add_input({sim_.topic_name(ri, "rescue/report_image"), "sensor_msgs/Image", ri},
                    [this, ri](const msg::Message& m) { report_image(ri, std::get<msg::Image>(m)); });
@@ -329,25 +324,25 @@ void Mission::add_inputs() {
   }
 }
 
-SendResult Mission::send(int robot, std::string_view to, std::vector<std::uint8_t> bytes) {
-  if (robot < 0 || robot >= static_cast<int>(robot_nodes_.size())) return {false, 0, "no robot " + std::to_string(robot)};
-  int dest = kRadioBroadcast;
+SendResult Mission::send(RobotIndex robot, std::string_view to, std::vector<std::uint8_t> bytes) {
+  if (!robot_nodes_.contains(robot)) return {false, 0, "no robot " + std::to_string(robot.value())};
+  RadioNodeIndex dest = kRadioBroadcast;
   if (to != "*") {
     const auto n = network_.find(to);
     if (!n) return {false, 0, "no radio called '" + std::string(to) + "' (robots, bases and '*' for every neighbour)"};
     dest = *n;
   }
-  return network_.send(robot_nodes_[static_cast<std::size_t>(robot)], dest, std::move(bytes));
+  return network_.send(robot_nodes_[robot], dest, std::move(bytes));
 }
 
-std::vector<Datagram> Mission::take_inbox(int robot) { return network_.take_inbox(robot_node(robot)); }
+std::vector<Datagram> Mission::take_inbox(RobotIndex robot) { return network_.take_inbox(robot_node(robot)); }
 
 std::vector<Datagram> Mission::take_base_inbox(std::size_t index) { return network_.take_inbox(base_nodes_.at(index)); }
 
-RadioStatus Mission::status(int robot) const { return network_.status(robot_node(robot)); }
+RadioStatus Mission::status(RobotIndex robot) const { return network_.status(robot_node(robot)); }
 
-RelayResult Mission::drop_relay(int robot) {
-  const int node = robot_node(robot);
+RelayResult Mission::drop_relay(RobotIndex robot) {
+  const RadioNodeIndex node = robot_node(robot);
   return network_.add_relay(node, network_.node(node).p_W);
 }
 
@@ -364,12 +359,12 @@ void Mission::publish_score() {
 }
 
 void Mission::publish_status() {
-  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
-    const int node = robot_nodes_[r];
+  for (RobotIndex r : robot_nodes_.indices()) {
+    const RadioNodeIndex node = robot_nodes_[r];
     const RadioStatus st = network_.status(node);
     nlohmann::json j;
     j["stamp"] = sim_.time().seconds();
-    j["in_contact"] = in_contact_[r];
+    j["in_contact"] = in_contact_[r.slot()];
     j["hops_to_base"] = st.hops_to_base ? nlohmann::json(*st.hops_to_base) : nlohmann::json(nullptr);
     nlohmann::json nb = nlohmann::json::array();
     for (const auto& n : st.neighbours) {
@@ -398,12 +393,13 @@ MissionResult Mission::result() const {
   for (const auto& v : referee_.victims()) m.victim_names.push_back(v.name);
   m.victim_states = referee_.victim_states();
   m.link_updates = network_.update_count();
-  for (std::size_t r = 0; r < robot_nodes_.size(); ++r) {
+  for (RobotIndex r : robot_nodes_.indices()) {
     m.robot_names.push_back(network_.node(robot_nodes_[r]).id);
-    m.contact_fraction.push_back(m.link_updates ? static_cast<double>(in_contact_updates_[r]) / static_cast<double>(m.link_updates) : 0.0);
+    m.contact_fraction.push_back(m.link_updates ? static_cast<double>(in_contact_updates_[r.slot()]) / static_cast<double>(m.link_updates)
+                                                : 0.0);
     m.relays_dropped.push_back(spec_.radio.relays_per_robot - network_.relays_left(robot_nodes_[r]));
   }
-  for (int n = 0; n < network_.node_count(); ++n) {
+  for (RadioNodeIndex n : network_.node_indices()) {
     const RadioStatus st = network_.status(n);
     m.datagrams_sent += st.datagrams_sent;
     m.datagrams_delivered += st.datagrams_received;
@@ -466,7 +462,7 @@ void Mission::enable_map_scoring(const WorldSpec& world) {
   seen_from_.assign(w.robots.size(), std::nullopt);
   map_truth_ = std::move(t);
   map_score_topic_ = sim_.bus().advertise("/rescue/map_score", "std_msgs/String", 0, true);
-  sim_.add_input({"/rescue/map", "nav_msgs/OccupancyGrid", -1},
+  sim_.add_input({"/rescue/map", "nav_msgs/OccupancyGrid", {}},
                  [this](const msg::Message& m) { score_map(std::get<msg::OccupancyGrid>(m)); });
   update_visible();
 }

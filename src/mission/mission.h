@@ -33,10 +33,10 @@
 #include <vector>
 
 #include "bus/topic_id.h"
-#include "radio/radio_network.h"
 #include "mission/map_metrics.h"
-#include "msgs/messages.h"
 #include "mission/referee.h"
+#include "msgs/messages.h"
+#include "radio/radio_network.h"
 #include "world/mission_spec.h"
 
 namespace rescuesim {
@@ -57,10 +57,10 @@ struct MapScoreResult {
 /// Which report a kept picture belongs to.
 struct ReportPicture {
   std::uint64_t report = 0;   ///< the report's id (ReportReply::id)
-  int robot = -1;
+  RobotIndex robot;
   double t = 0;               ///< sim time the picture was attached (s)
   ReportOutcome outcome = ReportOutcome::invalid;
-  int victim = -1;            ///< as the report's reply
+  VictimIndex victim;  ///< as the report's reply
 };
 
 /// The picture a report came with, kept for the run's outputs (reports/ in the output folder).
@@ -111,16 +111,16 @@ class Mission {
 
   /// A report by `robot` of a victim at p_W (map frame = world frame), judged now; the answer
   /// is also published on /<robot>/rescue/report_result, and the score when it changes.
-  ReportReply report(int robot, const Vec3& p_W);
+  ReportReply report(RobotIndex robot, const Vec3& p_W);
   /// The same with its picture (checked by image_problem; a picture that is refused, or that
   /// would take the kept pictures over kReportImageBytes, is left out and the reply says why in
   /// `message`; the report is judged all the same).
-  ReportReply report(int robot, const Vec3& p_W, msg::Image image);
+  ReportReply report(RobotIndex robot, const Vec3& p_W, msg::Image image);
   /// A picture for robot `robot`'s report of the same header.stamp: attached to its last
   /// report if that has this stamp and no picture yet, else kept until such a report comes (a
   /// newer picture replaces it). Returns "" or why it was refused (also published on
   /// /<robot>/rescue/report_result).
-  std::string report_image(int robot, msg::Image image);
+  std::string report_image(RobotIndex robot, msg::Image image);
   /// Every report picture kept, in the order they were attached.
   const std::vector<ReportImage>& report_images() const { return report_images_; }
   static constexpr std::size_t kReportImageBytes = std::size_t{256} << 20;
@@ -136,23 +136,23 @@ class Mission {
   MapScoreResult score_map(const msg::OccupancyGrid& map);
 
   /// True when `robot` had a radio route to a base at the last link update.
-  bool in_contact(int robot) const;
+  bool in_contact(RobotIndex robot) const;
   /// Sends a datagram from `robot` to `to` ("base", a robot's name, or "*" for every
   /// neighbour); delivered at the next link update along the route of that moment.
-  SendResult send(int robot, std::string_view to, std::vector<std::uint8_t> bytes);
+  SendResult send(RobotIndex robot, std::string_view to, std::vector<std::uint8_t> bytes);
   /// Empties the robot's inbox (which keeps the newest kInboxKeep datagrams not taken; every
   /// one is also published on /<robot>/rescue/comms/inbox as it arrives).
-  std::vector<Datagram> take_inbox(int robot);
+  std::vector<Datagram> take_inbox(RobotIndex robot);
   /// Empties base `index`'s inbox (base_nodes()[index]) and returns what was in it. A base's
   /// inbox keeps the newest kInboxKeep datagrams not taken, as a robot's does.
   std::vector<Datagram> take_base_inbox(std::size_t index);
   static constexpr std::size_t kInboxKeep = 1024;
-  RadioStatus status(int robot) const;
+  RadioStatus status(RobotIndex robot) const;
   /// Drops a relay where the robot stands (its antenna position); from the robot's budget.
-  RelayResult drop_relay(int robot);
+  RelayResult drop_relay(RobotIndex robot);
   /// The radio node of robot `robot`, of base `index`.
-  int robot_node(int robot) const { return robot_nodes_.at(static_cast<std::size_t>(robot)); }
-  const std::vector<int>& base_nodes() const { return base_nodes_; }
+  RadioNodeIndex robot_node(RobotIndex robot) const { return robot_nodes_.at(robot); }
+  const std::vector<RadioNodeIndex>& base_nodes() const { return base_nodes_; }
 
   const Referee& referee() const { return referee_; }
   const RadioNetwork& network() const { return network_; }
@@ -168,12 +168,12 @@ class Mission {
   void update_links();
   /// Publishes the datagrams delivered since `before` (inbox sizes per robot before deliver()).
   void publish_inboxes(const std::vector<std::size_t>& before);
-  void publish_reply(int robot, const ReportReply& reply, const Vec3& p_W);
-  ReportReply judge(int robot, const Vec3& p_W);
+  void publish_reply(RobotIndex robot, const ReportReply& reply, const Vec3& p_W);
+  ReportReply judge(RobotIndex robot, const Vec3& p_W);
   /// Keeps `image` as report `reply`'s picture; "" or why not.
-  std::string keep_image(int robot, const ReportReply& reply, msg::Image image);
-  void publish_image_result(int robot, std::uint64_t report, const std::string& problem);
-  void publish_comms_result(int robot, const std::string& json);
+  std::string keep_image(RobotIndex robot, const ReportReply& reply, msg::Image image);
+  void publish_image_result(RobotIndex robot, std::uint64_t report, const std::string& problem);
+  void publish_comms_result(RobotIndex robot, const std::string& json);
   void add_inputs();
   void publish_score();
   void publish_status();
@@ -183,12 +183,13 @@ class Mission {
   Simulation& sim_;
   Referee referee_;
   RadioNetwork network_;
-  std::vector<int> robot_nodes_, base_nodes_;
+  IndexedVector<RobotTag, RadioNodeIndex> robot_nodes_;
+  std::vector<RadioNodeIndex> base_nodes_;
   std::vector<std::uint64_t> in_contact_updates_;  ///< per robot
   std::vector<bool> in_contact_;                   ///< per robot, at the last update
   std::int64_t next_link_ns_ = 0, next_status_ns_ = 0;
   TopicId score_topic_ = kNoTopic;
-  std::vector<TopicId> result_topics_, status_topics_, inbox_topics_, comms_result_topics_;
+  IndexedVector<RobotTag, TopicId> result_topics_, status_topics_, inbox_topics_, comms_result_topics_;
   // map scoring (enable_map_scoring): what does not change, then what does (in Memory too)
   struct MapTruth {
     map_eval::Grid truth, ignore;

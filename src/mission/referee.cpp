@@ -69,8 +69,8 @@ ReportReply Referee::judge(const VictimReport& report) {
     ++counts_.by_outcome[static_cast<int>(outcome)];
     return r;
   };
-  if (report.robot < 0 || report.robot >= robots_) {
-    return finish(ReportOutcome::invalid, fmt::format("no robot {} (there are {})", report.robot, robots_));
+  if (!report.robot.valid() || report.robot.value() >= robots_) {
+    return finish(ReportOutcome::invalid, fmt::format("no robot {} (there are {})", report.robot.value(), robots_));
   }
   if (!report.p_W.allFinite()) {
     return finish(ReportOutcome::invalid,
@@ -80,7 +80,7 @@ ReportReply Referee::judge(const VictimReport& report) {
   if (rules_.time_limit_s > 0 && t > rules_.time_limit_s) {
     return finish(ReportOutcome::time_over, fmt::format("the mission ended at {:.1f} s", rules_.time_limit_s));
   }
-  std::int64_t& last = last_report_ns_[static_cast<std::size_t>(report.robot)];
+  std::int64_t& last = last_report_ns_[report.robot.slot()];
   const auto min_gap = static_cast<std::int64_t>(std::llround(1e9 / rules_.report_rate_hz));
   if (last != std::numeric_limits<std::int64_t>::min() && report.time.ns - last < min_gap) {
     return finish(ReportOutcome::rate_limited, fmt::format("at most {:g} reports per second per robot", rules_.report_rate_hz));
@@ -99,21 +99,21 @@ ReportReply Referee::judge(const VictimReport& report) {
   }
 
   // the nearest unfound victim within the radius; else the nearest found one (a duplicate)
-  int unfound = -1, found = -1;
+  VictimIndex unfound, found;
   double d_unfound = std::numeric_limits<double>::infinity(), d_found = d_unfound;
   for (std::size_t i = 0; i < victims_.size(); ++i) {
     const double d = (victims_[i].p_W - report.p_W).norm();
     if (d > rules_.report_radius_m) continue;
-    if (!states_[i].found && d < d_unfound) d_unfound = d, unfound = static_cast<int>(i);
-    if (states_[i].found && d < d_found) d_found = d, found = static_cast<int>(i);
+    if (!states_[i].found && d < d_unfound) d_unfound = d, unfound = VictimIndex::at(i);
+    if (states_[i].found && d < d_found) d_found = d, found = VictimIndex::at(i);
   }
   ++counts_.charged;
   charged_.push_back({report.robot, report.p_W});
   ScoreEvent e;
   e.t = t;
   e.robot = report.robot;
-  if (unfound >= 0) {
-    RefereeVictimState& v = states_[static_cast<std::size_t>(unfound)];
+  if (unfound.valid()) {
+    RefereeVictimState& v = states_[unfound.slot()];
     v.found = true;
     v.time = t;
     v.by = report.robot;
@@ -127,10 +127,9 @@ ReportReply Referee::judge(const VictimReport& report) {
     e.victim = unfound;
     e.score = score_;
     timeline_.push_back(e);
-    return finish(ReportOutcome::accepted,
-                  fmt::format("found victim '{}' {:.2f} m away", victims_[static_cast<std::size_t>(unfound)].name, d_unfound));
+    return finish(ReportOutcome::accepted, fmt::format("found victim '{}' {:.2f} m away", victims_[unfound.slot()].name, d_unfound));
   }
-  if (found >= 0) {
+  if (found.valid()) {
     r.victim = found;
     r.distance_m = d_found;
     e.outcome = ReportOutcome::duplicate;
@@ -138,7 +137,7 @@ ReportReply Referee::judge(const VictimReport& report) {
     e.score = score_;
     timeline_.push_back(e);
     return finish(ReportOutcome::duplicate,
-                  fmt::format("victim '{}' ({:.2f} m away) was found already", victims_[static_cast<std::size_t>(found)].name, d_found));
+                  fmt::format("victim '{}' ({:.2f} m away) was found already", victims_[found.slot()].name, d_found));
   }
   score_ -= rules_.false_report_penalty;
   r.score_change = -rules_.false_report_penalty;

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/index.h"
 #include "core/pose.h"
 #include "core/sim_time.h"
 #include "world/mission_spec.h"
@@ -46,7 +47,7 @@ struct RefereeVictim {
 
 /// One report.
 struct VictimReport {
-  int robot = -1;            ///< index of the reporting robot
+  RobotIndex robot;          ///< index of the reporting robot
   Vec3 p_W = Vec3::Zero();   ///< reported position in the map frame, which is the world frame (m)
   SimTime time;              ///< when it was made
   bool in_contact = true;    ///< the robot had a radio route to a base
@@ -56,7 +57,7 @@ struct VictimReport {
 struct ReportReply {
   std::uint64_t id = 0;           ///< reports judged so far, this one included (1, 2, ...)
   ReportOutcome outcome = ReportOutcome::invalid;
-  int victim = -1;                ///< the victim found (accepted) or nearest within the radius (duplicate), else -1
+  VictimIndex victim;             ///< the victim found (accepted) or nearest within the radius (duplicate), else invalid
   double distance_m = -1;         ///< from the report to that victim (m), else -1
   double score_change = 0;
   double score = 0;               ///< the score after this report
@@ -67,9 +68,9 @@ struct ReportReply {
 /// A change of score, for the timeline.
 struct ScoreEvent {
   double t = 0;         ///< s
-  int robot = -1;
+  RobotIndex robot;
   ReportOutcome outcome = ReportOutcome::accepted;
-  int victim = -1;
+  VictimIndex victim;
   double score = 0;     ///< after the event
 };
 
@@ -77,7 +78,7 @@ struct ScoreEvent {
 struct RefereeVictimState {
   bool found = false;
   double time = -1;     ///< s when found
-  int by = -1;          ///< robot that reported it
+  RobotIndex by;        ///< robot that reported it (invalid: not found)
   double error_m = -1;  ///< distance of the accepted report (m)
 };
 
@@ -112,7 +113,7 @@ class Referee {
 
  private:
   struct Remembered {
-    int robot;
+    RobotIndex robot;
     Vec3 p_W;
   };
 

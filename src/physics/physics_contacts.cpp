@@ -121,7 +121,7 @@ std::string Physics::Impl::name_of(int code) const {
     case kStatic: {
       if (options.compound_statics) return "static";
       const StaticObject& s = world.statics[static_cast<std::size_t>(index_of(code))];
-      return s.victim >= 0 ? world.victims[static_cast<std::size_t>(s.victim)].name : s.name;
+      return s.victim.valid() ? world.victim(s.victim).name : s.name;
     }
     case kDynamic: return world.dynamics[static_cast<std::size_t>(index_of(code))].name;
     case kRobot: return world.robots[static_cast<std::size_t>(sub_of(code))].name;

@@ -29,64 +29,65 @@ RadioNetwork::RadioNetwork(RadioModel model, std::uint64_t seed, RadioNetworkOpt
   }
 }
 
-void RadioNetwork::check_node(int index, const char* where) const {
-  if (index < 0 || index >= node_count()) {
-    throw Error(fmt::format("RadioNetwork::{}: no node {} (the network has {})", where, index, node_count()));
+void RadioNetwork::check_node(RadioNodeIndex index, const char* where) const {
+  if (!nodes_.contains(index)) {
+    throw Error(fmt::format("RadioNetwork::{}: no node {} (the network has {})", where, index.value(), node_count()));
   }
 }
 
-int RadioNetwork::add_node(std::string id, RadioNodeKind kind, const Vec3& p_W) {
+RadioNodeIndex RadioNetwork::add_node(std::string id, RadioNodeKind kind, const Vec3& p_W) {
   if (id.empty()) throw Error("RadioNetwork::add_node: empty node id");
   if (find(id)) throw Error(fmt::format("RadioNetwork::add_node: duplicate node id '{}'", id));
-  nodes_.push_back({std::move(id), kind, p_W, -1});
+  const RadioNodeIndex added = nodes_.next_index();
+  nodes_.push_back({std::move(id), kind, p_W, {}});
   relays_dropped_.push_back(0);
   inboxes_.emplace_back();
   traffic_.emplace_back();
-  return node_count() - 1;
+  return added;
 }
 
-RelayResult RadioNetwork::add_relay(int owner, const Vec3& p_W) {
-  if (owner < 0 || owner >= node_count()) return {-1, fmt::format("no node {} to drop a relay", owner)};
-  const RadioNode& robot = nodes_[static_cast<std::size_t>(owner)];
-  if (robot.kind != RadioNodeKind::robot) return {-1, fmt::format("'{}' is not a robot: only robots drop relays", robot.id)};
+RelayResult RadioNetwork::add_relay(RadioNodeIndex owner, const Vec3& p_W) {
+  if (!nodes_.contains(owner)) return {{}, fmt::format("no node {} to drop a relay", owner.value())};
+  const RadioNode& robot = nodes_[owner];
+  if (robot.kind != RadioNodeKind::robot) return {{}, fmt::format("'{}' is not a robot: only robots drop relays", robot.id)};
   if (relays_left(owner) <= 0) {
-    return {-1, fmt::format("'{}' has no relays left (budget {})", robot.id, options_.relays_per_robot)};
+    return {{}, fmt::format("'{}' has no relays left (budget {})", robot.id, options_.relays_per_robot)};
   }
-  if (!finite3(p_W)) return {-1, fmt::format("relay position of '{}' is not finite", robot.id)};
-  const int k = ++relays_dropped_[static_cast<std::size_t>(owner)];
-  const int node = add_node(fmt::format("{}/relay_{}", robot.id, k), RadioNodeKind::relay, p_W);
-  nodes_[static_cast<std::size_t>(node)].owner = owner;
+  if (!finite3(p_W)) return {{}, fmt::format("relay position of '{}' is not finite", robot.id)};
+  const int k = ++relays_dropped_[owner];
+  const RadioNodeIndex node = add_node(fmt::format("{}/relay_{}", robot.id, k), RadioNodeKind::relay, p_W);
+  nodes_[node].owner = owner;
   return {node, ""};
 }
 
-int RadioNetwork::relays_left(int owner) const {
+int RadioNetwork::relays_left(RadioNodeIndex owner) const {
   check_node(owner, "relays_left");
-  if (nodes_[static_cast<std::size_t>(owner)].kind != RadioNodeKind::robot) return 0;
-  return options_.relays_per_robot - relays_dropped_[static_cast<std::size_t>(owner)];
+  if (nodes_[owner].kind != RadioNodeKind::robot) return 0;
+  return options_.relays_per_robot - relays_dropped_[owner];
 }
 
-const RadioNode& RadioNetwork::node(int index) const {
+const RadioNode& RadioNetwork::node(RadioNodeIndex index) const {
   check_node(index, "node");
-  return nodes_[static_cast<std::size_t>(index)];
+  return nodes_[index];
 }
 
-std::optional<int> RadioNetwork::find(std::string_view id) const {
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    if (nodes_[i].id == id) return static_cast<int>(i);
+std::optional<RadioNodeIndex> RadioNetwork::find(std::string_view id) const {
+  for (RadioNodeIndex i : nodes_.indices()) {
+    if (nodes_[i].id == id) return i;
   }
   return std::nullopt;
 }
 
-void RadioNetwork::set_position(int index, const Vec3& p_W) {
+void RadioNetwork::set_position(RadioNodeIndex index, const Vec3& p_W) {
   check_node(index, "set_position");
-  nodes_[static_cast<std::size_t>(index)].p_W = p_W;
+  nodes_[index].p_W = p_W;
 }
 
 void RadioNetwork::update(std::span<const Vec3> positions, const WallCounter* walls) {
   if (static_cast<int>(positions.size()) != node_count()) {
     throw Error(fmt::format("RadioNetwork::update: {} positions for {} nodes", positions.size(), node_count()));
   }
-  for (std::size_t i = 0; i < positions.size(); ++i) nodes_[i].p_W = positions[i];
+  for (RadioNodeIndex i : nodes_.indices()) nodes_[i].p_W = positions[i.slot()];
   update(walls);
 }
 
@@ -107,7 +108,7 @@ void RadioNetwork::update(const WallCounter* walls) {
   if (walls != nullptr && model_.kind == RadioModelKind::wss && model_.wss.max_walls > 0) {
     std::vector<RadioSegment> segments;
     segments.reserve(pairs.size());
-    for (const auto& [a, b] : pairs) segments.push_back({nodes_[static_cast<std::size_t>(a)].p_W, nodes_[static_cast<std::size_t>(b)].p_W});
+    for (const auto& [a, b] : pairs) segments.push_back({nodes_[RadioNodeIndex(a)].p_W, nodes_[RadioNodeIndex(b)].p_W});
     walls->count(segments, wall_counts, model_.wss.max_walls);
   }
 
@@ -115,8 +116,8 @@ void RadioNetwork::update(const WallCounter* walls) {
   const double threshold = link_threshold_dbm(model_);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const auto [a, b] = pairs[k];
-    const RadioNode& na = nodes_[static_cast<std::size_t>(a)];
-    const RadioNode& nb = nodes_[static_cast<std::size_t>(b)];
+    const RadioNode& na = nodes_[RadioNodeIndex(a)];
+    const RadioNode& nb = nodes_[RadioNodeIndex(b)];
     RadioLink l;
     if (finite3(na.p_W) && finite3(nb.p_W)) {
       l.distance_m = (nb.p_W - na.p_W).norm();
@@ -141,25 +142,28 @@ void RadioNetwork::update(const WallCounter* walls) {
   for (int s = 0; s < n; ++s) bottlenecks_.push_back(widest_bottlenecks(margins_, s));
 }
 
-const RadioLink& RadioNetwork::link(int a, int b) const {
+const RadioLink& RadioNetwork::link(RadioNodeIndex a, RadioNodeIndex b) const {
   static const RadioLink kNoLink;
   check_node(a, "link");
   check_node(b, "link");
-  if (a >= linked_n_ || b >= linked_n_ || a == b) return kNoLink;
-  return links_[static_cast<std::size_t>(a) * static_cast<std::size_t>(linked_n_) + static_cast<std::size_t>(b)];
+  if (a.value() >= linked_n_ || b.value() >= linked_n_ || a == b) return kNoLink;
+  return links_[a.slot() * static_cast<std::size_t>(linked_n_) + b.slot()];
 }
 
-std::vector<int> RadioNetwork::route(int from, int to) const {
+std::vector<RadioNodeIndex> RadioNetwork::route(RadioNodeIndex from, RadioNodeIndex to) const {
   check_node(from, "route");
   check_node(to, "route");
   if (from == to) return {from};
-  if (from >= linked_n_ || to >= linked_n_) return {};
-  return widest_route(margins_, bottlenecks_[static_cast<std::size_t>(from)], from, to);
+  if (from.value() >= linked_n_ || to.value() >= linked_n_) return {};
+  // the route search works on plain node numbers (radio_routes.h: a table of margins)
+  std::vector<RadioNodeIndex> out;
+  for (int v : widest_route(margins_, bottlenecks_[from.slot()], from.value(), to.value())) out.emplace_back(v);
+  return out;
 }
 
-SendResult RadioNetwork::send(int from, int to, std::vector<std::uint8_t> bytes) {
-  if (from < 0 || from >= node_count()) return {false, 0, fmt::format("unknown sender node {}", from)};
-  if (to != kRadioBroadcast && (to < 0 || to >= node_count())) return {false, 0, fmt::format("unknown destination node {}", to)};
+SendResult RadioNetwork::send(RadioNodeIndex from, RadioNodeIndex to, std::vector<std::uint8_t> bytes) {
+  if (!nodes_.contains(from)) return {false, 0, fmt::format("unknown sender node {}", from.value())};
+  if (to != kRadioBroadcast && !nodes_.contains(to)) return {false, 0, fmt::format("unknown destination node {}", to.value())};
   if (to == from) return {false, 0, "the destination is the sender"};
   const auto size = static_cast<std::int64_t>(bytes.size());
   if (size > model_.max_datagram_bytes) {
@@ -171,7 +175,7 @@ SendResult RadioNetwork::send(int from, int to, std::vector<std::uint8_t> bytes)
   d.to = to;
   d.bytes = std::move(bytes);
   d.sent = now_;
-  RadioStatus& c = traffic_[static_cast<std::size_t>(from)].counters;
+  RadioStatus& c = traffic_[from].counters;
   c.bytes_sent += static_cast<std::uint64_t>(size);
   ++c.datagrams_sent;
   queue_.push_back(std::move(d));
@@ -195,7 +199,7 @@ void RadioNetwork::charge(Window& w, std::int64_t bytes) const {
 }
 
 void RadioNetwork::drop(const Datagram& d, RadioDropReason reason) {
-  RadioStatus& c = traffic_[static_cast<std::size_t>(d.from)].counters;
+  RadioStatus& c = traffic_[d.from].counters;
   c.bytes_dropped += d.bytes.size();
   ++c.datagrams_dropped;
   (reason == RadioDropReason::no_route ? dropped_no_route_ : dropped_capacity_) += 1;
@@ -206,32 +210,32 @@ void RadioNetwork::deliver(double dt_s) {
   std::vector<Datagram> queue = std::move(queue_);
   queue_.clear();
   auto arrive = [&](Datagram d) {
-    RadioStatus& c = traffic_[static_cast<std::size_t>(d.path.back())].counters;
+    RadioStatus& c = traffic_[d.path.back()].counters;
     c.bytes_received += d.bytes.size();
     ++c.datagrams_received;
     d.delivered = now_;
-    inboxes_[static_cast<std::size_t>(d.path.back())].push_back(std::move(d));
+    inboxes_[d.path.back()].push_back(std::move(d));
   };
   for (Datagram& d : queue) {
     const auto size = static_cast<std::int64_t>(d.bytes.size());
     if (d.to == kRadioBroadcast) {
       // one transmission heard by every current neighbour that has room to receive it
-      std::vector<int> heard;
-      for (int v = 0; v < linked_n_; ++v) {
-        if (d.from < linked_n_ && link(d.from, v).connected) heard.push_back(v);
+      std::vector<RadioNodeIndex> heard;
+      for (RadioNodeIndex v : indices<RadioNodeTag>(static_cast<std::size_t>(linked_n_))) {
+        if (d.from.value() < linked_n_ && link(d.from, v).connected) heard.push_back(v);
       }
       if (heard.empty()) {
         drop(d, RadioDropReason::no_route);
         continue;
       }
-      Traffic& tx = traffic_[static_cast<std::size_t>(d.from)];
+      Traffic& tx = traffic_[d.from];
       if (!fits(tx.tx, size)) {
         for (std::size_t i = 0; i < heard.size(); ++i) drop(d, RadioDropReason::capacity);
         continue;
       }
       charge(tx.tx, size);
-      for (int v : heard) {
-        Traffic& rx = traffic_[static_cast<std::size_t>(v)];
+      for (RadioNodeIndex v : heard) {
+        Traffic& rx = traffic_[v];
         if (!fits(rx.rx, size)) {
           drop(d, RadioDropReason::capacity);
           continue;
@@ -252,8 +256,8 @@ void RadioNetwork::deliver(double dt_s) {
     }
     bool lost = false;
     for (std::size_t h = 0; h + 1 < d.path.size(); ++h) {
-      Traffic& tx = traffic_[static_cast<std::size_t>(d.path[h])];
-      Traffic& rx = traffic_[static_cast<std::size_t>(d.path[h + 1])];
+      Traffic& tx = traffic_[d.path[h]];
+      Traffic& rx = traffic_[d.path[h + 1]];
       if (!fits(tx.tx, size) || !fits(rx.rx, size)) {
         lost = true;
         break;
@@ -271,42 +275,42 @@ void RadioNetwork::deliver(double dt_s) {
   now_.ns += SimTime::from_seconds(dt_s).ns;
 }
 
-const std::vector<Datagram>& RadioNetwork::inbox(int node) const {
+const std::vector<Datagram>& RadioNetwork::inbox(RadioNodeIndex node) const {
   check_node(node, "inbox");
-  return inboxes_[static_cast<std::size_t>(node)];
+  return inboxes_[node];
 }
 
-std::vector<Datagram> RadioNetwork::take_inbox(int node) {
+std::vector<Datagram> RadioNetwork::take_inbox(RadioNodeIndex node) {
   check_node(node, "take_inbox");
-  std::vector<Datagram> out = std::move(inboxes_[static_cast<std::size_t>(node)]);
-  inboxes_[static_cast<std::size_t>(node)].clear();
+  std::vector<Datagram> out = std::move(inboxes_[node]);
+  inboxes_[node].clear();
   return out;
 }
 
-std::size_t RadioNetwork::trim_inbox(int node, std::size_t keep) {
+std::size_t RadioNetwork::trim_inbox(RadioNodeIndex node, std::size_t keep) {
   check_node(node, "trim_inbox");
-  auto& inbox = inboxes_[static_cast<std::size_t>(node)];
+  auto& inbox = inboxes_[node];
   if (inbox.size() <= keep) return 0;
   const std::size_t n = inbox.size() - keep;
   inbox.erase(inbox.begin(), inbox.begin() + static_cast<std::ptrdiff_t>(n));
   return n;
 }
 
-RadioStatus RadioNetwork::status(int node) const {
+RadioStatus RadioNetwork::status(RadioNodeIndex node) const {
   check_node(node, "status");
-  RadioStatus s = traffic_[static_cast<std::size_t>(node)].counters;
+  RadioStatus s = traffic_[node].counters;
   s.neighbours.clear();
   s.hops_to_base.reset();
-  if (node < linked_n_) {
-    for (int v = 0; v < linked_n_; ++v) {
+  if (node.value() < linked_n_) {
+    for (RadioNodeIndex v : indices<RadioNodeTag>(static_cast<std::size_t>(linked_n_))) {
       const RadioLink& l = link(node, v);
       if (l.connected) s.neighbours.push_back({v, l.rssi_dbm, l.margin_db});
     }
   }
   // the fewest hops to any base along its widest route
-  for (int b = 0; b < node_count(); ++b) {
-    if (nodes_[static_cast<std::size_t>(b)].kind != RadioNodeKind::base) continue;
-    const std::vector<int> r = route(node, b);
+  for (RadioNodeIndex b : nodes_.indices()) {
+    if (nodes_[b].kind != RadioNodeKind::base) continue;
+    const std::vector<RadioNodeIndex> r = route(node, b);
     if (r.empty()) continue;
     const int hops = static_cast<int>(r.size()) - 1;
     if (!s.hops_to_base || hops < *s.hops_to_base) s.hops_to_base = hops;

@@ -19,11 +19,12 @@
 #include <utility>
 #include <vector>
 
-#include "world/radio_model.h"
-#include "radio/radio_routes.h"
-#include "radio/wall_count.h"
+#include "core/index.h"
 #include "core/pose.h"
 #include "core/sim_time.h"
+#include "radio/radio_routes.h"
+#include "radio/wall_count.h"
+#include "world/radio_model.h"
 
 namespace rescuesim {
 
@@ -35,7 +36,7 @@ struct RadioNode {
   std::string id;                             ///< unique name, e.g. "robot1", "base", "robot1/relay_1"
   RadioNodeKind kind = RadioNodeKind::robot;
   Vec3 p_W = Vec3::Zero();                    ///< antenna position, world frame (m)
-  int owner = -1;                             ///< relays: the node index of the robot that dropped it
+  RadioNodeIndex owner;                       ///< relays: the node of the robot that dropped it
 };
 
 /// The link between two radios at the last update().
@@ -49,15 +50,15 @@ struct RadioLink {
 };
 
 /// Destination of a datagram sent to every current neighbour of the sender.
-inline constexpr int kRadioBroadcast = -1;
+inline constexpr RadioNodeIndex kRadioBroadcast{};
 
 /// A delivered datagram.
 struct Datagram {
   std::uint64_t seq = 0;            ///< network-wide send order, from 1
-  int from = -1;                    ///< sender node
-  int to = kRadioBroadcast;         ///< destination node, or kRadioBroadcast
+  RadioNodeIndex from;              ///< sender node
+  RadioNodeIndex to = kRadioBroadcast;  ///< destination node, or kRadioBroadcast
   std::vector<std::uint8_t> bytes;  ///< payload
-  std::vector<int> path;            ///< nodes it went through, sender first, receiver last
+  std::vector<RadioNodeIndex> path;  ///< nodes it went through, sender first, receiver last
   SimTime sent;                     ///< network time at send()
   SimTime delivered;                ///< network time of the deliver() that handed it over
 
@@ -77,14 +78,14 @@ struct SendResult {
 
 /// The answer of add_relay(): the new node, or why there is none.
 struct RelayResult {
-  int node = -1;
+  RadioNodeIndex node;
   std::string reason;
-  bool ok() const { return node >= 0; }
+  bool ok() const { return node.valid(); }
 };
 
 /// A radio heard at the last update.
 struct RadioNeighbour {
-  int node = -1;
+  RadioNodeIndex node;
   double rssi_dbm = 0;   ///< received power (dBm)
   double margin_db = 0;  ///< over the model's threshold (dB)
 };
@@ -116,21 +117,23 @@ class RadioNetwork {
 
   /// Adds a radio and returns its node index (0, 1, ... in call order). Throws Error for an
   /// empty or duplicate id. Its links are "no link" until the next update().
-  int add_node(std::string id, RadioNodeKind kind, const Vec3& p_W);
+  RadioNodeIndex add_node(std::string id, RadioNodeKind kind, const Vec3& p_W);
 
   /// Drops a relay of robot `owner` at p_W (id "<owner id>/relay_<k>"), if the robot has
   /// budget left. Fails with a reason for a node that is not a robot, an exhausted budget or
   /// a position that is not finite. Its links exist from the next update().
-  RelayResult add_relay(int owner, const Vec3& p_W);
+  RelayResult add_relay(RadioNodeIndex owner, const Vec3& p_W);
   /// Relays robot `owner` may still drop.
-  int relays_left(int owner) const;
+  int relays_left(RadioNodeIndex owner) const;
 
   int node_count() const { return static_cast<int>(nodes_.size()); }
-  const RadioNode& node(int index) const;
+  const RadioNode& node(RadioNodeIndex index) const;
+  /// Every node's index, in order.
+  IndexRange<RadioNodeTag> node_indices() const { return indices<RadioNodeTag>(nodes_.size()); }
   /// The node called `id`, if any.
-  std::optional<int> find(std::string_view id) const;
+  std::optional<RadioNodeIndex> find(std::string_view id) const;
   /// Moves a radio (taken into account at the next update()).
-  void set_position(int index, const Vec3& p_W);
+  void set_position(RadioNodeIndex index, const Vec3& p_W);
 
   /// Recomputes every link from the nodes' positions: distance, walls (wss, when `walls` is
   /// given; otherwise open space), shadowing (subt: a new draw per update), received power,
@@ -142,15 +145,15 @@ class RadioNetwork {
   void update(std::span<const Vec3> positions, const WallCounter* walls = nullptr);
 
   /// The link between two nodes at the last update (symmetric).
-  const RadioLink& link(int a, int b) const;
+  const RadioLink& link(RadioNodeIndex a, RadioNodeIndex b) const;
   /// The route from `from` to `to` at the last update (see radio_routes.h): nodes from
   /// sender to receiver, empty when there is none.
-  std::vector<int> route(int from, int to) const;
+  std::vector<RadioNodeIndex> route(RadioNodeIndex from, RadioNodeIndex to) const;
 
   /// Queues a datagram for the next deliver(); `to` a node or kRadioBroadcast (every current
   /// neighbour of the sender, one hop). Rejected with a reason for unknown nodes, sending to
   /// oneself, or more than the model's max_datagram_bytes.
-  SendResult send(int from, int to, std::vector<std::uint8_t> bytes);
+  SendResult send(RadioNodeIndex from, RadioNodeIndex to, std::vector<std::uint8_t> bytes);
 
   /// Hands every queued datagram (in send order) to its destination's inbox along the
   /// current route, then advances the network clock by dt_s (s, finite and >= 0, else
@@ -161,14 +164,14 @@ class RadioNetwork {
   void deliver(double dt_s);
 
   /// The datagrams delivered to `node` and not yet taken, in delivery order.
-  const std::vector<Datagram>& inbox(int node) const;
+  const std::vector<Datagram>& inbox(RadioNodeIndex node) const;
   /// Empties `node`'s inbox and returns what was in it.
-  std::vector<Datagram> take_inbox(int node);
+  std::vector<Datagram> take_inbox(RadioNodeIndex node);
   /// Drops the oldest datagrams of `node`'s inbox beyond the newest `keep`; returns how many went.
-  std::size_t trim_inbox(int node, std::size_t keep);
+  std::size_t trim_inbox(RadioNodeIndex node, std::size_t keep);
 
   /// Neighbours, hops to base and counters of `node`.
-  RadioStatus status(int node) const;
+  RadioStatus status(RadioNodeIndex node) const;
 
   /// Datagram copies dropped for `reason` since construction.
   std::uint64_t dropped(RadioDropReason reason) const;
@@ -189,7 +192,7 @@ class RadioNetwork {
     RadioStatus counters;  ///< only the counters are used
   };
 
-  void check_node(int index, const char* where) const;
+  void check_node(RadioNodeIndex index, const char* where) const;
   bool fits(Window& w, std::int64_t bytes) const;
   void charge(Window& w, std::int64_t bytes) const;
   void drop(const Datagram& d, RadioDropReason reason);
@@ -197,15 +200,15 @@ class RadioNetwork {
   RadioModel model_;
   std::uint64_t seed_;
   RadioNetworkOptions options_;
-  std::vector<RadioNode> nodes_;
-  std::vector<int> relays_dropped_;           ///< per node (robots)
+  IndexedVector<RadioNodeTag, RadioNode> nodes_;
+  IndexedVector<RadioNodeTag, int> relays_dropped_;  ///< per node (robots)
   std::vector<RadioLink> links_;              ///< n×n, row-major, for the n at the last update
   int linked_n_ = 0;                          ///< node count at the last update
   MarginTable margins_;
   std::vector<std::vector<double>> bottlenecks_;  ///< per source, at the last update
   std::vector<Datagram> queue_;
-  std::vector<std::vector<Datagram>> inboxes_;
-  std::vector<Traffic> traffic_;
+  IndexedVector<RadioNodeTag, std::vector<Datagram>> inboxes_;
+  IndexedVector<RadioNodeTag, Traffic> traffic_;
   std::uint64_t next_seq_ = 1;
   std::uint64_t updates_ = 0;
   std::uint64_t dropped_no_route_ = 0;

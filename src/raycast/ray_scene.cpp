@@ -31,12 +31,12 @@ constexpr double kOcclusionSlack = 1e-4;
 /// context pointer back to filter functions unchanged, so it can carry our own fields.
 struct CastContext {
   RTCIntersectContext rtc;
-  int ignore_robot = -1;
+  RobotIndex ignore_robot = {};
 };
 
 /// The context of every query. Coherent mode: lidar and sonar batches fan out from one origin,
 /// where embree's coherent packet traversal is about twice as fast as the incoherent one.
-CastContext make_context(int ignore_robot) {
+CastContext make_context(RobotIndex ignore_robot) {
   CastContext c;
   rtcInitIntersectContext(&c.rtc);
   c.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -48,7 +48,7 @@ CastContext make_context(int ignore_robot) {
 /// rays ignore. The geometry's user data is its robot index.
 void link_filter(const RTCFilterFunctionNArguments* args) {
   const auto* ctx = reinterpret_cast<const CastContext*>(args->context);
-  const auto robot = static_cast<int>(reinterpret_cast<std::intptr_t>(args->geometryUserPtr));
+  const RobotIndex robot(static_cast<int>(reinterpret_cast<std::intptr_t>(args->geometryUserPtr)));
   if (robot != ctx->ignore_robot) return;
   for (unsigned i = 0; i < args->N; ++i) args->valid[i] = 0;
 }
@@ -70,7 +70,7 @@ struct Instance {
   RTCGeometry geometry = nullptr;
   RayHit::Source source = RayHit::Source::none;
   int index = -1;                       ///< statics: unused (per triangle); dynamics / link index
-  int robot = -1;
+  RobotIndex robot;
   const std::vector<Vec3>* normals = nullptr;  ///< unit normal per prototype triangle, prototype frame
   Eigen::Matrix3d R_WP = Eigen::Matrix3d::Identity();  ///< rotation prototype → world, for normals
 };
@@ -155,7 +155,7 @@ struct RayScene::Impl {
 
   /// Keeps `prototype` (built from `mesh`) and adds an instance of it to the top-level scene at
   /// pose X_WP.
-  int add_instance(RTCScene prototype, const FloatMesh& mesh, const Pose3& X_WP, RayHit::Source source, int index, int robot) {
+  int add_instance(RTCScene prototype, const FloatMesh& mesh, const Pose3& X_WP, RayHit::Source source, int index, RobotIndex robot) {
     prototypes.push_back(prototype);
     prototype_normals.push_back(mesh.unit_normals());
     triangles += mesh.triangle_count();
@@ -184,11 +184,11 @@ struct RayScene::Impl {
   }
 
   /// A prototype scene for the links of one robot: its triangles carry the ignore filter.
-  RTCScene link_prototype(const FloatMesh& mesh, int robot) {
+  RTCScene link_prototype(const FloatMesh& mesh, RobotIndex robot) {
     RTCScene s = rtcNewScene(raycast_detail::embree_device());
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = raycast_detail::new_triangle_geometry(mesh);
-    rtcSetGeometryUserData(g, reinterpret_cast<void*>(static_cast<std::intptr_t>(robot)));
+    rtcSetGeometryUserData(g, reinterpret_cast<void*>(static_cast<std::intptr_t>(robot.value())));
     rtcSetGeometryIntersectFilterFunction(g, link_filter);
     rtcSetGeometryOccludedFilterFunction(g, link_filter);
     rtcCommitGeometry(g);
@@ -199,7 +199,7 @@ struct RayScene::Impl {
   }
 
   /// Traces up to 16 rays as one packet.
-  void trace_packet(const Ray* rays, RayHit* hits, int n, int ignore_robot) const {
+  void trace_packet(const Ray* rays, RayHit* hits, int n, RobotIndex ignore_robot) const {
     alignas(64) int valid[16];
     alignas(64) RTCRayHit16 rh;
     // load the packet; lanes past the end and rays that are not finite stay inactive
@@ -280,7 +280,7 @@ RayScene::RayScene(const World& world) : impl_(std::make_unique<Impl>()) {
     s.rubble_mesh.push_back(mesh);
     if (mesh.triangle_count() == 0) continue;
     s.dynamic_instance.back() = s.add_instance(raycast_detail::new_mesh_scene(mesh, RTC_BUILD_QUALITY_MEDIUM), mesh, d.X_WO,
-                                               RayHit::Source::dynamic_object, static_cast<int>(i), -1);
+                                               RayHit::Source::dynamic_object, static_cast<int>(i), RobotIndex());
   }
   s.flat_rubble.assign(world.dynamics.size(), 0);
   s.flat_pose.assign(world.dynamics.size(), Pose3{});
@@ -296,8 +296,8 @@ RayScene::RayScene(const World& world) : impl_(std::make_unique<Impl>()) {
       for (const LinkShape& shape : robot.spec.links[l].shapes)
         mesh.append(mesh_of(shape.geometry, raycast_detail::kRoundSegments), shape.X_LG);
       if (mesh.triangle_count() == 0) continue;
-      s.link_instance[r][l] = s.add_instance(s.link_prototype(mesh, static_cast<int>(r)), mesh, robot.X_W_start * X_BL[l],
-                                             RayHit::Source::robot_link, static_cast<int>(l), static_cast<int>(r));
+      s.link_instance[r][l] = s.add_instance(s.link_prototype(mesh, RobotIndex::at(r)), mesh, robot.X_W_start * X_BL[l],
+                                             RayHit::Source::robot_link, static_cast<int>(l), RobotIndex::at(r));
     }
   }
   rtcCommitScene(s.top);
@@ -339,7 +339,7 @@ void RayScene::update(const State& state) {
   rtcCommitScene(s.top);
 }
 
-void RayScene::cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignore_robot) const {
+void RayScene::cast(std::span<const Ray> rays, std::span<RayHit> hits, RobotIndex ignore_robot) const {
   RS_DEMAND(rays.size() == hits.size(), "RayScene::cast: rays and hits differ in size");
   const Impl& s = *impl_;
   const std::size_t n = rays.size();
@@ -362,7 +362,7 @@ void RayScene::cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignor
   }
 }
 
-bool RayScene::occluded(const Vec3& from, const Vec3& to, int ignore_robot) const {
+bool RayScene::occluded(const Vec3& from, const Vec3& to, RobotIndex ignore_robot) const {
   const Vec3 d = to - from;
   const double length = d.norm();
   if (!(length > kOcclusionSlack) || !finite(from) || !finite(to)) return false;

@@ -28,7 +28,7 @@ struct RayHit {
   enum class Source { none, static_object, dynamic_object, robot_link };
   Source source = Source::none;
   int index = -1;                   ///< World::statics / World::dynamics index, or link index for robot_link
-  int robot = -1;                   ///< World::robots index for robot_link, else -1
+  RobotIndex robot;                 ///< World::robots index for robot_link, else -1
 
   bool hit() const { return source != Source::none; }
 };
@@ -59,12 +59,12 @@ class RayScene {
   /// pool (core/parallel.h), isolated from the caller's other tasks. Results do not depend on
   /// the thread count, nor on a ray's place in the batch: rays are independent and traced in
   /// packets of 16. A ray whose origin or direction is not finite gets distance NaN and no hit.
-  void cast(std::span<const Ray> rays, std::span<RayHit> hits, int ignore_robot = -1) const;
+  void cast(std::span<const Ray> rays, std::span<RayHit> hits, RobotIndex ignore_robot = {}) const;
 
   /// True when anything (walls, rubble, victims, robot links except `ignore_robot`'s) lies on
   /// the segment from `from` to `to` (world frame, m). Surfaces within 0.1 mm of `to` do not
   /// count, so a point on a surface is not occluded by that surface.
-  bool occluded(const Vec3& from, const Vec3& to, int ignore_robot = -1) const;
+  bool occluded(const Vec3& from, const Vec3& to, RobotIndex ignore_robot = {}) const;
 
   /// Triangles in the scene (each rubble and link mesh counted once).
   std::size_t triangle_count() const;

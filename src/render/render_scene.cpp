@@ -148,7 +148,7 @@ RenderScene build_render_scene(const World& world) {
         RenderItem item;
         item.source = RenderItem::Source::robot_link;
         item.index = static_cast<int>(l);
-        item.robot = static_cast<int>(r);
+        item.robot = RobotIndex::at(r);
         item.mesh = add_mesh(s, shape.geometry);
         item.material = link_material(s, shape.material, world.ambient_temperature);
         item.temperature = material_temperature(item.material);
@@ -180,7 +180,7 @@ RenderScene build_render_scene(const World& world) {
     const RobotSpec& spec = world.robots[r].spec;
     for (const RobotLightSpec& l : spec.lights) {
       RenderLamp lamp;
-      lamp.robot = static_cast<int>(r);
+      lamp.robot = RobotIndex::at(r);
       lamp.link = spec.link_index(l.link);
       lamp.X_LF = l.X_LF;
       lamp.light.directional = false;
@@ -207,7 +207,7 @@ void update_render_scene(RenderScene& scene, const State& state) {
       }
       item.X_WI = state.dynamics[i].X_WB * item.X_PI;
     } else if (item.source == RenderItem::Source::robot_link) {
-      const auto r = static_cast<std::size_t>(item.robot), l = static_cast<std::size_t>(item.index);
+      const auto r = item.robot.slot(), l = static_cast<std::size_t>(item.index);
       if (r >= state.robots.size() || l >= state.robots[r].X_WL.size()) {
         throw Error({"", 0, "update_render_scene"}, fmt::format("the State has no pose for link {} of robot {} ({} robots in the State)",
                                                                 l, r, state.robots.size()));
@@ -217,7 +217,7 @@ void update_render_scene(RenderScene& scene, const State& state) {
   }
   scene.lights.resize(scene.world_lights);
   for (const RenderLamp& lamp : scene.lamps) {
-    const auto r = static_cast<std::size_t>(lamp.robot), l = static_cast<std::size_t>(lamp.link);
+    const auto r = lamp.robot.slot(), l = static_cast<std::size_t>(lamp.link);
     if (r >= state.robots.size() || !state.robots[r].lights_on || l >= state.robots[r].X_WL.size()) continue;
     const Pose3 X_WF = state.robots[r].X_WL[l] * lamp.X_LF;
     RenderLight light = lamp.light;

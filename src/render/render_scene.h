@@ -47,7 +47,7 @@ struct RenderItem {
   enum class Source { static_object, dynamic_object, robot_link };
   Source source = Source::static_object;
   int index = -1;           ///< World::statics or World::dynamics index, or the link index; -1 for a floor patch (World::ground)
-  int robot = -1;           ///< World::robots index for robot links, else -1
+  RobotIndex robot;         ///< World::robots index for robot links, else -1
   int mesh = 0;             ///< index into RenderScene::meshes
   int material = 0;         ///< index into RenderScene::materials
   double temperature = 0;   ///< K, surface temperature (object's own, else material's, else ambient)
@@ -72,7 +72,7 @@ struct RenderLight {
 
 /// A robot's lamp (RobotSpec::lights): where it is, and the light it gives when on.
 struct RenderLamp {
-  int robot = -1;       ///< World::robots index
+  RobotIndex robot;     ///< World::robots index
   int link = -1;        ///< link index
   Pose3 X_LF;           ///< lamp frame in the link (x: where it shines)
   RenderLight light;    ///< a spot light, posed by update_render_scene

@@ -55,7 +55,7 @@ struct CameraView {
   Intrinsics k;            ///< pinhole intrinsics (pixel convention in camera_model.h)
   double near_clip = 0.05; ///< m, > 0
   double far_clip = 30.0;  ///< m, > near_clip
-  int hide_robot = -1;     ///< World::robots index whose links are not drawn (they still cast shadows); -1 = none
+  RobotIndex hide_robot;   ///< the robot whose links are not drawn (they still cast shadows); invalid: none
 };
 
 /// Checks a view: width and height in [1, 8192], fx, fy > 0 with a horizontal field of view in

@@ -2,10 +2,10 @@
 
 namespace rescuesim {
 
-msg::Contacts sample_contacts(const State& state, int robot, const SensorSpec& spec, SimTime stamp) {
+msg::Contacts sample_contacts(const State& state, RobotIndex robot, const SensorSpec& spec, SimTime stamp) {
   msg::Contacts c;
   c.header = {stamp, spec.frame_id};
-  c.touching = state.robots[static_cast<std::size_t>(robot)].touching;
+  c.touching = state.robot(robot).touching;
   return c;
 }
 

@@ -10,6 +10,6 @@ namespace rescuesim {
 
 /// What touches `robot` now: State::robots[robot].touching (physics keeps it sorted, each name
 /// once), stamped `stamp`, in frame spec.frame_id.
-msg::Contacts sample_contacts(const State& state, int robot, const SensorSpec& spec, SimTime stamp);
+msg::Contacts sample_contacts(const State& state, RobotIndex robot, const SensorSpec& spec, SimTime stamp);
 
 }  // namespace rescuesim

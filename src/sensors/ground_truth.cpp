@@ -14,15 +14,15 @@ msg::TransformStamped transform(SimTime stamp, const std::string& parent, const 
 
 }  // namespace
 
-msg::PoseStamped sample_ground_truth(const State& state, int robot, SimTime stamp) {
+msg::PoseStamped sample_ground_truth(const State& state, RobotIndex robot, SimTime stamp) {
   msg::PoseStamped p;
   p.header = {stamp, "map"};
-  p.pose = state.robots[static_cast<std::size_t>(robot)].base.X_WB;
+  p.pose = state.robot(robot).base.X_WB;
   return p;
 }
 
-msg::TFMessage ground_truth_tf(const State& state, int robot, SimTime stamp, const GroundTruthTf& tf) {
-  const RobotState& rs = state.robots[static_cast<std::size_t>(robot)];
+msg::TFMessage ground_truth_tf(const State& state, RobotIndex robot, SimTime stamp, const GroundTruthTf& tf) {
+  const RobotState& rs = state.robot(robot);
   msg::TFMessage out;
   if (tf.odom_to_base) out.transforms.push_back(transform(stamp, tf.odom_frame, tf.base_frame, rs.base.X_WB));
   if (tf.map_to_odom) {

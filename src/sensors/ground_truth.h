@@ -12,7 +12,7 @@ namespace rescuesim {
 
 /// The pose of `robot`'s base link in the world (State::robots[robot].base.X_WB), stamped
 /// `stamp`, in frame "map" (the world frame is the map frame).
-msg::PoseStamped sample_ground_truth(const State& state, int robot, SimTime stamp);
+msg::PoseStamped sample_ground_truth(const State& state, RobotIndex robot, SimTime stamp);
 
 /// Which transforms ground truth adds to /tf, and the (already namespaced) frames they join.
 struct GroundTruthTf {
@@ -25,6 +25,6 @@ struct GroundTruthTf {
 /// The transforms `tf` asks for, in this order: odom → base (pose X_WB), then map → odom
 /// (X_WB · X_OB⁻¹, where X_OB is X_WB itself when odom_to_base, else the wheel odometry pose
 /// State::robots[robot].odom). Empty when neither is asked for.
-msg::TFMessage ground_truth_tf(const State& state, int robot, SimTime stamp, const GroundTruthTf& tf);
+msg::TFMessage ground_truth_tf(const State& state, RobotIndex robot, SimTime stamp, const GroundTruthTf& tf);
 
 }  // namespace rescuesim

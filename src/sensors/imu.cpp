@@ -6,8 +6,8 @@
 
 namespace rescuesim {
 
-msg::Imu sample_imu(const World& world, const State& state, int robot, const SensorSpec& spec, SimTime stamp, SensorSlot& slot) {
-  const RobotState& rs = state.robots[static_cast<std::size_t>(robot)];
+msg::Imu sample_imu(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec, SimTime stamp, SensorSlot& slot) {
+  const RobotState& rs = state.robot(robot);
   const ImuSpec& imu = spec.imu;
   Rng& rng = slot.rng;
   const Pose3 X_WS = rs.base.X_WB * spec.X_LS;

@@ -13,6 +13,6 @@ namespace rescuesim {
 /// others are rejected when the simulation is set up). `slot.imu` keeps the biases and the
 /// mount point's velocity at the previous sample between calls. The acceleration is the
 /// mean over the interval since the previous sample, as a real IMU's integrating filter gives.
-msg::Imu sample_imu(const World& world, const State& state, int robot, const SensorSpec& spec, SimTime stamp, SensorSlot& slot);
+msg::Imu sample_imu(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec, SimTime stamp, SensorSlot& slot);
 
 }  // namespace rescuesim

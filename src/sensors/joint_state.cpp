@@ -2,9 +2,9 @@
 
 namespace rescuesim {
 
-msg::JointState sample_joint_states(const World& world, const State& state, int robot, SimTime stamp) {
-  const RobotSpec& spec = world.robots[static_cast<std::size_t>(robot)].spec;
-  const RobotState& rs = state.robots[static_cast<std::size_t>(robot)];
+msg::JointState sample_joint_states(const World& world, const State& state, RobotIndex robot, SimTime stamp) {
+  const RobotSpec& spec = world.robot(robot).spec;
+  const RobotState& rs = state.robot(robot);
   msg::JointState js;
   js.header = {stamp, ""};
   // fixed joints never move: they are on /tf_static, not here

@@ -12,6 +12,6 @@ namespace rescuesim {
 /// The joint states of `robot`: one entry per joint that is not fixed, in RobotSpec::joints
 /// order, with its name, position q (rad or m), velocity qd (rad/s or m/s) and effort (N·m or N)
 /// from State::robots[robot]. Stamped `stamp`, empty frame_id (joint states have no frame).
-msg::JointState sample_joint_states(const World& world, const State& state, int robot, SimTime stamp);
+msg::JointState sample_joint_states(const World& world, const State& state, RobotIndex robot, SimTime stamp);
 
 }  // namespace rescuesim

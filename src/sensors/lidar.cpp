@@ -99,16 +99,15 @@ void lidar_through_media(const World& world, SimTime stamp, Buffers& b, std::siz
   }
 }
 
-void check_robot(const World& world, const State& state, int robot, const char* who) {
-  RS_DEMAND(robot >= 0 && static_cast<std::size_t>(robot) < world.robots.size() && static_cast<std::size_t>(robot) < state.robots.size(),
-            who);
+void check_robot(const World& world, const State& state, RobotIndex robot, const char* who) {
+  RS_DEMAND(world.has_robot(robot) && robot.slot() < state.robots.size(), who);
 }
 
 }  // namespace
 
-Pose3 sensor_pose_in_world(const World& world, const State& state, int robot, const SensorSpec& spec) {
+Pose3 sensor_pose_in_world(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec) {
   check_robot(world, state, robot, "sensor_pose_in_world: robot index outside World::robots or State::robots");
-  const auto r = static_cast<std::size_t>(robot);
+  const auto r = robot.slot();
   const int link = world.robots[r].spec.link_index(spec.link);
   if (link < 0) {
     throw Error(SourceRef{"", 0, std::string("robot '") + world.robots[r].name + "' sensor '" + spec.name + "'"},
@@ -126,7 +125,7 @@ float range_reading(float distance, double min_range, double max_range, const No
   return static_cast<float>(std::clamp(noisy, min_range, max_range));
 }
 
-msg::LaserScan sample_lidar(const World& world, const State& state, const RayScene& scene, int robot, const SensorSpec& spec,
+msg::LaserScan sample_lidar(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
                             SimTime stamp, Rng& rng) {
   const LidarSpec& l = spec.lidar;
   const Pose3 X_WS = sensor_pose_in_world(world, state, robot, spec);
@@ -157,8 +156,8 @@ msg::LaserScan sample_lidar(const World& world, const State& state, const RaySce
   return scan;
 }
 
-msg::PointCloud2 sample_lidar_cloud(const World& world, const State& state, const RayScene& scene, int robot,
-                                   const SensorSpec& spec, SimTime stamp, Rng& rng) {
+msg::PointCloud2 sample_lidar_cloud(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
+                                    SimTime stamp, Rng& rng) {
   const LidarSpec& l = spec.lidar;
   const Pose3 X_WS = sensor_pose_in_world(world, state, robot, spec);
   const std::vector<double> elevations = layer_elevations(l);

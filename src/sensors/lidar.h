@@ -14,7 +14,7 @@ namespace rescuesim {
 
 /// The pose of a sensor in the world: X_WS = State::robots[robot].X_WL[mount link] * spec.X_LS.
 /// Throws Error naming the sensor when its link is not one of the robot's.
-Pose3 sensor_pose_in_world(const World& world, const State& state, int robot, const SensorSpec& spec);
+Pose3 sensor_pose_in_world(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec);
 
 /// One range reading per REP-117 from a true distance (m; +inf = no return, NaN = invalid ray):
 /// below min_range → -inf; no return → +inf; NaN stays NaN; otherwise distance + bias +
@@ -26,7 +26,7 @@ float range_reading(float distance, double min_range, double max_range, const No
 /// counter-clockwise about the sensor z, increment = (max_angle − min_angle)/(samples − 1).
 /// Every beam is taken at `stamp` (time_increment 0). The robot never sees its own links.
 /// For a multi-layer lidar this is the ring at elevation 0; the layers are sample_lidar_cloud's.
-msg::LaserScan sample_lidar(const World& world, const State& state, const RayScene& scene, int robot, const SensorSpec& spec,
+msg::LaserScan sample_lidar(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
                             SimTime stamp, Rng& rng);
 
 /// A multi-layer scan as a point cloud: spec.lidar.layers rings spread evenly over
@@ -34,7 +34,7 @@ msg::LaserScan sample_lidar(const World& world, const State& state, const RaySce
 /// planar beams of sample_lidar. Points are x, y, z float32 in the sensor frame
 /// (header.frame_id), ring by ring, for returns within [min_range, max_range] only; height 1,
 /// is_dense true.
-msg::PointCloud2 sample_lidar_cloud(const World& world, const State& state, const RayScene& scene, int robot,
-                                   const SensorSpec& spec, SimTime stamp, Rng& rng);
+msg::PointCloud2 sample_lidar_cloud(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
+                                    SimTime stamp, Rng& rng);
 
 }  // namespace rescuesim

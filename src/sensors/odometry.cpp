@@ -29,9 +29,9 @@ BodyRate wheel_odometry_rate(const RobotSpec& spec, const std::vector<double>& q
 
 }  // namespace
 
-void integrate_odometry(const World& world, State& state, int robot, const SensorSpec& spec, double dt, SensorSlot& slot) {
-  const RobotSpec& rspec = world.robots[static_cast<std::size_t>(robot)].spec;
-  RobotState& rs = state.robots[static_cast<std::size_t>(robot)];
+void integrate_odometry(const World& world, State& state, RobotIndex robot, const SensorSpec& spec, double dt, SensorSlot& slot) {
+  const RobotSpec& rspec = world.robot(robot).spec;
+  RobotState& rs = state.robot(robot);
   std::vector<double> qd = rs.qd;
   // encoders are imperfect: each wheel's speed off by a small relative error
   if (spec.odometry.wheel_noise.stddev > 0) {
@@ -70,9 +70,9 @@ void integrate_odometry(const World& world, State& state, int robot, const Senso
   rs.odom_w = rate.w;
 }
 
-msg::Odometry odometry_message(const World&, const State& state, int robot, const SensorSpec& spec, SimTime stamp,
+msg::Odometry odometry_message(const World&, const State& state, RobotIndex robot, const SensorSpec& spec, SimTime stamp,
                                const std::string& base_frame) {
-  const RobotState& rs = state.robots[static_cast<std::size_t>(robot)];
+  const RobotState& rs = state.robot(robot);
   msg::Odometry m;
   m.header = {stamp, spec.frame_id};
   m.child_frame_id = base_frame;

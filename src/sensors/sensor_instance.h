@@ -14,7 +14,7 @@ namespace rescuesim {
 
 /// A sensor of a robot, as the simulation schedules it.
 struct SensorInstance {
-  int robot = 0;
+  RobotIndex robot{0};
   int index = 0;                       ///< into the robot's spec.sensors
   int slot = 0;                        ///< into State::sensors
   TopicId topic = kNoTopic;            ///< Bus topic of the main output

@@ -29,7 +29,7 @@ void sonar_directions(const SonarSpec& sonar, std::vector<Vec3>& out) {
   if (!has_axis) out.push_back(Vec3::UnitX());
 }
 
-msg::Range sample_sonar(const World& world, const State& state, const RayScene& scene, int robot, const SensorSpec& spec,
+msg::Range sample_sonar(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
                         SimTime stamp, Rng& rng) {
   const SonarSpec& s = spec.sonar;
   const Pose3 X_WS = sensor_pose_in_world(world, state, robot, spec);

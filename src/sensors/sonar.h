@@ -24,7 +24,7 @@ void sonar_directions(const SonarSpec& sonar, std::vector<Vec3>& out);
 /// min_range → -inf; otherwise with noise, clamped into [min_range, max_range] (see
 /// range_reading in lidar.h). radiation_type ULTRASOUND, field_of_view = fov (rad). The robot
 /// never hears its own links.
-msg::Range sample_sonar(const World& world, const State& state, const RayScene& scene, int robot, const SensorSpec& spec,
+msg::Range sample_sonar(const World& world, const State& state, const RayScene& scene, RobotIndex robot, const SensorSpec& spec,
                         SimTime stamp, Rng& rng);
 
 }  // namespace rescuesim

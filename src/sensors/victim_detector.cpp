@@ -29,9 +29,9 @@ void LineOfSightDetector::check(const World& world, State& state, const RayScene
         const Vec3 d = p_W - X_WC.p;
         Ray ray{X_WC.p, d.normalized(), static_cast<float>(d.norm() + 0.05)};
         RayHit hit;
-        rays.cast({&ray, 1}, {&hit, 1}, static_cast<int>(r));
+        rays.cast({&ray, 1}, {&hit, 1}, RobotIndex::at(r));
         if (hit.source == RayHit::Source::static_object &&
-            world.statics[static_cast<std::size_t>(hit.index)].victim == static_cast<int>(v)) {
+            world.statics[static_cast<std::size_t>(hit.index)].victim == VictimIndex::at(v)) {
           vs.saw(r, world.robots.size(), world.robots[r].name, state.time);
           break;
         }

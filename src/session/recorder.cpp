@@ -2,11 +2,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "sim/run_outputs.h"
 #include "sim/simulation.h"
+#include "viz/canvas.h"
 
 namespace rescuesim {
+
+namespace {
+
+std::string trajectory_csv(const std::vector<TrajectoryPoint>& traj, const World& world) {
+  std::string out = "t,robot,x,y,yaw,odom_x,odom_y,odom_yaw,v,w\n";
+  char line[256];
+  for (const auto& p : traj) {
+    std::snprintf(line, sizeof line, "%.3f,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", p.t, world.robot(p.robot).name.c_str(), p.truth.x,
+                  p.truth.y, p.truth.yaw, p.odom.x, p.odom.y, p.odom.yaw, p.v, p.w);
+    out += line;
+  }
+  return out;
+}
+
+/// A polar plot of a laser scan: the robot at the centre, 1 m rings, returns as dots.
+Canvas laser_plot(const msg::LaserScan& scan, const std::string& title) {
+  const int size = 520, c = size / 2;
+  Canvas img(size, size + 24, {255, 255, 255});
+  const double max_r = std::min<double>(scan.range_max > 0 ? scan.range_max : 10.0, 10.0);
+  const double scale = (size / 2 - 20) / max_r;
+  for (int ring = 1; ring <= static_cast<int>(max_r); ++ring) img.circle({c, c}, ring * scale, {225, 225, 225}, 1.0);
+  img.line({c - 10.0, double(c)}, {c + 10.0, double(c)}, {150, 150, 150});
+  img.line({double(c), c - 10.0}, {double(c), c + 10.0}, {150, 150, 150});
+  // x forward points up the image, y left points left
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const double a = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+    const Vec2 dir(-std::sin(a), -std::cos(a));
+    const float r = scan.ranges[i];
+    if (std::isfinite(r)) {
+      img.line({double(c), double(c)}, Vec2(c, c) + dir * r * scale, {200, 225, 255}, 1.0, 0.5);
+      img.fill_circle(Vec2(c, c) + dir * r * scale, 1.8, {200, 30, 30});
+    }
+  }
+  img.fill_circle({double(c), double(c)}, 5, {44, 160, 44});
+  img.text(8, size + 6, title + "  (rings 1 m)", {0, 0, 0}, 1);
+  return img;
+}
+
+}  // namespace
 
 CoverageGrid::CoverageGrid(const WorldSpec& spec) : box_{spec.floor_min, spec.floor_max} {
   w_ = std::max(1, static_cast<int>(std::ceil(box_.size().x() / kCell)));
@@ -54,7 +97,7 @@ Recorder::Recorder(Simulation& sim, const WorldSpec& spec, double rate, std::siz
   for (std::size_t r = 0; r < robots; ++r) {
     for (const auto& s : sim.world().robots[r].spec.sensors) {
       if (s.enabled && s.type == SensorSpec::Type::lidar && s.lidar.layers == 1) {
-        sim.bus().subscribe(sim.topic_name(static_cast<int>(r), s.topic),
+        sim.bus().subscribe(sim.topic_name(RobotIndex::at(r), s.topic),
                             [this, r](const Topic&, const msg::Message& m) { memory_.last_scans[r] = std::get<msg::LaserScan>(m); });
         break;
       }
@@ -94,7 +137,7 @@ void Recorder::record(const Simulation& sim) {
     const RobotState& rs = s.robots[r];
     const Pose2 truth = rs.base.X_WB.to_pose2();
     const Vec3 v_B = rs.base.X_WB.q.conjugate() * rs.base.v_WB;
-    memory_.trajectory.push_back({s.time.seconds(), static_cast<int>(r), truth, rs.odom, v_B.x(), rs.base.w_WB.z()});
+    memory_.trajectory.push_back({s.time.seconds(), RobotIndex::at(r), truth, rs.odom, v_B.x(), rs.base.w_WB.z()});
     coverage_.pass(truth.position());
   }
 }
@@ -109,6 +152,30 @@ void Recorder::load(const std::any& memory, Simulation&) {
   const Memory& m = std::any_cast<const Memory&>(memory);
   memory_ = m;
   coverage_.set_visited(m.visited);
+}
+
+void Recorder::write_outputs(const Simulation& sim, RunOutputs& out) const {
+  const World& world = sim.world();
+  write_file_atomic(out.dir / "trajectory.csv", trajectory_csv(memory_.trajectory, world));
+  // each robot's path on the overview, its last position a dot
+  for (RobotIndex r : world.robot_indices()) {
+    std::vector<Vec2> path;
+    for (const auto& p : memory_.trajectory) {
+      if (p.robot == r) path.push_back(out.frame.to_px(p.truth.position()));
+    }
+    out.overview.polyline(path, {20, 160, 60}, 2.0);
+    if (!path.empty()) out.overview.fill_circle(path.back(), 5, {20, 120, 40});
+  }
+  // each laser's last scan
+  const std::vector<msg::LaserScan>& scans = memory_.last_scans;
+  for (std::size_t r = 0; r < scans.size(); ++r) {
+    if (scans[r].ranges.empty()) continue;
+    const std::string& name = world.robots[r].name;
+    char t[64];
+    std::snprintf(t, sizeof t, "%.1f s", scans[r].header.stamp.seconds());
+    laser_plot(scans[r], name + " laser at " + t)
+        .write_png(out.dir / "sensors" / (sim.base_robots() > 1 ? "laser_" + name + ".png" : "laser.png"));
+  }
 }
 
 }  // namespace rescuesim

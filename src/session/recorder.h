@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/index.h"
 #include "core/polygon.h"
 #include "core/pose.h"
 #include "core/sim_time.h"
@@ -21,7 +22,7 @@ namespace rescuesim {
 /// One trajectory sample.
 struct TrajectoryPoint {
   double t = 0;
-  int robot = 0;
+  RobotIndex robot{0};
   Pose2 truth, odom;
   double v = 0, w = 0;
 };
@@ -58,6 +59,9 @@ class Recorder final : public RunSystem {
   void post_step(Simulation& sim) override { record(sim); }
   std::any save() const override;
   void load(const std::any& memory, Simulation& sim) override;
+  /// trajectory.csv, each robot's path on the overview, sensors/laser.png (laser_<robot>.png
+  /// with more than one scenario robot): each laser's last scan as a polar plot.
+  void write_outputs(const Simulation& sim, RunOutputs& out) const override;
 
   /// Takes the sample due at the simulation's time (none when it is not due yet).
   void record(const Simulation& sim);

@@ -84,7 +84,7 @@ void RunControl::rebuild_entities() {
   for (std::size_t i = 0; i < w.dynamics.size(); ++i) add(Entity::Kind::rubble, i, w.dynamics[i].name);
   for (std::size_t i = 0; i < w.statics.size(); ++i) {
     const StaticObject& s = w.statics[i];
-    if (s.victim >= 0 || s.kind == ObjectKind::floor) continue;  // a victim's parts belong to the victim
+    if (s.victim.valid() || s.kind == ObjectKind::floor) continue;  // a victim's parts belong to the victim
     add(Entity::Kind::fixed, i, s.name);
   }
 }

@@ -159,7 +159,7 @@ Result RunControl::spawn(const SpawnRequest& request, std::string& entity_name) 
                         "'" + request.entity_namespace + "' is no valid namespace: tokens of letters, digits and underscores between '/'");
   }
   for (std::size_t r = 0; r < sim.world().robots.size(); ++r) {
-    const std::string taken = sim.topic_name(static_cast<int>(r), "x");  // "/<ns>/x" or "/x"
+    const std::string taken = sim.topic_name(RobotIndex::at(r), "x");  // "/<ns>/x" or "/x"
     if (taken == "/" + *ns + "/x") {
       return Result::fail(code::kNamespaceInvalid, "namespace '/" + *ns + "' is robot '" + sim.world().robots[r].name + "''s already");
     }
@@ -291,7 +291,7 @@ Result RunControl::remove(const std::string& name) {
         "'" + name + "' comes from the scenario: only spawned entities can be deleted (a reset brings the scenario's back)");
   }
   if (e->kind == Entity::Kind::robot) {
-    sim.remove_robot(static_cast<int>(e->index));
+    sim.remove_robot(RobotIndex::at(e->index));
   } else {
     sim.remove_body(e->index);
   }

@@ -54,7 +54,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   // a thermal camera, else by line of sight (the Simulation's default)
   if (cameras_ && thermal_images_render()) {
     std::vector<bool> rendered(sim_->world().robots.size());
-    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(static_cast<int>(r));
+    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(RobotIndex::at(r));
     sim_->set_victim_detector(std::make_unique<ThermalImageDetector>(rendered));
   }
   if (scenario_.mission) {
@@ -75,7 +75,7 @@ Session::Session(const Scenario& scenario, const ModelMap& models, SessionOption
   if (mission_) {
     mission_system_ = std::make_unique<MissionSystem>(*mission_);
     team_ = std::make_unique<BuiltinTeam>(*mission_, *controllers_, sim_->world().robots.size(), sim_->world().victims.size(),
-                                          [this](int robot) { return victim_picture(robot); });
+                                          [this](RobotIndex robot) { return victim_picture(robot); });
     systems_.push_back(mission_system_.get());
     systems_.push_back(team_.get());
   }
@@ -95,7 +95,7 @@ Session::~Session() {
 bool Session::thermal_images_render() const {
   // the scenario's robots (the camera service renders no spawned robot's cameras)
   for (std::size_t r = 0; r < sim_->base_robots(); ++r) {
-    if (cameras_->detects_victims(static_cast<int>(r))) return true;
+    if (cameras_->detects_victims(RobotIndex::at(r))) return true;
   }
   return false;
 }
@@ -110,7 +110,7 @@ void Session::rebuild_cameras() {
   sim_->set_camera_service(cameras_.get());
   if (thermal) {
     std::vector<bool> rendered(sim_->world().robots.size());
-    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(static_cast<int>(r));
+    for (std::size_t r = 0; r < rendered.size(); ++r) rendered[r] = cameras_->detects_victims(RobotIndex::at(r));
     sim_->set_victim_detector(std::make_unique<ThermalImageDetector>(rendered));
   }
 }

@@ -162,7 +162,7 @@ class Session {
   void write_camera_frames(const std::filesystem::path& dir) const;
   /// Robot `robot`'s last thermal frame as mono8 through its sensor's temperature window (the
   /// picture of a built-in report), or nothing when its thermal camera does not render.
-  std::optional<msg::Image> victim_picture(int robot) const;
+  std::optional<msg::Image> victim_picture(RobotIndex robot) const;
   /// True when a scenario robot's thermal camera renders, so victims are found in its images.
   bool thermal_images_render() const;
   /// The camera service, built afresh for the world now (robots spawned or deleted), and the

@@ -73,7 +73,7 @@ void Session::attach_controllers(const ModelMap& models) {
     fit_map_to_floor(config, sim_->world().floor, X_WO);
     // the victim camera's pan: where it stands, and the swing the explorer asks for (a head
     // joint is commanded with the whole head, the others held at their starting positions)
-    const int ri = static_cast<int>(r);
+    const RobotIndex ri = RobotIndex::at(r);
     std::vector<std::string> topics{sim_->topic_name(ri, odom->topic)};
     BuiltinControllers::Pan pan;
     if (!config.look.yaw_joint.empty()) {

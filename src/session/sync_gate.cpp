@@ -12,7 +12,7 @@ SyncGate::SyncGate(Simulation& sim, double timeout_s) : sim_(sim), timeout_s_(ti
     for (const auto& s : sim_.world().robots[r].spec.sensors) {
       if (!s.enabled || s.type != SensorSpec::Type::lidar) continue;
       subscriptions_.push_back(
-          sim_.bus().subscribe(sim_.topic_name(static_cast<int>(r), s.topic), [this](const Topic&, const msg::Message&) { ++owed_; }));
+          sim_.bus().subscribe(sim_.topic_name(RobotIndex::at(r), s.topic), [this](const Topic&, const msg::Message&) { ++owed_; }));
     }
   }
 }

@@ -174,12 +174,12 @@ TerrainLap drive_leg(Simulation& sim, LaneDriver& driver, const TerrainTrialOpti
       out.outcome = "timeout";
       break;
     }
-    sim.command_velocity(0, leg.twist(X));
+    sim.command_velocity(RobotIndex(0), leg.twist(X));
     if (const std::vector<double> f = driver.flippers(pitch); !f.empty()) {
       msg::JointState js;
       js.name = robot.flipper_joints;
       js.position = f;
-      sim.command_joints(0, js);
+      sim.command_joints(RobotIndex(0), js);
     }
     sim.step();
   }

@@ -14,7 +14,8 @@
 /// commands for the next step queues them again there.
 ///
 /// Systems run on the stepping thread, between steps; they may command the simulation (queued
-/// commands, applied at the next step) and read its State and Bus.
+/// commands, applied at the next step) and read its State and Bus. When the run ends, each
+/// writes its outputs (write_outputs, in list order).
 
 #include <any>
 #include <string_view>
@@ -22,6 +23,7 @@
 namespace rescuesim {
 
 class Simulation;
+struct RunOutputs;
 
 class RunSystem {
  public:
@@ -36,6 +38,9 @@ class RunSystem {
   virtual std::any save() const { return {}; }
   /// Puts back what save() returned (from this system).
   virtual void load(const std::any& /*memory*/, Simulation& /*sim*/) {}
+  /// When the run ends: writes the system's files and draws its layer of the overview
+  /// (sim/run_outputs.h says who writes what). A system that writes nothing keeps this.
+  virtual void write_outputs(const Simulation& /*sim*/, RunOutputs& /*out*/) const {}
 };
 
 }  // namespace rescuesim

@@ -83,27 +83,27 @@ Simulation::Simulation(World initial, const SimOptions& options) : options_(opti
 
 Simulation::~Simulation() = default;
 
-std::string Simulation::topic_name(int robot, const std::string& relative) const {
+std::string Simulation::topic_name(RobotIndex robot, const std::string& relative) const {
   if (!relative.empty() && relative[0] == '/') return relative;
-  const RobotInstance& r = world().robots[static_cast<std::size_t>(robot)];
+  const RobotInstance& r = world().robot(robot);
   // a spawned robot is always under its namespace; the scenario's robots are namespaced as the
   // options say for the robots the run started with, so their names never change
   if (r.spawned) return "/" + r.ns + "/" + relative;
   return base_namespaced_ ? "/" + r.name + "/" + relative : "/" + relative;
 }
 
-std::string Simulation::frame_name(int robot, const std::string& frame) const {
+std::string Simulation::frame_name(RobotIndex robot, const std::string& frame) const {
   if (frame == "map" || frame.empty()) return frame;
-  const RobotInstance& r = world().robots[static_cast<std::size_t>(robot)];
+  const RobotInstance& r = world().robot(robot);
   if (r.spawned) return r.ns + "/" + frame;
   return base_namespaced_ ? r.name + "/" + frame : frame;
 }
 
-int Simulation::robot_index(const std::string& name) const {
-  for (std::size_t r = 0; r < world().robots.size(); ++r) {
-    if (world().robots[r].name == name) return static_cast<int>(r);
+RobotIndex Simulation::robot_index(const std::string& name) const {
+  for (RobotIndex r : world().robot_indices()) {
+    if (world().robot(r).name == name) return r;
   }
-  return -1;
+  return {};
 }
 
 void Simulation::setup_topics() {
@@ -113,7 +113,7 @@ void Simulation::setup_topics() {
   // a robot with lamps switches them all on and off with /lights (std_msgs/Bool)
   for (std::size_t r = 0; r < world().robots.size(); ++r) {
     if (world().robots[r].spec.lights.empty()) continue;
-    add_input({topic_name(static_cast<int>(r), "lights"), "std_msgs/Bool", static_cast<int>(r)},
+    add_input({topic_name(RobotIndex::at(r), "lights"), "std_msgs/Bool", RobotIndex::at(r)},
               [this, r](const msg::Message& m) { state_.robots[r].lights_on = std::get<msg::Bool>(m).data; });
   }
   setup_robot_topics();
@@ -123,7 +123,7 @@ void Simulation::setup_topics() {
 
 SensorSlot Simulation::new_slot(const SensorInstance& s, SimTime first_due) const {
   SensorSlot slot;
-  slot.rng = Rng(options_.seed, "sensor/" + world().robots[static_cast<std::size_t>(s.robot)].name + "/" + s.spec.name);
+  slot.rng = Rng(options_.seed, "sensor/" + world().robot(s.robot).name + "/" + s.spec.name);
   slot.next_due = first_due;
   return slot;
 }
@@ -133,7 +133,7 @@ void Simulation::setup_robot_topics() {
   description_topics_.assign(world().robots.size(), kNoTopic);
   for (std::size_t r = 0; r < world().robots.size(); ++r) {
     if (world().robots[r].spec.description.empty()) continue;
-    const int ri = static_cast<int>(r);
+    const RobotIndex ri = RobotIndex::at(r);
     description_topics_[r] = bus_.advertise(topic_name(ri, "robot_description"), "std_msgs/String", 0, true, ri);
   }
   // the sensors, in robot and spec order; slot k of the State is sensor k's
@@ -144,7 +144,7 @@ void Simulation::setup_robot_topics() {
       const SensorSpec& spec = robot.spec.sensors[i];
       if (!spec.enabled) continue;
       SensorInstance s;
-      s.robot = static_cast<int>(r);
+      s.robot = RobotIndex::at(r);
       s.index = static_cast<int>(i);
       s.slot = static_cast<int>(sensors_.size());
       s.period = period_of(spec.rate);
@@ -167,8 +167,8 @@ void Simulation::setup_robot_topics() {
   }
 }
 
-CommandOutcome Simulation::command_velocity(int robot, const msg::Twist& t) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
+CommandOutcome Simulation::command_velocity(RobotIndex robot, const msg::Twist& t) {
+  if (!world().has_robot(robot)) return CommandOutcome::refused("no robot " + std::to_string(robot.value()));
   for (int i = 0; i < 3; ++i) {
     if (!std::isfinite(t.linear[i]) || !std::isfinite(t.angular[i])) return CommandOutcome::refused("a value is not finite");
   }
@@ -195,9 +195,9 @@ bool Simulation::wait_for_velocity_commands(std::uint64_t count, std::chrono::du
   return command_arrived_.wait_for(lock, timeout, [&] { return velocity_commands_ >= count; });
 }
 
-CommandOutcome Simulation::command_head(int robot, const std::vector<double>& positions) {
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return CommandOutcome::refused("no robot " + std::to_string(robot));
-  const std::size_t joints = world().robots[static_cast<std::size_t>(robot)].spec.head_joints.size();
+CommandOutcome Simulation::command_head(RobotIndex robot, const std::vector<double>& positions) {
+  if (!world().has_robot(robot)) return CommandOutcome::refused("no robot " + std::to_string(robot.value()));
+  const std::size_t joints = world().robot(robot).spec.head_joints.size();
   if (positions.size() != joints) {
     return CommandOutcome::refused(std::to_string(positions.size()) + " positions for " + std::to_string(joints) + " head joints");
   }
@@ -213,10 +213,10 @@ CommandOutcome Simulation::command_head(int robot, const std::vector<double>& po
   return CommandOutcome::ok();
 }
 
-CommandOutcome Simulation::command_joints(int robot, const msg::JointState& command) {
+CommandOutcome Simulation::command_joints(RobotIndex robot, const msg::JointState& command) {
   const auto refuse = [](std::string text) { return CommandOutcome::refused(std::move(text)); };
-  if (robot < 0 || robot >= static_cast<int>(world().robots.size())) return refuse("no robot " + std::to_string(robot));
-  const RobotSpec& spec = world().robots[static_cast<std::size_t>(robot)].spec;
+  if (!world().has_robot(robot)) return refuse("no robot " + std::to_string(robot.value()));
+  const RobotSpec& spec = world().robot(robot).spec;
   const std::size_t n = command.name.size();
   if (n == 0) return refuse("no joint names");
   for (const auto& [field, values] : {std::pair<const char*, const std::vector<double>*>{"position", &command.position},
@@ -298,8 +298,8 @@ void Simulation::pre_step() {
   }
   for (const auto& [index, m] : inputs) inputs_[index].handler(m);
   for (const auto& c : pending) {
-    if (static_cast<std::size_t>(c.robot) >= state_.robots.size()) continue;  // its robot was removed meanwhile
-    RobotState& rs = state_.robots[static_cast<std::size_t>(c.robot)];
+    if (!world().has_robot(c.robot)) continue;  // its robot was removed meanwhile
+    RobotState& rs = state_.robot(c.robot);
     switch (c.kind) {
       case Command::Kind::velocity:
         rs.cmd_linear = c.twist.linear;
@@ -309,7 +309,7 @@ void Simulation::pre_step() {
       case Command::Kind::head: rs.head_target = c.values; break;
       case Command::Kind::joints:
         // joints the command does not name keep their targets
-        rs.joint_target.resize(world().robots[static_cast<std::size_t>(c.robot)].spec.joints.size(), 0.0);
+        rs.joint_target.resize(world().robot(c.robot).spec.joints.size(), 0.0);
         for (std::size_t i = 0; i < c.joints.size(); ++i) rs.joint_target[c.joints[i]] = c.values[i];
         break;
     }
@@ -342,7 +342,7 @@ void Simulation::step() {
     state_.robots[r].distance += (state_.robots[r].base.X_WB.p - before[r]).head<2>().norm();
   // wheel odometry integrates every step, whatever rate it publishes at
   for (const auto& s : sensors_) {
-    const SensorSpec& spec = world().robots[static_cast<std::size_t>(s.robot)].spec.sensors[static_cast<std::size_t>(s.index)];
+    const SensorSpec& spec = world().robot(s.robot).spec.sensors[static_cast<std::size_t>(s.index)];
     if (spec.type == SensorSpec::Type::odometry)
       integrate_odometry(world(), state_, s.robot, spec, dt(), state_.sensors[static_cast<std::size_t>(s.slot)]);
   }
@@ -429,7 +429,7 @@ void Simulation::sample(const SensorInstance& s) {
   SensorSlot& slot = state_.sensors[static_cast<std::size_t>(s.slot)];
   const SimTime now = state_.time;
   // the robot's root link (base_link for the rescue robot, maybe base_footprint for a URDF robot)
-  const auto root_frame = [&] { return frame_name(s.robot, world().robots[static_cast<std::size_t>(s.robot)].spec.links[0].name); };
+  const auto root_frame = [&] { return frame_name(s.robot, world().robot(s.robot).spec.links[0].name); };
   switch (spec.type) {
     case SensorSpec::Type::lidar:
     case SensorSpec::Type::sonar:
@@ -471,7 +471,7 @@ void Simulation::publish_tf_static() {
   msg::TFMessage tf;
   for (std::size_t r = 0; r < world().robots.size(); ++r) {
     const RobotSpec& spec = world().robots[r].spec;
-    const int ri = static_cast<int>(r);
+    const RobotIndex ri = RobotIndex::at(r);
     for (const auto& j : spec.joints) {
       if (j.type == JointSpec::Type::fixed)
         tf.transforms.push_back(transform(SimTime{}, frame_name(ri, j.parent), frame_name(ri, j.child), j.X_PJ));
@@ -508,8 +508,7 @@ void Simulation::publish_tf() {
       if (js.type == JointSpec::Type::fixed) continue;
       // a rotation about the axis, or for a prismatic joint a translation along it
       const Pose3 X = js.X_PJ * joint_motion(js, rs.q[j]);
-      tf.transforms.push_back(
-          transform(state_.time, frame_name(static_cast<int>(r), js.parent), frame_name(static_cast<int>(r), js.child), X));
+      tf.transforms.push_back(transform(state_.time, frame_name(RobotIndex::at(r), js.parent), frame_name(RobotIndex::at(r), js.child), X));
     }
   }
   if (!tf.transforms.empty()) bus_.publish(tf_topic_, std::move(tf));

@@ -79,9 +79,9 @@ class Simulation : public BridgeHost {
   /// queued and applied at the next step boundary, or refused with its reason (the outcome is
   /// false and says why; nothing is applied).
   /// cmd_vel for a robot. Non-finite values are refused; the drive clamps the rest to its limits.
-  CommandOutcome command_velocity(int robot, const msg::Twist& twist) override;
+  CommandOutcome command_velocity(RobotIndex robot, const msg::Twist& twist) override;
   /// Head joint position targets (rad), one per head joint in RobotSpec::head_joints order.
-  CommandOutcome command_head(int robot, const std::vector<double>& positions) override;
+  CommandOutcome command_head(RobotIndex robot, const std::vector<double>& positions) override;
   /// Targets for a robot's commandable joints by name (`/<robot>/joint_command`, a
   /// sensor_msgs/JointState): a position for position-controlled joints, a velocity for
   /// velocity-controlled ones; `position` and `velocity` may each be empty or hold one value per
@@ -89,7 +89,7 @@ class Simulation : public BridgeHost {
   /// value is missing or non-finite ("position has 1 values for 2 names"). Position targets
   /// beyond a joint's limits are clamped to them (like the head's); velocity targets are
   /// limited to max_velocity by the joint motor.
-  CommandOutcome command_joints(int robot, const msg::JointState& command) override;
+  CommandOutcome command_joints(RobotIndex robot, const msg::JointState& command) override;
   /// Drops the commands queued for the next step; returns how many. For owners that publish
   /// without stepping (rescuesim replay), so what bridges take in does not pile up.
   std::size_t discard_commands();
@@ -109,12 +109,12 @@ class Simulation : public BridgeHost {
   /// of wall time passes; returns whether they have.
   bool wait_for_velocity_commands(std::uint64_t count, std::chrono::duration<double> timeout);
 
-  /// Robot index by name, or -1.
-  int robot_index(const std::string& name) const;
+  /// Robot index by name; invalid when there is none.
+  RobotIndex robot_index(const std::string& name) const;
   /// The absolute topic name of a robot's relative topic ("scan" -> "/scan" or "/robot2/scan").
-  std::string topic_name(int robot, const std::string& relative) const override;
+  std::string topic_name(RobotIndex robot, const std::string& relative) const override;
   /// A robot's frame name ("base_link" -> "base_link" or "robot2/base_link").
-  std::string frame_name(int robot, const std::string& frame) const override;
+  std::string frame_name(RobotIndex robot, const std::string& frame) const override;
 
   /// Cameras are sampled through this service when one is attached (none: cameras are skipped).
   /// Not owned: the caller keeps the service alive while it is attached and detaches it
@@ -148,12 +148,12 @@ class Simulation : public BridgeHost {
 
   /// Adds a robot, placed (world/world.h: place_robot) and with `spawned` and `ns` set, its
   /// name unused; it starts at rest at its X_W_start, its sensors due at once. Returns its index.
-  int add_robot(RobotInstance robot);
+  RobotIndex add_robot(RobotInstance robot);
   /// Adds a loose rigid body (spawned set) at its X_WO, at rest; returns its index in World::dynamics.
   std::size_t add_body(DynamicObject body);
   /// Removes a spawned robot: the robots after it move down one index (commands queued for them
   /// follow them; bridges remap their command inputs when the layout watchers are called).
-  void remove_robot(int robot);
+  void remove_robot(RobotIndex robot);
   /// Removes a spawned loose body.
   void remove_body(std::size_t body);
   /// Removes every spawned robot and body (a reset of spawned entities).
@@ -185,15 +185,17 @@ class Simulation : public BridgeHost {
   /// description_topics_ and sensors_ for the robots of world() (advertising what is new).
   void setup_robot_topics();
   SensorSlot new_slot(const SensorInstance& s, SimTime first_due) const;
+  /// Old robot index -> new (invalid: gone), for a change of the world's robots.
+  using RobotMap = IndexedVector<RobotTag, RobotIndex>;
   /// Makes `next` the world and `next_state` the state (which fits it): new physics and ray
   /// scene, robot topics, retired topics of robots gone, queued commands moved by `robot_map`
-  /// (old index -> new, -1: gone); then the layout watchers.
-  void rebuild(std::unique_ptr<const World> next, State next_state, const std::vector<int>& robot_map);
+  /// (old index -> new, invalid: gone); then the layout watchers.
+  void rebuild(std::unique_ptr<const World> next, State next_state, const RobotMap& robot_map);
   /// Makes world version `next` current (already in worlds_), under the command lock, moving
   /// queued commands by `robot_map`.
-  void switch_world(const World* next, const std::vector<int>& robot_map);
+  void switch_world(const World* next, const RobotMap& robot_map);
   /// The rest of rebuild, for a version already in worlds_.
-  void adopt(const World* next, State next_state, const std::vector<int>& robot_map);
+  void adopt(const World* next, State next_state, const RobotMap& robot_map);
   void pre_step();
   void post_step();
   void sample(const SensorInstance& s);
@@ -228,7 +230,7 @@ class Simulation : public BridgeHost {
   /// A command waiting for the next step boundary.
   struct Command {
     enum class Kind { velocity, head, joints };
-    int robot = 0;
+    RobotIndex robot{0};
     Kind kind = Kind::velocity;
     msg::Twist twist;                 ///< velocity
     std::vector<double> values;       ///< head: positions in head_joints order; joints: one target per `joints` entry

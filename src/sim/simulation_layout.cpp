@@ -12,21 +12,24 @@ namespace rescuesim {
 
 namespace {
 
-/// old index -> new index for `count` items when `removed` goes (or none, when removed < 0).
-std::vector<int> map_without(std::size_t count, int removed) {
-  std::vector<int> map(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const int ii = static_cast<int>(i);
-    map[i] = removed < 0 || ii < removed ? ii : (ii == removed ? -1 : ii - 1);
+/// old index -> new index for `count` robots when `removed` goes (or none, when it is invalid).
+IndexedVector<RobotTag, RobotIndex> map_without(std::size_t count, RobotIndex removed = {}) {
+  IndexedVector<RobotTag, RobotIndex> map(count);
+  for (RobotIndex r : map.indices()) {
+    if (!removed.valid() || r < removed) {
+      map[r] = r;
+    } else if (r > removed) {
+      map[r] = RobotIndex(r.value() - 1);  // moves down one; `removed` itself stays invalid (gone)
+    }
   }
   return map;
 }
 
 }  // namespace
 
-int Simulation::add_robot(RobotInstance robot) {
+RobotIndex Simulation::add_robot(RobotInstance robot) {
   RS_DEMAND(robot.spawned && !robot.ns.empty(), "Simulation::add_robot: a spawned robot with a namespace");
-  RS_DEMAND(robot_index(robot.name) < 0, "Simulation::add_robot: the name is in use");
+  RS_DEMAND(!robot_index(robot.name).valid(), "Simulation::add_robot: the name is in use");
   auto next = std::make_unique<World>(world());
   next->robots.push_back(std::move(robot));
   add_robot_materials(*next);
@@ -35,8 +38,8 @@ int Simulation::add_robot(RobotInstance robot) {
   RobotState rs = initial_state(*next).robots.back();
   rs.odom = Pose2{};
   next_state.robots.push_back(std::move(rs));
-  const auto index = static_cast<int>(next->robots.size() - 1);
-  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size(), -1));
+  const RobotIndex index = RobotIndex::at(next->robots.size() - 1);
+  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size()));
   return index;
 }
 
@@ -47,20 +50,18 @@ std::size_t Simulation::add_body(DynamicObject body) {
   State next_state = state_;
   next_state.dynamics.push_back(initial_state(*next).dynamics.back());
   const std::size_t index = next->dynamics.size() - 1;
-  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size(), -1));
+  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size()));
   return index;
 }
 
-void Simulation::remove_robot(int robot) {
-  RS_DEMAND(
-      robot >= 0 && static_cast<std::size_t>(robot) < world().robots.size() && world().robots[static_cast<std::size_t>(robot)].spawned,
-      "Simulation::remove_robot: a spawned robot");
+void Simulation::remove_robot(RobotIndex robot) {
+  RS_DEMAND(world().has_robot(robot) && world().robot(robot).spawned, "Simulation::remove_robot: a spawned robot");
   auto next = std::make_unique<World>(world());
-  next->robots.erase(next->robots.begin() + robot);
+  next->robots.erase(next->robots.begin() + robot.value());
   State next_state = state_;
-  next_state.robots.erase(next_state.robots.begin() + robot);
+  next_state.robots.erase(next_state.robots.begin() + robot.value());
   for (VictimState& v : next_state.victims) {
-    if (static_cast<std::size_t>(robot) < v.seen_at.size()) v.seen_at.erase(v.seen_at.begin() + robot);
+    if (robot.slot() < v.seen_at.size()) v.seen_at.erase(v.seen_at.begin() + robot.value());
   }
   rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size(), robot));
 }
@@ -71,7 +72,7 @@ void Simulation::remove_body(std::size_t body) {
   next->dynamics.erase(next->dynamics.begin() + static_cast<long>(body));
   State next_state = state_;
   next_state.dynamics.erase(next_state.dynamics.begin() + static_cast<long>(body));
-  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size(), -1));
+  rebuild(std::move(next), std::move(next_state), map_without(state_.robots.size()));
 }
 
 void Simulation::remove_spawned() {
@@ -83,41 +84,41 @@ void Simulation::remove_spawned() {
   for (VictimState& v : next_state.victims) {
     if (v.seen_at.size() > base_robots_) v.seen_at.resize(base_robots_);
   }
-  std::vector<int> map = map_without(state_.robots.size(), -1);
-  for (std::size_t i = base_robots_; i < map.size(); ++i) map[i] = -1;
+  RobotMap map = map_without(state_.robots.size());
+  for (RobotIndex r : map.indices()) {
+    if (r.slot() >= base_robots_) map[r] = RobotIndex();
+  }
   adopt(worlds_.front().get(), std::move(next_state), map);
 }
 
-void Simulation::rebuild(std::unique_ptr<const World> next, State next_state, const std::vector<int>& robot_map) {
+void Simulation::rebuild(std::unique_ptr<const World> next, State next_state, const RobotMap& robot_map) {
   worlds_.push_back(std::move(next));
   adopt(worlds_.back().get(), std::move(next_state), robot_map);
 }
 
-void Simulation::switch_world(const World* next, const std::vector<int>& robot_map) {
+void Simulation::switch_world(const World* next, const RobotMap& robot_map) {
   // commands already queued follow their robots (or go with them), under the lock bridges
   // submit under, so none lands on the wrong robot
   std::lock_guard lock(commands_mutex_);
   world_.store(next, std::memory_order_release);
   std::vector<Command> kept;
   for (Command& c : commands_) {
-    const auto r = static_cast<std::size_t>(c.robot);
-    if (r >= robot_map.size() || robot_map[r] < 0) continue;
-    c.robot = robot_map[r];
+    if (!robot_map.contains(c.robot) || !robot_map[c.robot].valid()) continue;
+    c.robot = robot_map[c.robot];
     kept.push_back(std::move(c));
   }
   commands_ = std::move(kept);
 }
 
-void Simulation::adopt(const World* next, State next_state, const std::vector<int>& robot_map) {
+void Simulation::adopt(const World* next, State next_state, const RobotMap& robot_map) {
   // the engines first (they may throw on a bad model: nothing has changed yet then)
   auto physics = std::make_unique<Physics>(*next, options_.physics);
   auto rays = std::make_unique<RayScene>(*next);
   // topics of robots that go are retired; the others are advertised again below (with their
   // robots' new indices)
   for (const Topic& t : bus_.topics()) {
-    if (t.retired || t.robot < 0) continue;
-    const auto r = static_cast<std::size_t>(t.robot);
-    if (r < robot_map.size() && robot_map[r] < 0) bus_.retire(t.id);
+    if (t.retired || !t.robot.valid()) continue;
+    if (robot_map.contains(t.robot) && !robot_map[t.robot].valid()) bus_.retire(t.id);
   }
   const std::vector<SensorInstance> old_sensors = sensors_;
   // frames in flight were rendered for the world now: out before it changes
@@ -133,8 +134,7 @@ void Simulation::adopt(const World* next, State next_state, const std::vector<in
   slots.reserve(sensors_.size());
   for (const SensorInstance& s : sensors_) {
     const auto old = std::find_if(old_sensors.begin(), old_sensors.end(), [&](const SensorInstance& o) {
-      const auto r = static_cast<std::size_t>(o.robot);
-      return r < robot_map.size() && robot_map[r] == s.robot && o.index == s.index;
+      return robot_map.contains(o.robot) && robot_map[o.robot] == s.robot && o.index == s.index;
     });
     slots.push_back(old != old_sensors.end() ? next_state.sensors[static_cast<std::size_t>(old->slot)] : new_slot(s, state_.time));
   }

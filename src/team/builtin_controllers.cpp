@@ -3,7 +3,9 @@
 #include <algorithm>
 
 #include "core/parallel.h"
+#include "sim/run_outputs.h"
 #include "sim/simulation.h"
+#include "viz/canvas.h"
 
 namespace rescuesim {
 
@@ -16,9 +18,9 @@ struct BuiltinControllers::Memory {
 
 BuiltinControllers::BuiltinControllers(std::size_t robots) : robots_(robots) {}
 
-void BuiltinControllers::attach(Simulation& sim, int robot, std::unique_ptr<autonomy::Explorer> explorer, const Pose2& X_WO, Pan pan,
+void BuiltinControllers::attach(Simulation& sim, RobotIndex robot, std::unique_ptr<autonomy::Explorer> explorer, const Pose2& X_WO, Pan pan,
                                 const std::vector<std::string>& topics) {
-  const auto r = static_cast<std::size_t>(robot);
+  const auto r = robot.slot();
   robots_[r].explorer = std::move(explorer);
   robots_[r].X_WO = X_WO;
   robots_[r].pan = std::move(pan);
@@ -42,7 +44,7 @@ void BuiltinControllers::pre_step(Simulation&) {
 
 void BuiltinControllers::command_look(Simulation& sim, std::size_t robot, double yaw) {
   Pan& pan = robots_[robot].pan;
-  const int ri = static_cast<int>(robot);
+  const RobotIndex ri = RobotIndex::at(robot);
   if (pan.in_head >= 0) {
     pan.head[static_cast<std::size_t>(pan.in_head)] = yaw;
     sim.command_head(ri, pan.head);
@@ -84,7 +86,7 @@ void BuiltinControllers::post_step(Simulation& sim) {
   for (std::size_t i = 0; i < busy.size(); ++i) {
     const std::size_t r = busy[i];
     for (const Asked& a : asked[i]) {
-      sim.command_velocity(static_cast<int>(r), a.cmd);
+      sim.command_velocity(RobotIndex::at(r), a.cmd);
       robots_[r].queued = a.cmd;
       if (a.look) command_look(sim, r, *a.look);
     }
@@ -105,7 +107,7 @@ void BuiltinControllers::load(const std::any& memory, Simulation& sim) {
   const Memory& m = std::any_cast<const Memory&>(memory);
   for (std::size_t r = 0; r < robots_.size() && r < m.queued.size(); ++r) {
     robots_[r].queued = m.queued[r];
-    if (m.queued[r]) sim.command_velocity(static_cast<int>(r), *m.queued[r]);
+    if (m.queued[r]) sim.command_velocity(RobotIndex::at(r), *m.queued[r]);
   }
   for (std::size_t r = 0; r < robots_.size() && r < m.queued_look.size(); ++r) {
     robots_[r].queued_look = m.queued_look[r];
@@ -113,6 +115,24 @@ void BuiltinControllers::load(const std::any& memory, Simulation& sim) {
   }
   for (std::size_t r = 0; r < robots_.size() && r < m.explorers.size(); ++r) {
     if (robots_[r].explorer && m.explorers[r]) *robots_[r].explorer = *m.explorers[r];
+  }
+}
+
+void BuiltinControllers::write_outputs(const Simulation& sim, RunOutputs& out) const {
+  for (const Robot& robot : robots_) {
+    const autonomy::Explorer* ex = robot.explorer.get();
+    if (!ex) continue;
+    const msg::OccupancyGrid map = ex->map(sim.time());
+    const Pose2 X_WM = robot.X_WO;             // the map frame starts on the odom frame
+    const Pose2 X_MG = map.origin.to_pose2();  // the grid's corner in the map frame
+    for (std::uint32_t y = 0; y < map.height; ++y) {
+      for (std::uint32_t x = 0; x < map.width; ++x) {
+        const std::int8_t v = map.data[y * map.width + x];
+        if (v < 65) continue;
+        const Vec2 p_W = (X_WM * X_MG).transform({(x + 0.5) * map.resolution, (y + 0.5) * map.resolution});
+        out.overview.fill_circle(out.frame.to_px(p_W), std::max(1.0, 0.5 * map.resolution * out.frame.px_per_m), {90, 110, 200}, 0.6);
+      }
+    }
   }
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "autonomy/explorer.h"
+#include "core/index.h"
 #include "core/pose.h"
 #include "msgs/messages.h"
 #include "sim/run_system.h"
@@ -37,7 +38,7 @@ class BuiltinControllers final : public RunSystem {
   /// Gives robot `robot` its explorer: its odom frame lies at X_WO in the world (its start
   /// pose), it hears `topics` (full names; odometry, joint states, the laser, in that order of
   /// subscription) and swings its camera through `pan` (unused when its look config names no joint).
-  void attach(Simulation& sim, int robot, std::unique_ptr<autonomy::Explorer> explorer, const Pose2& X_WO, Pan pan,
+  void attach(Simulation& sim, RobotIndex robot, std::unique_ptr<autonomy::Explorer> explorer, const Pose2& X_WO, Pan pan,
               const std::vector<std::string>& topics);
 
   std::size_t size() const { return robots_.size(); }
@@ -58,6 +59,9 @@ class BuiltinControllers final : public RunSystem {
   /// The explorers' memory goes back (the objects stay: the Bus feeds them by index) and the
   /// commands they had queued at the snapshot are queued again.
   void load(const std::any& memory, Simulation& sim) override;
+  /// Draws each explorer's map (cells at least 65% occupied) on the overview, its map frame
+  /// placed at the robot's odom frame.
+  void write_outputs(const Simulation& sim, RunOutputs& out) const override;
 
  private:
   struct Robot {

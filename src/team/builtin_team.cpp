@@ -160,7 +160,7 @@ void BuiltinTeam::report_and_relay(const Simulation& sim) {
   for (std::size_t r = 0; r < controllers_.size(); ++r) {
     autonomy::Explorer* ex = controllers_.explorer(r);
     if (!ex) continue;  // robots driven from outside report for themselves
-    const int ri = static_cast<int>(r);
+    const RobotIndex ri = RobotIndex::at(r);
     const RobotState& rs = s.robots[r];
     for (std::size_t v = 0; v < s.victims.size(); ++v) {
       if (memory_.members[r].known[v] || !s.victims[v].seen_by_robot(r)) continue;
@@ -181,7 +181,7 @@ void BuiltinTeam::report_and_relay(const Simulation& sim) {
       if (teammates) continue;
       memory_.members[r].found_W.push_back(p_W);
       memory_.members[r].pending.push_back(
-          {static_cast<int>(v), Vec3(p_W.x(), p_W.y(), centre.z()), picture_ ? picture_(ri) : std::nullopt});
+          {VictimIndex::at(v), Vec3(p_W.x(), p_W.y(), centre.z()), picture_ ? picture_(ri) : std::nullopt});
     }
     const bool contact = mission_.in_contact(ri);
     if (contact) {
@@ -212,18 +212,18 @@ void BuiltinTeam::report_and_relay(const Simulation& sim) {
     }
     // a relay where the link to the base grows weak, unless one is close by
     if (links_new && contact && net.relays_left(mission_.robot_node(ri)) > 0 && net.model().kind != RadioModelKind::ideal) {
-      const int me = mission_.robot_node(ri);
+      const RadioNodeIndex me = mission_.robot_node(ri);
       // the margin of the route to a base: its weakest link's, the best over the bases
       double margin = -std::numeric_limits<double>::infinity();
-      for (int b : mission_.base_nodes()) {
-        const std::vector<int> path = net.route(me, b);
+      for (RadioNodeIndex b : mission_.base_nodes()) {
+        const std::vector<RadioNodeIndex> path = net.route(me, b);
         if (path.size() < 2) continue;
         double bottleneck = std::numeric_limits<double>::infinity();
         for (std::size_t k = 1; k < path.size(); ++k) bottleneck = std::min(bottleneck, net.link(path[k - 1], path[k]).margin_db);
         margin = std::max(margin, bottleneck);
       }
       bool near = false;
-      for (int n = 0; n < net.node_count(); ++n) {
+      for (RadioNodeIndex n : net.node_indices()) {
         if (net.node(n).kind == RadioNodeKind::robot) continue;
         near = near || (net.node(n).p_W - net.node(me).p_W).head<2>().norm() < kRelaySpacing;
       }
@@ -237,9 +237,9 @@ void BuiltinTeam::hear() {
   // what each built-in robot heard since the last step
   for (std::size_t r = 0; r < n; ++r) {
     if (!controllers_.explorer(r)) continue;
-    for (const Datagram& d : mission_.take_inbox(static_cast<int>(r))) {
+    for (const Datagram& d : mission_.take_inbox(RobotIndex::at(r))) {
       for (std::size_t k = 0; k < n; ++k) {
-        if (k == r || mission_.robot_node(static_cast<int>(k)) != d.from) continue;
+        if (k == r || mission_.robot_node(RobotIndex::at(k)) != d.from) continue;
         if (auto said = read_team_datagram(d.bytes))
           memory_.members[r].heard[k] = TeamClaim{said->at, said->going, d.sent, std::move(said->victims)};
         if (const auto seen = read_seen_datagram(d.bytes)) {
@@ -277,7 +277,7 @@ void BuiltinTeam::talk(const Simulation& sim) {
   for (std::size_t r = 0; r < n; ++r) {
     autonomy::Explorer* ex = controllers_.explorer(r);
     if (!ex) continue;
-    const int ri = static_cast<int>(r);
+    const RobotIndex ri = RobotIndex::at(r);
     // tell the teammates where it is and where it goes (its map frame placed at its start)
     if (s.time >= memory_.members[r].next_share) {
       memory_.members[r].next_share = s.time + SimTime::from_seconds(kShareEvery);
@@ -331,7 +331,7 @@ void BuiltinTeam::base_map_step(SimTime now) {
   for (std::size_t b = 0; b < mission_.base_nodes().size(); ++b) {
     for (const Datagram& d : mission_.take_base_inbox(b)) {
       for (std::size_t k = 0; k < controllers_.size(); ++k) {
-        if (!controllers_.explorer(k) || mission_.robot_node(static_cast<int>(k)) != d.from) continue;
+        if (!controllers_.explorer(k) || mission_.robot_node(RobotIndex::at(k)) != d.from) continue;
         if (auto m = read_map_datagram(d.bytes)) {
           memory_.members[k].base_map = std::move(*m);
           memory_.base_map_new = true;

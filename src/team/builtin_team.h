@@ -38,7 +38,7 @@ class BuiltinControllers;
 
 /// A victim report a built-in robot has still to make.
 struct PendingReport {
-  int victim = -1;
+  VictimIndex victim;
   Vec3 p_W = Vec3::Zero();            ///< where the robot believes the victim is
   std::optional<msg::Image> picture;  ///< its thermal camera's frame when it saw the victim (cameras rendering)
 };
@@ -99,7 +99,7 @@ void visit_fields(M& m, V& v) {
 class BuiltinTeam final : public RunSystem {
  public:
   /// Robot `robot`'s last thermal frame as a report's picture, or nothing (no camera renders).
-  using Picture = std::function<std::optional<msg::Image>(int robot)>;
+  using Picture = std::function<std::optional<msg::Image>(RobotIndex robot)>;
 
   /// The team of the robots `controllers` drive, `robots` robots and `victims` victims in all.
   BuiltinTeam(Mission& mission, BuiltinControllers& controllers, std::size_t robots, std::size_t victims, Picture picture);

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/index.h"
 #include "core/pose.h"
 #include "core/rng.h"
 #include "core/sim_time.h"
@@ -135,6 +136,10 @@ struct State {
   std::vector<SensorSlot> sensors;      ///< one per sensor, in Simulation order
   Schedule schedule;
   Trouble trouble;
+
+  /// Robot `r`'s state, checked (std::out_of_range when there is none).
+  RobotState& robot(RobotIndex r) { return robots.at(r.slot()); }
+  const RobotState& robot(RobotIndex r) const { return robots.at(r.slot()); }
 };
 
 /// The state at the start, without a physics engine (MuJoCo's mj_resetData): rubble at rest

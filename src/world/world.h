@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/index.h"  // RobotIndex, VictimIndex: the positions in robots and victims
 #include "world/geometry.h"
 #include "world/robot_spec.h"
 #include "world/world_spec.h"
@@ -25,7 +26,7 @@ struct StaticObject {
   Pose3 X_WO;                 ///< shape frame in the world
   int material = 0;           ///< index into World::materials
   double temperature = -1;    ///< K; < 0: the material's (or ambient)
-  int victim = -1;            ///< index into World::victims for victim body parts
+  VictimIndex victim;         ///< the victim a body part belongs to; invalid for everything else
 };
 
 /// A loose rigid body (rubble).
@@ -86,6 +87,14 @@ struct World {
   std::vector<MediumSpec> media;       ///< smoke and dust (world/media.h); empty: clear air, and no sensor pays for media
   std::vector<GroundArea> ground;      ///< floor patches of other materials; empty: the floor's material everywhere
   std::uint64_t world_seed = 0;        ///< of a generated world
+
+  /// The robot at `r`, checked (std::out_of_range when there is none); has_robot says first.
+  const RobotInstance& robot(RobotIndex r) const { return robots.at(r.slot()); }
+  bool has_robot(RobotIndex r) const { return r.valid() && r.slot() < robots.size(); }
+  /// The victim at `v`, checked (std::out_of_range when there is none).
+  const Victim& victim(VictimIndex v) const { return victims.at(v.slot()); }
+  /// Every robot's index, in order: `for (RobotIndex r : world.robot_indices())`.
+  IndexRange<RobotTag> robot_indices() const { return indices<RobotTag>(robots.size()); }
 
   /// Index of a material by name; throws Error when it is missing.
   int material_index(const std::string& name) const;

@@ -161,26 +161,28 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     const Vec2 size = spec.floor_max - spec.floor_min + Vec2::Constant(2 * options.floor_margin);
     const Vec2 c = 0.5 * (spec.floor_min + spec.floor_max);
     w.statics.push_back({"floor", ObjectKind::floor, Geometry::box({size.x(), size.y(), options.floor_thickness}),
-                         pose_at(c, -options.floor_thickness / 2, 0), w.material_index(spec.floor_material), -1, -1});
+                         pose_at(c, -options.floor_thickness / 2, 0), w.material_index(spec.floor_material), -1, VictimIndex()});
   }
   for (std::size_t i = 0; i < spec.walls.size(); ++i) {
     const WallSpec& s = spec.walls[i];
     const Vec2 d = s.b - s.a;
     w.statics.push_back({"wall_" + std::to_string(i), ObjectKind::wall, Geometry::box({d.norm(), s.thickness, s.height}),
-                         pose_at(0.5 * (s.a + s.b), s.height / 2, std::atan2(d.y(), d.x())), w.material_index(s.material), -1, -1});
+                         pose_at(0.5 * (s.a + s.b), s.height / 2, std::atan2(d.y(), d.x())), w.material_index(s.material), -1,
+                         VictimIndex()});
   }
   for (std::size_t i = 0; i < spec.blocks.size(); ++i) {
     const BlockSpec& b = spec.blocks[i];
     w.statics.push_back({"obstacle_" + std::to_string(i), ObjectKind::obstacle, prism(normalized(b.outline), 0, b.height), Pose3{},
-                         w.material_index(b.material), -1, -1});
+                         w.material_index(b.material), -1, VictimIndex()});
   }
   for (std::size_t i = 0; i < spec.raised_areas.size(); ++i) {
     const RaisedAreaSpec& r = spec.raised_areas[i];
     const int mat = w.material_index(r.material);
-    w.statics.push_back({"platform_" + std::to_string(i), ObjectKind::platform, prism(r.outline, 0, r.height), Pose3{}, mat, -1, -1});
+    w.statics.push_back(
+        {"platform_" + std::to_string(i), ObjectKind::platform, prism(r.outline, 0, r.height), Pose3{}, mat, -1, VictimIndex()});
     for (int e : r.ramp_edges) {
       w.statics.push_back({"ramp_" + std::to_string(i) + "_" + std::to_string(e), ObjectKind::ramp,
-                           ramp_wedge(WorldSpec::ramp_outline(r, e), r.height), Pose3{}, mat, -1, -1});
+                           ramp_wedge(WorldSpec::ramp_outline(r, e), r.height), Pose3{}, mat, -1, VictimIndex()});
     }
   }
   // test-method terrain: posts, steps and decks are platforms (ground to drive on), wedges ramps
@@ -188,7 +190,7 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
     const int mat = w.material_index(t.material);
     for (TerrainSolid& so : terrain_solids(t)) {
       w.statics.push_back(
-          {std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, -1});
+          {std::move(so.name), so.ramp ? ObjectKind::ramp : ObjectKind::platform, std::move(so.geometry), so.X_WS, mat, -1, VictimIndex()});
     }
   }
   // floor patches: no solids, only the floor's material inside their footprints
@@ -232,22 +234,22 @@ World compile_world(const WorldSpec& spec, const std::map<std::string, RobotSpec
       const auto& p = parts[k];
       victim.parts.push_back(static_cast<int>(w.statics.size()));
       centre += p.X_WP.p;
-      w.statics.push_back({victim.name + "_part" + std::to_string(k), ObjectKind::victim, p.geometry, p.X_WP,
-                           p.skin ? skin : clothes, p.skin ? v.skin_temperature : v.clothes_temperature, static_cast<int>(i)});
+      w.statics.push_back({victim.name + "_part" + std::to_string(k), ObjectKind::victim, p.geometry, p.X_WP, p.skin ? skin : clothes,
+                           p.skin ? v.skin_temperature : v.clothes_temperature, VictimIndex::at(i)});
     }
     victim.centre = centre / static_cast<double>(parts.size());
     w.victims.push_back(std::move(victim));
   }
   // 3-D solids from model files: fixed obstacles, or the bodies of victims that name them
   for (const SolidSpec& so : spec.solids) {
-    StaticObject o{so.name, ObjectKind::obstacle, so.geometry, so.X_WS, w.material_index(so.material), so.temperature, -1};
+    StaticObject o{so.name, ObjectKind::obstacle, so.geometry, so.X_WS, w.material_index(so.material), so.temperature, VictimIndex()};
     if (!so.victim.empty()) {
       const auto it = std::find_if(w.victims.begin(), w.victims.end(), [&](const Victim& v) { return v.name == so.victim; });
       if (it == w.victims.end())
         throw Error(so.source, "solid '" + so.name + "' names victim '" + so.victim + "', which the world does not have");
       const auto vi = static_cast<std::size_t>(it - w.victims.begin());
       o.kind = ObjectKind::victim;
-      o.victim = static_cast<int>(vi);
+      o.victim = VictimIndex::at(static_cast<std::size_t>(vi));
       if (o.temperature <= 0) o.temperature = spec.victims[vi].skin_temperature;
       it->parts.push_back(static_cast<int>(w.statics.size()));
     }

@@ -57,15 +57,15 @@ TEST(Mission, WssPowerBetweenTwoRobotsIsTheFormulasThroughTheWallsBetweenThem) {
   Simulation sim(line_world({5, 15, 30}, {0, 20}));
   Mission mission(wss_mission(), sim);
   steps(sim, mission, 0.5);
-  const RadioLink& l = mission.network().link(mission.robot_node(0), mission.robot_node(1));
+  const RadioLink& l = mission.network().link(mission.robot_node(RobotIndex(0)), mission.robot_node(RobotIndex(1)));
   EXPECT_EQ(l.walls, 2);
   EXPECT_NEAR(l.distance_m, 20.0, 0.01);
   EXPECT_NEAR(l.rssi_dbm, -72.32, 0.01);
   EXPECT_TRUE(l.connected);
   // the base, 1 m behind a: a hears it directly, b through the same two walls
-  EXPECT_TRUE(mission.in_contact(0));
-  EXPECT_TRUE(mission.in_contact(1));
-  EXPECT_EQ(mission.status(0).hops_to_base, 1);
+  EXPECT_TRUE(mission.in_contact(RobotIndex(0)));
+  EXPECT_TRUE(mission.in_contact(RobotIndex(1)));
+  EXPECT_EQ(mission.status(RobotIndex(0)).hops_to_base, 1);
   EXPECT_EQ(mission.network().node(mission.base_nodes()[0]).id, "base");
 }
 
@@ -73,27 +73,27 @@ TEST(Mission, BeyondTheCutOffADatagramNeverArrivesAndReportsAreOutOfContact) {
   // 40 m apart with five walls between: −49.67 − 10·log10(20) − 5·6.325 = −94.31 dBm < −93
   Simulation sim(line_world({5, 10, 15, 20, 25}, {0, 40}));
   Mission mission(wss_mission(), sim);
-  const RadioLink& l = mission.network().link(mission.robot_node(0), mission.robot_node(1));
+  const RadioLink& l = mission.network().link(mission.robot_node(RobotIndex(0)), mission.robot_node(RobotIndex(1)));
   EXPECT_EQ(l.walls, 5);
   EXPECT_NEAR(l.rssi_dbm, -94.31, 0.01);
   EXPECT_FALSE(l.connected);
-  EXPECT_TRUE(mission.in_contact(0));
-  EXPECT_FALSE(mission.in_contact(1));
+  EXPECT_TRUE(mission.in_contact(RobotIndex(0)));
+  EXPECT_FALSE(mission.in_contact(RobotIndex(1)));
 
-  const SendResult sent = mission.send(1, "a", {1, 2, 3});
+  const SendResult sent = mission.send(RobotIndex(1), "a", {1, 2, 3});
   ASSERT_TRUE(sent.accepted) << sent.reason;
   steps(sim, mission, 1.0);  // ten link updates
-  EXPECT_TRUE(mission.take_inbox(0).empty());
-  EXPECT_EQ(mission.status(1).datagrams_dropped, 1u);
+  EXPECT_TRUE(mission.take_inbox(RobotIndex(0)).empty());
+  EXPECT_EQ(mission.status(RobotIndex(1)).datagrams_dropped, 1u);
   EXPECT_EQ(mission.result().datagrams_dropped, 1u);
 
   // a's datagram to the base arrives at the next link update
-  ASSERT_TRUE(mission.send(0, "base", {7}).accepted);
+  ASSERT_TRUE(mission.send(RobotIndex(0), "base", {7}).accepted);
   steps(sim, mission, 0.1);
   EXPECT_EQ(mission.network().inbox(mission.base_nodes()[0]).size(), 1u);
   // a base's inbox nobody takes keeps only the newest kInboxKeep (1,024): 1,100 more sent, the
   // oldest 77 are gone; take_base_inbox empties it
-  for (int i = 0; i < 1100; ++i) ASSERT_TRUE(mission.send(0, "base", {static_cast<std::uint8_t>(i % 256)}).accepted);
+  for (int i = 0; i < 1100; ++i) ASSERT_TRUE(mission.send(RobotIndex(0), "base", {static_cast<std::uint8_t>(i % 256)}).accepted);
   steps(sim, mission, 0.1);
   const std::vector<Datagram> at_base = mission.take_base_inbox(0);
   ASSERT_EQ(at_base.size(), Mission::kInboxKeep);
@@ -102,12 +102,12 @@ TEST(Mission, BeyondTheCutOffADatagramNeverArrivesAndReportsAreOutOfContact) {
   EXPECT_TRUE(mission.network().inbox(mission.base_nodes()[0]).empty());
 
   // no victims here: a report in contact is false (−0.5), one out of contact is refused at no cost
-  EXPECT_EQ(mission.report(1, {40, 0, 0}).outcome, ReportOutcome::out_of_contact);
-  EXPECT_EQ(mission.report(0, {1, 0, 0}).outcome, ReportOutcome::false_report);
+  EXPECT_EQ(mission.report(RobotIndex(1), {40, 0, 0}).outcome, ReportOutcome::out_of_contact);
+  EXPECT_EQ(mission.report(RobotIndex(0), {1, 0, 0}).outcome, ReportOutcome::false_report);
   EXPECT_EQ(mission.referee().score(), -0.5);
 
-  EXPECT_FALSE(mission.send(1, "nobody", {1}).accepted);
-  EXPECT_FALSE(mission.send(1, "a", std::vector<std::uint8_t>(70000)).accepted);  // over max_datagram_bytes
+  EXPECT_FALSE(mission.send(RobotIndex(1), "nobody", {1}).accepted);
+  EXPECT_FALSE(mission.send(RobotIndex(1), "a", std::vector<std::uint8_t>(70000)).accepted);  // over max_datagram_bytes
 }
 
 TEST(Mission, ADroppedRelayCarriesTheLinkWhenItsRobotDrivesOn) {
@@ -116,28 +116,29 @@ TEST(Mission, ADroppedRelayCarriesTheLinkWhenItsRobotDrivesOn) {
   spec.radio.model.wss.n = 4;
   Simulation sim(line_world({}, {20}));
   Mission mission(spec, sim);
-  EXPECT_TRUE(mission.in_contact(0));  // 21 m from the base: −49.67 − 40·log10(10.5) = −90.5 dBm
-  const RelayResult relay = mission.drop_relay(0);
+  EXPECT_TRUE(mission.in_contact(RobotIndex(0)));  // 21 m from the base: −49.67 − 40·log10(10.5) = −90.5 dBm
+  const RelayResult relay = mission.drop_relay(RobotIndex(0));
   ASSERT_TRUE(relay.ok()) << relay.reason;
   EXPECT_EQ(mission.network().node(relay.node).id, "a/relay_1");
-  EXPECT_EQ(mission.network().relays_left(mission.robot_node(0)), 11);
+  EXPECT_EQ(mission.network().relays_left(mission.robot_node(RobotIndex(0))), 11);
 
   // a drives on along +x at 1 m/s for 16 s: about 37 m from the base, out of its reach, 16 m from the relay
   const SimTime end = sim.time() + SimTime::from_seconds(16);
   while (sim.time() < end) {
     msg::Twist t;
     t.linear.x() = 1.0;
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     steps(sim, mission, 0.1);
   }
   const double x = sim.state().robots[0].base.X_WB.p.x();
   ASSERT_GT(x, 33.0);
-  const int base = mission.base_nodes()[0];
-  EXPECT_FALSE(mission.network().link(mission.robot_node(0), base).connected);
-  EXPECT_TRUE(mission.network().link(mission.robot_node(0), relay.node).connected);
-  EXPECT_TRUE(mission.in_contact(0));
-  EXPECT_EQ(mission.status(0).hops_to_base, 2);  // a → relay → base
-  EXPECT_EQ(mission.network().route(mission.robot_node(0), base), (std::vector<int>{mission.robot_node(0), relay.node, base}));
+  const RadioNodeIndex base = mission.base_nodes()[0];
+  EXPECT_FALSE(mission.network().link(mission.robot_node(RobotIndex(0)), base).connected);
+  EXPECT_TRUE(mission.network().link(mission.robot_node(RobotIndex(0)), relay.node).connected);
+  EXPECT_TRUE(mission.in_contact(RobotIndex(0)));
+  EXPECT_EQ(mission.status(RobotIndex(0)).hops_to_base, 2);  // a → relay → base
+  EXPECT_EQ(mission.network().route(mission.robot_node(RobotIndex(0)), base),
+            (std::vector<RadioNodeIndex>{mission.robot_node(RobotIndex(0)), relay.node, base}));
   EXPECT_EQ(mission.result().relays_dropped, (std::vector<int>{1}));
 }
 
@@ -161,7 +162,7 @@ TEST(Mission, ReportsAreAnsweredOnTheBusAndTheScoreIsLatched) {
   });
   steps(sim, mission, 1.0);
   const Vec3 c = sim.world().victims[0].centre;
-  const ReportReply reply = mission.report(0, c + Vec3(0.6, 0.8, 0));  // 1 m from the victim's centre
+  const ReportReply reply = mission.report(RobotIndex(0), c + Vec3(0.6, 0.8, 0));  // 1 m from the victim's centre
   EXPECT_EQ(reply.outcome, ReportOutcome::accepted);
   ASSERT_EQ(answers.size(), 1u);
   EXPECT_EQ(answers[0]["outcome"], "accepted");
@@ -180,7 +181,7 @@ TEST(Mission, ReportsAreAnsweredOnTheBusAndTheScoreIsLatched) {
   EXPECT_NEAR(score["elapsed"].get<double>(), 1.0, 1e-9);
 
   // NaN gets an answer with null coordinates, nothing is scored
-  EXPECT_EQ(mission.report(0, {std::nan(""), 0, 0}).outcome, ReportOutcome::invalid);
+  EXPECT_EQ(mission.report(RobotIndex(0), {std::nan(""), 0, 0}).outcome, ReportOutcome::invalid);
   ASSERT_EQ(answers.size(), 2u);
   EXPECT_TRUE(answers[1]["position"][0].is_null());
   EXPECT_EQ(mission.result().counts[ReportOutcome::invalid], 1u);
@@ -234,7 +235,7 @@ TEST(Mission, ReportsDatagramsAndRelaysComeInThroughTopicsAsFromABridge) {
   EXPECT_EQ(inbox_b[0]["data"], "aGVsbG8=");  // base64 of "hello"
   EXPECT_EQ(inbox_b[0]["hops"], 1);
   // still in b's inbox for whoever takes it in-process (the Python API)
-  EXPECT_EQ(mission.take_inbox(1).size(), 1u);
+  EXPECT_EQ(mission.take_inbox(RobotIndex(1)).size(), 1u);
 
   // bytes as base64, and three bad requests: each answered with the reason, nothing sent
   ASSERT_TRUE(submit(send, msg::String{R"({"to": "*", "data": "AAEC/w=="})"}));
@@ -382,7 +383,7 @@ TEST(Mission, APictureThatIsNoPictureIsRefusedWithTheReasonAndTheReportStillCoun
     EXPECT_EQ(answers[i]["reason"], why[i]) << answers[i];
   }
   // in-process (the built-in robots, Python): the report is judged, its bad picture left out
-  const ReportReply r = mission.report(0, {1, 0, 0}, depth);
+  const ReportReply r = mission.report(RobotIndex(0), {1, 0, 0}, depth);
   EXPECT_EQ(r.outcome, ReportOutcome::false_report);
   EXPECT_NE(r.message.find("its picture was not kept: encoding '32FC1'"), std::string::npos) << r.message;
   EXPECT_TRUE(mission.report_images().empty());
@@ -484,8 +485,8 @@ TEST(Mission, SameSeedSameLinksAndARestoredMemoryReplaysThem) {
   for (int i = 0; i < 20; ++i) {
     steps(s1, m1, 0.1);
     steps(s2, m2, 0.1);
-    margins1.push_back(m1.network().link(0, 1).margin_db);
-    margins2.push_back(m2.network().link(0, 1).margin_db);
+    margins1.push_back(m1.network().link(RadioNodeIndex(0), RadioNodeIndex(1)).margin_db);
+    margins2.push_back(m2.network().link(RadioNodeIndex(0), RadioNodeIndex(1)).margin_db);
   }
   EXPECT_EQ(margins1, margins2);
   EXPECT_NE(margins1[0], margins1[1]);  // a new draw per update
@@ -495,7 +496,7 @@ TEST(Mission, SameSeedSameLinksAndARestoredMemoryReplaysThem) {
   EXPECT_EQ(m1.network().update_count(), 1u);
   for (int i = 0; i < 20; ++i) {
     steps(s1, m1, 0.1);
-    margins3.push_back(m1.network().link(0, 1).margin_db);
+    margins3.push_back(m1.network().link(RadioNodeIndex(0), RadioNodeIndex(1)).margin_db);
   }
   EXPECT_EQ(margins3, margins1);
 }

@@ -20,7 +20,7 @@ Referee two_victims(MissionRules rules = {}, int robots = 1) {
 
 VictimReport at(double x, double y, double t_s, int robot = 0, bool contact = true) {
   VictimReport r;
-  r.robot = robot;
+  r.robot = RobotIndex(robot);
   r.p_W = {x, y, 0};
   r.time = SimTime::from_seconds(t_s);
   r.in_contact = contact;
@@ -32,14 +32,14 @@ TEST(Referee, AcceptsAReportWithinTheRadiusAndScoresThePoints) {
   // 0.9, 1.2 is 1.5 m from v1 (a 3-4-5 triangle scaled by 0.3): exactly on the RoboCup radius
   const ReportReply r = ref.judge(at(0.9, 1.2, 1.0));
   EXPECT_EQ(r.outcome, ReportOutcome::accepted);
-  EXPECT_EQ(r.victim, 0);
+  EXPECT_EQ(r.victim, VictimIndex(0));
   EXPECT_NEAR(r.distance_m, 1.5, 1e-12);
   EXPECT_EQ(r.score_change, 1.0);
   EXPECT_EQ(r.score, 1.0);
   EXPECT_EQ(r.id, 1u);
   EXPECT_EQ(ref.victims_found(), 1);
   EXPECT_TRUE(ref.victim_states()[0].found);
-  EXPECT_EQ(ref.victim_states()[0].by, 0);
+  EXPECT_EQ(ref.victim_states()[0].by, RobotIndex(0));
   EXPECT_DOUBLE_EQ(ref.victim_states()[0].time, 1.0);
   EXPECT_NE(r.message.find("'v1'"), std::string::npos) << r.message;
 }
@@ -48,7 +48,7 @@ TEST(Referee, AReportJustBeyondTheRadiusIsFalseAndPenalised) {
   Referee ref = two_victims();
   const ReportReply r = ref.judge(at(1.501, 0, 1.0));
   EXPECT_EQ(r.outcome, ReportOutcome::false_report);
-  EXPECT_EQ(r.victim, -1);
+  EXPECT_EQ(r.victim.valid(), false);
   EXPECT_EQ(r.score_change, -0.5);  // RoboCup VRC: half a victim per false report
   EXPECT_EQ(ref.score(), -0.5);
   EXPECT_EQ(ref.counts()[ReportOutcome::false_report], 1u);
@@ -59,7 +59,7 @@ TEST(Referee, EachVictimCountsOnceLaterReportsAreDuplicates) {
   EXPECT_EQ(ref.judge(at(0.5, 0, 1.0)).outcome, ReportOutcome::accepted);
   const ReportReply dup = ref.judge(at(-0.5, 0, 2.0));
   EXPECT_EQ(dup.outcome, ReportOutcome::duplicate);
-  EXPECT_EQ(dup.victim, 0);
+  EXPECT_EQ(dup.victim, VictimIndex(0));
   EXPECT_EQ(dup.score_change, 0.0);
   EXPECT_EQ(ref.score(), 1.0);
   EXPECT_EQ(ref.counts().charged, 2u);  // a duplicate uses up a report
@@ -69,10 +69,10 @@ TEST(Referee, TwoVictimsCloseTogetherAreBothFindable) {
   // v1 at 0, v2 at 1 m: a report at 0.4 is nearest v1; the next at 0.4 from another spot
   // within both radii finds v2, the unfound one, though v1 is nearer
   Referee ref({}, {{"v1", {0, 0, 0}}, {"v2", {1, 0, 0}}}, 1);
-  EXPECT_EQ(ref.judge(at(0.4, 0, 1)).victim, 0);
+  EXPECT_EQ(ref.judge(at(0.4, 0, 1)).victim, VictimIndex(0));
   const ReportReply r = ref.judge(at(0.3, 0.1, 2));
   EXPECT_EQ(r.outcome, ReportOutcome::accepted);
-  EXPECT_EQ(r.victim, 1);
+  EXPECT_EQ(r.victim, VictimIndex(1));
   EXPECT_NEAR(r.distance_m, std::hypot(0.7, 0.1), 1e-12);
   EXPECT_EQ(ref.victims_found(), 2);
 }
@@ -163,7 +163,7 @@ TEST(Referee, TheTimelineHoldsEveryChargedReport) {
   EXPECT_EQ(ref.timeline()[0].score, 1.0);
   EXPECT_EQ(ref.timeline()[1].outcome, ReportOutcome::false_report);
   EXPECT_EQ(ref.timeline()[1].score, 0.5);
-  EXPECT_EQ(ref.timeline()[2].victim, 1);
+  EXPECT_EQ(ref.timeline()[2].victim, VictimIndex(1));
   EXPECT_EQ(ref.timeline()[2].score, 1.5);
   EXPECT_DOUBLE_EQ(ref.timeline()[2].t, 3.0);
 }

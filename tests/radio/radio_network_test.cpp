@@ -50,8 +50,8 @@ TEST(RadioNetworkWss, ReceivedPowerThroughWallsMatchesTheFormula) {
     const RayScene scene(world);
     const WallCounter walls(scene, world);
     RadioNetwork net(radio_model("wss"), 1);
-    const int a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
-    const int b = net.add_node("robot2", RadioNodeKind::robot, {10, 0, 0.5});
+    const RadioNodeIndex a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
+    const RadioNodeIndex b = net.add_node("robot2", RadioNodeKind::robot, {10, 0, 0.5});
     net.update(&walls);
     const RadioLink& l = net.link(a, b);
     EXPECT_NEAR(l.distance_m, 10.0, 1e-12);
@@ -70,8 +70,8 @@ TEST(RadioNetworkWss, DatagramAcrossACutLinkNeverArrives) {
   const RayScene scene(world);
   const WallCounter walls(scene, world);
   RadioNetwork net(radio_model("wss"), 1);
-  const int a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
-  const int b = net.add_node("base", RadioNodeKind::base, {60, 0, 0.5});
+  const RadioNodeIndex a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
+  const RadioNodeIndex b = net.add_node("base", RadioNodeKind::base, {60, 0, 0.5});
   net.update(&walls);
   EXPECT_EQ(net.link(a, b).walls, 5);
   EXPECT_NEAR(net.link(a, b).rssi_dbm, -96.0662, 0.01);
@@ -94,8 +94,8 @@ TEST(RadioNetworkWss, DatagramAcrossACutLinkNeverArrives) {
   open.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
   open.add_node("base", RadioNodeKind::base, {60, 0, 0.5});
   open.update();
-  EXPECT_NEAR(open.link(0, 1).rssi_dbm, -64.4412, 0.01);
-  EXPECT_EQ(open.status(0).hops_to_base, 1);
+  EXPECT_NEAR(open.link(RadioNodeIndex(0), RadioNodeIndex(1)).rssi_dbm, -64.4412, 0.01);
+  EXPECT_EQ(open.status(RadioNodeIndex(0)).hops_to_base, 1);
 }
 
 TEST(RadioNetworkSubt, ShadowingIsTheSameForTheSameSeedAndDiffersForAnother) {
@@ -106,10 +106,11 @@ TEST(RadioNetworkSubt, ShadowingIsTheSameForTheSameSeedAndDiffersForAnother) {
     std::vector<double> out;
     for (int k = 0; k < 5; ++k) {
       net.update();
-      out.push_back(net.link(0, 1).rssi_dbm);
+      out.push_back(net.link(RadioNodeIndex(0), RadioNodeIndex(1)).rssi_dbm);
       // mean 20 − 40 − 15·log10 30 = −42.1568 dBm plus this update's draw
-      EXPECT_NEAR(net.link(0, 1).rssi_dbm - net.link(0, 1).shadowing_db, -42.1568, 0.01);
-      EXPECT_EQ(net.link(0, 1).shadowing_db,
+      EXPECT_NEAR(net.link(RadioNodeIndex(0), RadioNodeIndex(1)).rssi_dbm - net.link(RadioNodeIndex(0), RadioNodeIndex(1)).shadowing_db,
+                  -42.1568, 0.01);
+      EXPECT_EQ(net.link(RadioNodeIndex(0), RadioNodeIndex(1)).shadowing_db,
                 link_shadowing_db(net.model(), seed, "robot2", "robot1", net.update_count()));
     }
     return out;
@@ -125,8 +126,8 @@ TEST(RadioNetworkSubt, CapacityDeliversOneMegabitPerSecondAndDropsTheRest) {
   // 250 datagrams of 1000 bytes (2 Mbit) sent over one second, 25 per 0.1 s; the 1 Mbit/s
   // radio carries 125000 bytes per second: 125 arrive, 125 are dropped
   RadioNetwork net(short_subt(), 1);
-  const int a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
-  const int b = net.add_node("base", RadioNodeKind::base, {10, 0, 0.5});
+  const RadioNodeIndex a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
+  const RadioNodeIndex b = net.add_node("base", RadioNodeKind::base, {10, 0, 0.5});
   net.update();
   for (int step = 0; step < 10; ++step) {
     for (int k = 0; k < 25; ++k) ASSERT_TRUE(net.send(a, b, payload(1000)).accepted);
@@ -148,18 +149,18 @@ TEST(RadioNetworkSubt, CapacityDeliversOneMegabitPerSecondAndDropsTheRest) {
   free.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
   free.add_node("base", RadioNodeKind::base, {10, 0, 0.5});
   free.update();
-  for (int k = 0; k < 250; ++k) free.send(0, 1, payload(1000));
+  for (int k = 0; k < 250; ++k) free.send(RadioNodeIndex(0), RadioNodeIndex(1), payload(1000));
   free.deliver(0.1);
-  EXPECT_EQ(free.inbox(1).size(), 250u);
+  EXPECT_EQ(free.inbox(RadioNodeIndex(1)).size(), 250u);
 }
 
 TEST(RadioNetworkRouting, DatagramGoesThroughTheRobotBetween) {
   // A(0), B(40), C(80): A–B and B–C are 40 m: −20 − 40·log10 40 = −84.082 dBm (margin 5.92 dB);
   // A–C is 80 m: −20 − 40·log10 80 = −96.124 dBm, no link
   RadioNetwork net(short_subt(), 1);
-  const int a = net.add_node("A", RadioNodeKind::robot, {0, 0, 0.5});
-  const int b = net.add_node("B", RadioNodeKind::robot, {40, 0, 0.5});
-  const int c = net.add_node("C", RadioNodeKind::robot, {80, 0, 0.5});
+  const RadioNodeIndex a = net.add_node("A", RadioNodeKind::robot, {0, 0, 0.5});
+  const RadioNodeIndex b = net.add_node("B", RadioNodeKind::robot, {40, 0, 0.5});
+  const RadioNodeIndex c = net.add_node("C", RadioNodeKind::robot, {80, 0, 0.5});
   net.update();
   EXPECT_NEAR(net.link(a, b).rssi_dbm, -84.0824, 0.01);
   EXPECT_NEAR(net.link(a, b).margin_db, 5.9176, 0.01);
@@ -169,7 +170,7 @@ TEST(RadioNetworkRouting, DatagramGoesThroughTheRobotBetween) {
   const std::vector<Datagram> got = net.take_inbox(c);
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0].hops(), 2);
-  EXPECT_EQ(got[0].path, (std::vector<int>{a, b, c}));
+  EXPECT_EQ(got[0].path, (std::vector<RadioNodeIndex>{a, b, c}));
   EXPECT_EQ(got[0].bytes, (std::vector<std::uint8_t>{1, 2, 3}));
   EXPECT_EQ(net.status(b).bytes_forwarded, 3u);
   EXPECT_TRUE(net.inbox(b).empty());
@@ -194,18 +195,19 @@ TEST(RadioNetworkRouting, WidestPathBeatsFewerHopsAndTiesGoToFewerHops) {
   net.add_node("B", RadioNodeKind::robot, {25, 0, 0.5});
   net.add_node("C", RadioNodeKind::base, {50, 0, 0.5});
   net.update();
-  EXPECT_NEAR(net.link(0, 2).margin_db, 2.0412, 0.01);
-  EXPECT_NEAR(net.link(0, 1).margin_db, 14.0824, 0.01);
-  EXPECT_EQ(net.route(0, 2), (std::vector<int>{0, 1, 2}));
-  EXPECT_EQ(net.status(0).hops_to_base, 2);
-  EXPECT_EQ(net.status(2).hops_to_base, 0);  // the base itself
+  EXPECT_NEAR(net.link(RadioNodeIndex(0), RadioNodeIndex(2)).margin_db, 2.0412, 0.01);
+  EXPECT_NEAR(net.link(RadioNodeIndex(0), RadioNodeIndex(1)).margin_db, 14.0824, 0.01);
+  EXPECT_EQ(net.route(RadioNodeIndex(0), RadioNodeIndex(2)),
+            (std::vector<RadioNodeIndex>{RadioNodeIndex(0), RadioNodeIndex(1), RadioNodeIndex(2)}));
+  EXPECT_EQ(net.status(RadioNodeIndex(0)).hops_to_base, 2);
+  EXPECT_EQ(net.status(RadioNodeIndex(2)).hops_to_base, 0);  // the base itself
   // ideal: every link is infinitely strong, so the tie goes to the direct link
   RadioNetwork ideal(radio_model("ideal"), 1);
   ideal.add_node("A", RadioNodeKind::robot, {0, 0, 0.5});
   ideal.add_node("B", RadioNodeKind::robot, {25, 0, 0.5});
   ideal.add_node("C", RadioNodeKind::base, {5000, 0, 0.5});
   ideal.update();
-  EXPECT_EQ(ideal.route(0, 2), (std::vector<int>{0, 2}));
+  EXPECT_EQ(ideal.route(RadioNodeIndex(0), RadioNodeIndex(2)), (std::vector<RadioNodeIndex>{RadioNodeIndex(0), RadioNodeIndex(2)}));
 }
 
 TEST(RadioNetworkRelays, ADroppedRelayRestoresContactWithTheBase) {
@@ -213,8 +215,8 @@ TEST(RadioNetworkRelays, ADroppedRelayRestoresContactWithTheBase) {
   RadioNetworkOptions options;
   options.relays_per_robot = 1;
   RadioNetwork net(short_subt(), 1, options);
-  const int base = net.add_node("base", RadioNodeKind::base, {0, 0, 0.5});
-  const int robot = net.add_node("robot1", RadioNodeKind::robot, {80, 0, 0.5});
+  const RadioNodeIndex base = net.add_node("base", RadioNodeKind::base, {0, 0, 0.5});
+  const RadioNodeIndex robot = net.add_node("robot1", RadioNodeKind::robot, {80, 0, 0.5});
   net.update();
   EXPECT_FALSE(net.status(robot).hops_to_base.has_value());
   EXPECT_EQ(net.relays_left(robot), 1);
@@ -229,7 +231,7 @@ TEST(RadioNetworkRelays, ADroppedRelayRestoresContactWithTheBase) {
   ASSERT_TRUE(net.send(robot, base, payload(8)).accepted);
   net.deliver(0.1);
   ASSERT_EQ(net.inbox(base).size(), 1u);
-  EXPECT_EQ(net.inbox(base)[0].path, (std::vector<int>{robot, relay.node, base}));
+  EXPECT_EQ(net.inbox(base)[0].path, (std::vector<RadioNodeIndex>{robot, relay.node, base}));
   // the budget is enforced, and only robots drop relays
   const RelayResult more = net.add_relay(robot, {60, 0, 0.5});
   EXPECT_FALSE(more.ok());
@@ -242,8 +244,8 @@ TEST(RadioNetworkBadInput, NaNPositionIsNotConnectedAndDoesNotCrash) {
   const RayScene scene(world);
   const WallCounter walls(scene, world);
   RadioNetwork net(radio_model("wss"), 1);
-  const int a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
-  const int b = net.add_node("base", RadioNodeKind::base, {std::nan(""), 0, 0.5});
+  const RadioNodeIndex a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
+  const RadioNodeIndex b = net.add_node("base", RadioNodeKind::base, {std::nan(""), 0, 0.5});
   net.update(&walls);
   EXPECT_FALSE(net.link(a, b).connected);
   EXPECT_TRUE(std::isnan(net.link(a, b).distance_m));
@@ -268,15 +270,15 @@ TEST(RadioNetworkBadInput, NaNPositionIsNotConnectedAndDoesNotCrash) {
 
 TEST(RadioNetworkBadInput, OversizedAndMisaddressedDatagramsAreRejectedWithAReason) {
   RadioNetwork net(radio_model("ideal"), 1);
-  const int a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
-  const int b = net.add_node("base", RadioNodeKind::base, {5, 0, 0.5});
+  const RadioNodeIndex a = net.add_node("robot1", RadioNodeKind::robot, {0, 0, 0.5});
+  const RadioNodeIndex b = net.add_node("base", RadioNodeKind::base, {5, 0, 0.5});
   net.update();
   const SendResult big = net.send(a, b, payload(65537));
   EXPECT_FALSE(big.accepted);
   EXPECT_THAT(big.reason, HasSubstr("65537 bytes exceeds the 65536-byte limit"));
   EXPECT_TRUE(net.send(a, b, payload(65536)).accepted);
-  EXPECT_THAT(net.send(a, 7, payload(1)).reason, HasSubstr("unknown destination node 7"));
-  EXPECT_THAT(net.send(-3, b, payload(1)).reason, HasSubstr("unknown sender node -3"));
+  EXPECT_THAT(net.send(a, RadioNodeIndex(7), payload(1)).reason, HasSubstr("unknown destination node 7"));
+  EXPECT_THAT(net.send(RadioNodeIndex(), b, payload(1)).reason, HasSubstr("unknown sender node -1"));  // invalid
   EXPECT_THAT(net.send(a, a, payload(1)).reason, HasSubstr("destination is the sender"));
   EXPECT_EQ(net.status(a).datagrams_sent, 1u);  // only the accepted one
   net.deliver(0.1);
@@ -306,8 +308,8 @@ std::vector<RadioLink> ten_radio_links(const WallCounter& walls, int updates) {
   }
   for (int k = 0; k < updates; ++k) net.update(&walls);
   std::vector<RadioLink> out;
-  for (int a = 0; a < 10; ++a) {
-    for (int b = 0; b < 10; ++b) out.push_back(net.link(a, b));
+  for (RadioNodeIndex a : net.node_indices()) {
+    for (RadioNodeIndex b : net.node_indices()) out.push_back(net.link(a, b));
   }
   return out;
 }

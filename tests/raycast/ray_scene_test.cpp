@@ -41,7 +41,7 @@ RobotSpec box_robot() {
 
 World compile(const WorldSpec& spec) { return compile_world(spec, {{"box_bot", box_robot()}}); }
 
-RayHit cast_one(const RayScene& scene, const Vec3& origin, const Vec3& direction, float max_distance = INFINITY, int ignore = -1) {
+RayHit cast_one(const RayScene& scene, const Vec3& origin, const Vec3& direction, float max_distance = INFINITY, RobotIndex ignore = {}) {
   const Ray ray{origin, direction.normalized(), max_distance};
   RayHit hit;
   scene.cast(std::span<const Ray>(&ray, 1), std::span<RayHit>(&hit, 1), ignore);
@@ -71,7 +71,7 @@ TEST(RaySceneWall, DistanceFollowsTheCosineLawFromManyOriginsAndAngles) {
         EXPECT_NEAR(h.normal.x(), -1.0, 1e-6);
         EXPECT_NEAR(h.normal.y(), 0.0, 1e-6);
         EXPECT_NEAR(h.normal.z(), 0.0, 1e-6);
-        EXPECT_EQ(h.robot, -1);
+        EXPECT_FALSE(h.robot.valid());
       }
     }
   }
@@ -207,23 +207,23 @@ TEST(RaySceneRobots, IgnoredRobotIsInvisibleButOthersAreHit) {
   RayHit h = cast_one(scene, o, {1, 0, 0});
   EXPECT_NEAR(h.distance, 0.8, 1e-4);
   EXPECT_EQ(h.source, RayHit::Source::robot_link);
-  EXPECT_EQ(h.robot, 0);
+  EXPECT_EQ(h.robot, RobotIndex(0));
   EXPECT_EQ(h.index, 0);
   EXPECT_NEAR(h.normal.x(), -1.0, 1e-6);
 
   // robot 0 ignoring itself sees the wall behind it, but still sees robot 1
-  h = cast_one(scene, o, {1, 0, 0}, INFINITY, 0);
+  h = cast_one(scene, o, {1, 0, 0}, INFINITY, RobotIndex(0));
   EXPECT_NEAR(h.distance, 2.0, 1e-4);
   EXPECT_EQ(h.source, RayHit::Source::static_object);
-  h = cast_one(scene, o, {-1, 0, 0}, INFINITY, 0);
+  h = cast_one(scene, o, {-1, 0, 0}, INFINITY, RobotIndex(0));
   EXPECT_NEAR(h.distance, 0.8, 1e-4);
   EXPECT_EQ(h.source, RayHit::Source::robot_link);
-  EXPECT_EQ(h.robot, 1);
+  EXPECT_EQ(h.robot, RobotIndex(1));
   EXPECT_NEAR(h.normal.x(), 1.0, 1e-6);
 
   // robot 1 ignoring itself sees robot 0
-  h = cast_one(scene, o, {1, 0, 0}, INFINITY, 1);
-  EXPECT_EQ(h.robot, 0);
+  h = cast_one(scene, o, {1, 0, 0}, INFINITY, RobotIndex(1));
+  EXPECT_EQ(h.robot, RobotIndex(0));
 }
 
 TEST(RaySceneRobots, LinksFollowUpdate) {
@@ -236,7 +236,7 @@ TEST(RaySceneRobots, LinksFollowUpdate) {
   EXPECT_NEAR(cast_one(scene, {0, 0, 0.2}, {1, 0, 0}).distance, 2.0, 1e-4);
   const RayHit h = cast_one(scene, {0, 0, 0.2}, {0, 1, 0});
   EXPECT_NEAR(h.distance, 1.3, 1e-4);
-  EXPECT_EQ(h.robot, 0);
+  EXPECT_EQ(h.robot, RobotIndex(0));
 }
 
 TEST(RaySceneOccluded, SegmentsThroughWallsAndRobots) {
@@ -249,8 +249,8 @@ TEST(RaySceneOccluded, SegmentsThroughWallsAndRobots) {
   EXPECT_FALSE(scene.occluded({0, 0, 0.5}, {2.0, 0, 0.5}));
   // robot 0 stands between the origin and x = 1.5 at z = 0.2, unless it is ignored
   EXPECT_TRUE(scene.occluded({0, 0, 0.2}, {1.5, 0, 0.2}));
-  EXPECT_FALSE(scene.occluded({0, 0, 0.2}, {1.5, 0, 0.2}, 0));
-  EXPECT_TRUE(scene.occluded({0, 0, 0.2}, {1.5, 0, 0.2}, 1));
+  EXPECT_FALSE(scene.occluded({0, 0, 0.2}, {1.5, 0, 0.2}, RobotIndex(0)));
+  EXPECT_TRUE(scene.occluded({0, 0, 0.2}, {1.5, 0, 0.2}, RobotIndex(1)));
   EXPECT_FALSE(scene.occluded({0, 0, 0.5}, {0, 0, 0.5}));
 }
 
@@ -333,13 +333,13 @@ TEST(RaySceneDeterminism, OneThreadAndAllThreadsGiveIdenticalHits) {
   std::vector<RayHit> one(rays.size());
   {
     const RayScene scene(world);
-    scene.cast(rays, one, 0);
+    scene.cast(rays, one, RobotIndex(0));
   }
   set_worker_threads(0);
   std::vector<RayHit> all(rays.size());
   {
     const RayScene scene(world);
-    scene.cast(rays, all, 0);
+    scene.cast(rays, all, RobotIndex(0));
   }
   EXPECT_TRUE(bitwise_equal(one, all));
 
@@ -357,7 +357,7 @@ TEST(RaySceneDeterminism, OneThreadAndAllThreadsGiveIdenticalHits) {
   // and a second cast of the same batch is the same again
   std::vector<RayHit> again(rays.size());
   const RayScene scene(world);
-  scene.cast(rays, again, 0);
+  scene.cast(rays, again, RobotIndex(0));
   EXPECT_TRUE(bitwise_equal(all, again));
 }
 
@@ -377,7 +377,7 @@ TEST(RaySceneDeterminism, HitDoesNotDependOnPlaceInTheBatch) {
     RayScene scene(world);
     if (asleep) scene.update(sleeping_rubble(world));
     std::vector<RayHit> batch(rays.size());
-    scene.cast(rays, batch, 0);
+    scene.cast(rays, batch, RobotIndex(0));
     int dynamics = 0;
     for (const RayHit& h : batch) dynamics += h.source == RayHit::Source::dynamic_object;
     EXPECT_GT(dynamics, 0);
@@ -386,10 +386,11 @@ TEST(RaySceneDeterminism, HitDoesNotDependOnPlaceInTheBatch) {
     std::vector<Ray> shifted = rays;
     shifted.insert(shifted.begin(), Ray{});
     std::vector<RayHit> shifted_hits(shifted.size());
-    scene.cast(shifted, shifted_hits, 0);
+    scene.cast(shifted, shifted_hits, RobotIndex(0));
     shifted_hits.erase(shifted_hits.begin());
     std::vector<RayHit> single(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i) scene.cast(std::span<const Ray>(&rays[i], 1), std::span<RayHit>(&single[i], 1), 0);
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      scene.cast(std::span<const Ray>(&rays[i], 1), std::span<RayHit>(&single[i], 1), RobotIndex(0));
     EXPECT_TRUE(bitwise_equal(batch, shifted_hits));
     EXPECT_TRUE(bitwise_equal(batch, single));
   }

@@ -105,7 +105,7 @@ TEST(Darkness, ALampLightsItsConeAndNothingOutside) {
 TEST(Darkness, LampsFollowTheirLinkAndLeaveWhenOff) {
   RenderScene scene;
   RenderLamp l;
-  l.robot = 0;
+  l.robot = RobotIndex(0);
   l.link = 1;
   l.X_LF = Pose3::from_rpy({0.1, 0, 0}, 0, 0, 0);
   l.light = lamp();

@@ -240,7 +240,7 @@ TEST(Fog, ThermalSeesTheVictimThroughSmokeThatHidesItFromColour) {
   // a lamp switched on recompiles the colour programs: the smoke stays in every camera
   RenderScene scene = build_render_scene(smoky_world(0.9, media));
   RenderLamp lamp;
-  lamp.robot = 0;
+  lamp.robot = RobotIndex(0);
   lamp.link = 0;
   lamp.light.directional = false;
   lamp.light.spot = true;

@@ -16,7 +16,7 @@ TEST(Contacts, NamesTouchingThisRobotInTheSensorFrame) {
   SensorSpec bumper;
   bumper.type = SensorSpec::Type::contact;
   bumper.frame_id = "robot2/base_link";
-  const msg::Contacts c = sample_contacts(state, 1, bumper, SimTime::from_ms(150));
+  const msg::Contacts c = sample_contacts(state, RobotIndex(1), bumper, SimTime::from_ms(150));
   EXPECT_EQ(c.header.stamp, SimTime::from_ms(150));
   EXPECT_EQ(c.header.frame_id, "robot2/base_link");
   EXPECT_EQ(c.touching, (std::vector<std::string>{"rubble_3", "wall_12"}));
@@ -27,7 +27,7 @@ TEST(Contacts, NothingTouchingGivesAnEmptyList) {
   state.robots.resize(1);
   SensorSpec bumper;
   bumper.frame_id = "base_link";
-  EXPECT_TRUE(sample_contacts(state, 0, bumper, SimTime{}).touching.empty());
+  EXPECT_TRUE(sample_contacts(state, RobotIndex(0), bumper, SimTime{}).touching.empty());
 }
 
 }  // namespace

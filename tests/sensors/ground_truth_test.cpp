@@ -32,7 +32,7 @@ void expect_pose(const Pose3& X, const Vec3& p, double yaw) {
 }
 
 TEST(GroundTruth, PoseIsTheTrueBasePoseInMap) {
-  const msg::PoseStamped p = sample_ground_truth(robot_at_1_2_facing_y(), 0, SimTime::from_ms(250));
+  const msg::PoseStamped p = sample_ground_truth(robot_at_1_2_facing_y(), RobotIndex(0), SimTime::from_ms(250));
   EXPECT_EQ(p.header.stamp, SimTime::from_ms(250));
   EXPECT_EQ(p.header.frame_id, "map");
   // (cos 45°, 0, 0, sin 45°) = (0.70711, 0, 0, 0.70711)
@@ -45,7 +45,7 @@ TEST(GroundTruth, MapToOdomCompletesTheChainToTheTruePose) {
   State s = robot_at_1_2_facing_y();
   s.robots[0].base.X_WB.p.z() = 0;
   s.robots[0].odom = Pose2{0.5, 0, 0};
-  const msg::TFMessage tf = ground_truth_tf(s, 0, SimTime::from_ms(20), {"robot2/odom", "robot2/base_link", false, true});
+  const msg::TFMessage tf = ground_truth_tf(s, RobotIndex(0), SimTime::from_ms(20), {"robot2/odom", "robot2/base_link", false, true});
   ASSERT_EQ(tf.transforms.size(), 1u);
   const msg::TransformStamped& t = tf.transforms[0];
   EXPECT_EQ(t.header.stamp, SimTime::from_ms(20));
@@ -58,7 +58,7 @@ TEST(GroundTruth, OdomToBaseFromTruthMakesMapToOdomTheIdentity) {
   // with odom -> base_link the true pose, map and odom coincide whatever the wheels say
   State s = robot_at_1_2_facing_y();
   s.robots[0].odom = Pose2{0.5, 0.25, 1.0};
-  const msg::TFMessage tf = ground_truth_tf(s, 0, SimTime::from_ms(20), {"odom", "base_footprint", true, true});
+  const msg::TFMessage tf = ground_truth_tf(s, RobotIndex(0), SimTime::from_ms(20), {"odom", "base_footprint", true, true});
   ASSERT_EQ(tf.transforms.size(), 2u);
   EXPECT_EQ(tf.transforms[0].header.frame_id, "odom");
   EXPECT_EQ(tf.transforms[0].child_frame_id, "base_footprint");
@@ -69,7 +69,7 @@ TEST(GroundTruth, OdomToBaseFromTruthMakesMapToOdomTheIdentity) {
 }
 
 TEST(GroundTruth, NoTransformsWhenNoneAreAskedFor) {
-  EXPECT_TRUE(ground_truth_tf(robot_at_1_2_facing_y(), 0, SimTime{}, {"odom", "base_link", false, false}).transforms.empty());
+  EXPECT_TRUE(ground_truth_tf(robot_at_1_2_facing_y(), RobotIndex(0), SimTime{}, {"odom", "base_link", false, false}).transforms.empty());
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ TEST(JointStates, MovingJointsInSpecOrderFixedOnesSkipped) {
   rs.effort = {1.5, 0.0, 20.0, -0.75};
   state.robots.push_back(rs);
 
-  const msg::JointState js = sample_joint_states(world, state, 0, SimTime::from_ms(50));
+  const msg::JointState js = sample_joint_states(world, state, RobotIndex(0), SimTime::from_ms(50));
   EXPECT_EQ(js.header.stamp, SimTime::from_ms(50));
   EXPECT_EQ(js.header.frame_id, "");
   EXPECT_EQ(js.name, (std::vector<std::string>{"pan", "lift", "wheel"}));
@@ -48,7 +48,7 @@ TEST(JointStates, OnlyFixedJointsGiveAnEmptyMessage) {
   RobotState rs;
   rs.q = rs.qd = rs.effort = {0.0};
   state.robots.push_back(rs);
-  const msg::JointState js = sample_joint_states(world, state, 0, SimTime{});
+  const msg::JointState js = sample_joint_states(world, state, RobotIndex(0), SimTime{});
   EXPECT_TRUE(js.name.empty());
   EXPECT_TRUE(js.position.empty());
   EXPECT_TRUE(js.velocity.empty());

@@ -46,7 +46,7 @@ struct Fixture {
     return compile_with(spec, model);
   }
   msg::LaserScan scan(const SensorSpec& s, Rng& rng, SimTime stamp = SimTime::from_ms(1500)) const {
-    return sample_lidar(world, state, scene, 0, s, stamp, rng);
+    return sample_lidar(world, state, scene, RobotIndex(0), s, stamp, rng);
   }
 };
 
@@ -93,7 +93,7 @@ TEST(LidarWall, MountFollowsLinkPoseAndSensorPose) {
   const World world = compile_with(spec, box_robot({s}));
   const RayScene scene(world);
   Rng rng(1, "scan");
-  const msg::LaserScan scan = sample_lidar(world, initial_state(world), scene, 0, s, SimTime{}, rng);
+  const msg::LaserScan scan = sample_lidar(world, initial_state(world), scene, RobotIndex(0), s, SimTime{}, rng);
   EXPECT_NEAR(scan.ranges[100], 1.5, 1e-4);
   EXPECT_NEAR(scan.ranges[0], 1.5 / std::cos(1.0), 1e-4);
 }
@@ -186,11 +186,11 @@ TEST(LidarSelf, RobotNeverSeesItsOwnLinks) {
   // from just outside the box at the shape's near face (x = 0.275)
   const Ray rays[2] = {{Vec3(0, 0, kBaseHeight + 0.05), Vec3::UnitX(), 10.0f}, {Vec3(0.25, 0, kBaseHeight + 0.05), Vec3::UnitX(), 10.0f}};
   RayHit hits[2];
-  f.scene.cast(rays, hits, -1);
+  f.scene.cast(rays, hits, RobotIndex());
   EXPECT_NEAR(hits[0].distance, 0.2, 1e-4);
   EXPECT_EQ(hits[0].source, RayHit::Source::robot_link);
   EXPECT_NEAR(hits[1].distance, 0.025, 1e-4);
-  EXPECT_EQ(hits[1].robot, 0);
+  EXPECT_EQ(hits[1].robot, RobotIndex(0));
 }
 
 TEST(LidarSelf, OtherRobotsAreSeen) {
@@ -203,7 +203,7 @@ TEST(LidarSelf, OtherRobotsAreSeen) {
   const World world = compile_with(spec, box_robot({s}));
   const RayScene scene(world);
   Rng rng(1, "scan");
-  const msg::LaserScan scan = sample_lidar(world, initial_state(world), scene, 0, s, SimTime{}, rng);
+  const msg::LaserScan scan = sample_lidar(world, initial_state(world), scene, RobotIndex(0), s, SimTime{}, rng);
   EXPECT_NEAR(scan.ranges[100], 0.8, 1e-4);
   EXPECT_NEAR(scan.ranges[0], 2.0 / std::cos(1.0), 1e-4);
 }
@@ -232,7 +232,7 @@ TEST(LidarCloud, LayersLandOnTheWallInTheSensorFrame) {
   s.lidar.max_range = 3.0;
   const Fixture f(2.0, box_robot({s}));
   Rng rng(1, "scan");
-  const msg::PointCloud2 cloud = sample_lidar_cloud(f.world, f.state, f.scene, 0, s, SimTime::from_ms(7), rng);
+  const msg::PointCloud2 cloud = sample_lidar_cloud(f.world, f.state, f.scene, RobotIndex(0), s, SimTime::from_ms(7), rng);
   EXPECT_EQ(cloud.header.frame_id, "laser");
   EXPECT_EQ(cloud.header.stamp, SimTime::from_ms(7));
   EXPECT_EQ(cloud.height, 1u);

@@ -66,7 +66,7 @@ struct Fixture {
     return compile_with(spec, box_robot({s}));
   }
   msg::LaserScan scan(const SensorSpec& s, Rng& rng, SimTime stamp = SimTime::from_ms(1500)) const {
-    return sample_lidar(world, state, scene, 0, s, stamp, rng);
+    return sample_lidar(world, state, scene, RobotIndex(0), s, stamp, rng);
   }
 };
 
@@ -225,8 +225,8 @@ TEST(LidarSmoke, WithoutMediaOrWhereRaysMissThemScansAreBitwiseUnchanged) {
   layered.lidar.vertical_fov = 0.2;
   Rng c1(4, "scan"), c2(4, "scan");
   const Fixture clear3(layered, {}), high3(layered, {above});
-  EXPECT_EQ(sample_lidar_cloud(clear3.world, clear3.state, clear3.scene, 0, layered, SimTime::from_ms(100), c1).data,
-            sample_lidar_cloud(high3.world, high3.state, high3.scene, 0, layered, SimTime::from_ms(100), c2).data);
+  EXPECT_EQ(sample_lidar_cloud(clear3.world, clear3.state, clear3.scene, RobotIndex(0), layered, SimTime::from_ms(100), c1).data,
+            sample_lidar_cloud(high3.world, high3.state, high3.scene, RobotIndex(0), layered, SimTime::from_ms(100), c2).data);
 }
 
 /// A sonar with only its axis ray, 5 cm above base_link, facing +x.
@@ -257,7 +257,7 @@ TEST(SonarSmoke, DustDampsTheEchoAtItsUltrasoundCoefficientAndSmokeNotAtAll) {
   int heard = 0, silent = 0;
   const int n = 2000;
   for (int k = 0; k < n; ++k) {
-    const float r = sample_sonar(dust.world, dust.state, dust.scene, 0, s, SimTime::from_ms(100 * k), rng).range;
+    const float r = sample_sonar(dust.world, dust.state, dust.scene, RobotIndex(0), s, SimTime::from_ms(100 * k), rng).range;
     if (std::abs(r - kWall) < 1e-3) ++heard;
     else if (std::isinf(r) && r > 0) ++silent;
   }
@@ -265,7 +265,7 @@ TEST(SonarSmoke, DustDampsTheEchoAtItsUltrasoundCoefficientAndSmokeNotAtAll) {
   const double p = std::exp(-1.0);
   EXPECT_NEAR(static_cast<double>(heard) / n, p, 4 * std::sqrt(p * (1 - p) / n));
   for (int k = 0; k < 50; ++k) {
-    EXPECT_NEAR(sample_sonar(smoke.world, smoke.state, smoke.scene, 0, s, SimTime::from_ms(100 * k), rng).range, kWall, 1e-3);
+    EXPECT_NEAR(sample_sonar(smoke.world, smoke.state, smoke.scene, RobotIndex(0), s, SimTime::from_ms(100 * k), rng).range, kWall, 1e-3);
   }
 }
 

@@ -39,7 +39,7 @@ msg::Range read(const SensorSpec& s, double d, Rng& rng, const RobotSpec* model 
   spec.robots.push_back({"r", "box_bot", {0, 0, 0}, {}});
   const World world = compile_with(spec, model ? *model : box_robot({s}));
   const RayScene scene(world);
-  return sample_sonar(world, initial_state(world), scene, 0, s, SimTime::from_ms(300), rng);
+  return sample_sonar(world, initial_state(world), scene, RobotIndex(0), s, SimTime::from_ms(300), rng);
 }
 
 TEST(SonarWall, HeadOnReadsTheAxisDistance) {

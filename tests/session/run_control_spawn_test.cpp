@@ -104,7 +104,7 @@ TEST(RunControlSpawn, AURDFRobotFromItsPackageIsSpawnedDrivenAndDeleted) {
   EXPECT_TRUE(has_topic(*session, "/tb3b/robot_description"));
   EXPECT_TRUE(has_topic(*session, "/tb3b/odom"));
   EXPECT_TRUE(has_topic(*session, "/odom"));
-  EXPECT_EQ(session->sim().topic_name(1, "cmd_vel"), "/tb3b/cmd_vel");
+  EXPECT_EQ(session->sim().topic_name(RobotIndex(1), "cmd_vel"), "/tb3b/cmd_vel");
   EntityState st;
   ASSERT_TRUE(c.entity_state("tb3b", st).is_ok());
   EXPECT_NEAR(st.pose.p.x(), X.p.x(), 1e-6);
@@ -114,7 +114,7 @@ TEST(RunControlSpawn, AURDFRobotFromItsPackageIsSpawnedDrivenAndDeleted) {
   for (int i = 0; i < 20; ++i) {
     msg::Twist t;
     t.linear.x() = 0.1;
-    ASSERT_TRUE(session->sim().command_velocity(1, t));
+    ASSERT_TRUE(session->sim().command_velocity(RobotIndex(1), t));
     session->step_until(session->sim().time() + SimTime::from_ms(100));
   }
   ASSERT_TRUE(c.entity_state("tb3b", st).is_ok());
@@ -271,7 +271,7 @@ TEST(RunControlSpawnCameras, ASpawnedRobotsDepthCameraSeesTheWallTheRaysSee) {
   const RayScene& rays = session.sim().ray_scene();
   std::vector<Ray> ray{{X_WC.p, X_WC.q * Vec3::UnitX(), 20.0f}};
   std::vector<RayHit> hit(1);
-  rays.cast(ray, hit, 1);
+  rays.cast(ray, hit, RobotIndex(1));
   ASSERT_TRUE(std::isfinite(hit[0].distance));
   const msg::Image& img = depth.back();
   float z = 0;

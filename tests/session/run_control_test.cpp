@@ -183,7 +183,7 @@ TEST(RunControl, TeleportMovesTheRobotRigidlyAndOdometryDoesNotNotice) {
   // no controller: the robot stands still unless commanded
   auto session = make_session(false, 1e9, false);
   RunControl& c = *session->control();
-  ASSERT_TRUE(session->sim().command_velocity(0, msg::Twist{Vec3(0.3, 0, 0), Vec3::Zero()}));
+  ASSERT_TRUE(session->sim().command_velocity(RobotIndex(0), msg::Twist{Vec3(0.3, 0, 0), Vec3::Zero()}));
   session->step_until(SimTime::from_seconds(0.5));
   const RobotState before = session->sim().state().robots[0];
   ASSERT_GT(before.odom.x, 0.02);  // it drove, and odometry counted it
@@ -209,7 +209,7 @@ TEST(RunControl, TeleportMovesTheRobotRigidlyAndOdometryDoesNotNotice) {
   EXPECT_EQ(after.odom.x, before.odom.x);
   EXPECT_EQ(after.odom.y, before.odom.y);
   // and the robot stays there (on its wheels, not flung): stopped, 0.5 s later it is within 5 cm
-  ASSERT_TRUE(session->sim().command_velocity(0, msg::Twist{}));
+  ASSERT_TRUE(session->sim().command_velocity(RobotIndex(0), msg::Twist{}));
   session->step_until(SimTime::from_seconds(1.0));
   EXPECT_LT((session->sim().state().robots[0].base.X_WB.p - want.pose.p).norm(), 0.05);
 }

@@ -45,9 +45,9 @@ inline Recording drive(Simulation& sim, SimTime until) {
     msg::Twist t;
     t.linear.x() = 0.6;
     t.angular.z() = k % 30 < 15 ? 0.7 : -0.7;
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     if (k % 5 == 0 && !sim.world().robots[0].spec.head_joints.empty()) {
-      sim.command_head(0, {0.4 * std::sin(static_cast<double>(k)), 0.2, 1.4, -1.0});
+      sim.command_head(RobotIndex(0), {0.4 * std::sin(static_cast<double>(k)), 0.2, 1.4, -1.0});
     }
     sim.step_until(std::min(until, SimTime::from_ms(100 * (k + 1))));
   }

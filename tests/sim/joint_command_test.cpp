@@ -29,7 +29,7 @@ msg::JointState command(std::vector<std::string> names, std::vector<double> posi
 
 /// The reason command_joints gives for refusing `c` ("" when it accepts it).
 std::string refusal(Simulation& sim, const msg::JointState& c, int robot = 0) {
-  const CommandOutcome outcome = sim.command_joints(robot, c);
+  const CommandOutcome outcome = sim.command_joints(RobotIndex(robot), c);
   if (outcome) return "";
   EXPECT_FALSE(outcome.reason.empty());
   return outcome.reason;
@@ -66,7 +66,7 @@ TEST(JointCommand, RefusalsSayWhyAndQueueNothing) {
   EXPECT_EQ(refusal(sim, command({"lift", "lift"}, {0.1, 0.2})), "'lift' is named twice");
   EXPECT_EQ(refusal(sim, command({}, {})), "no joint names");
   EXPECT_EQ(refusal(sim, command({"lift"}, {0.1}), 1), "no robot 1");
-  EXPECT_FALSE(sim.command_joints(-1, command({"lift"}, {0.1})));  // without a reason asked for
+  EXPECT_FALSE(sim.command_joints(RobotIndex(), command({"lift"}, {0.1})));  // without a reason asked for
   // one bad name spoils the whole command: nothing of it is applied
   EXPECT_NE(refusal(sim, command({"lift", "wheel"}, {0.1, 0}, {0, 1})), "");
   EXPECT_EQ(sim.discard_commands(), 0u);
@@ -85,7 +85,7 @@ TEST(JointCommand, PrismaticJointReachesItsPositionAndTfIsATranslationAlongItsAx
     }
   });
   sim.step();
-  ASSERT_TRUE(sim.command_joints(0, command({"lift", "spin"}, {0.15, 0}, {0, 1.0})));
+  ASSERT_TRUE(sim.command_joints(RobotIndex(0), command({"lift", "spin"}, {0.15, 0}, {0, 1.0})));
   // nothing moves before the next step boundary
   EXPECT_EQ(sim.state().robots[0].joint_target[0], 0.0);
   // kp = 8/s and 0.5 m/s at most: well settled after 3 s
@@ -121,11 +121,11 @@ TEST(JointCommand, PrismaticJointReachesItsPositionAndTfIsATranslationAlongItsAx
 
 TEST(JointCommand, PositionTargetsAreClampedToTheJointLimits) {
   Simulation sim(slider_world());
-  ASSERT_TRUE(sim.command_joints(0, command({"lift"}, {5.0})));
+  ASSERT_TRUE(sim.command_joints(RobotIndex(0), command({"lift"}, {5.0})));
   sim.step_until(SimTime::from_seconds(2.0));
   EXPECT_EQ(sim.state().robots[0].joint_target[0], 0.2);
   EXPECT_NEAR(sim.state().robots[0].q[0], 0.2, 2e-3);
-  ASSERT_TRUE(sim.command_joints(0, command({"lift"}, {-5.0})));
+  ASSERT_TRUE(sim.command_joints(RobotIndex(0), command({"lift"}, {-5.0})));
   sim.step();
   EXPECT_EQ(sim.state().robots[0].joint_target[0], -0.1);
 }
@@ -151,7 +151,7 @@ TEST(RobotDescription, LatchedOnceForRobotsThatHaveOne) {
   const Topic& topic = sim.bus().topic(id);
   EXPECT_EQ(topic.type, "std_msgs/String");
   EXPECT_TRUE(topic.latched);
-  EXPECT_EQ(topic.robot, 0);
+  EXPECT_EQ(topic.robot, RobotIndex(0));
   sim.step_until(SimTime::from_seconds(0.5));
   EXPECT_EQ(sim.bus().count(id), 1u);
   // a subscriber that comes late still gets it

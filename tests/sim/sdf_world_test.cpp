@@ -112,7 +112,7 @@ void drive(Simulation& sim, double v, double seconds) {
   t.linear = Vec3(v, 0, 0);
   const SimTime end = sim.time() + SimTime::from_seconds(seconds);
   while (sim.time() < end) {
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     sim.step();
   }
 }
@@ -151,7 +151,7 @@ TEST(SdfWorld, TheRobotsLidarReadsTheMeshRampAtTheRangeItsGeometrySays) {
   ASSERT_EQ(scan.ranges.size(), 360u);
   const SensorSpec& lidar = *sim.world().robots[0].spec.find_sensor("lidar");
   EXPECT_EQ(lidar.lidar.noise.stddev, 0.0);
-  const Pose3 X_WS = sensor_pose_in_world(sim.world(), sim.state(), 0, lidar);
+  const Pose3 X_WS = sensor_pose_in_world(sim.world(), sim.state(), RobotIndex(0), lidar);
   ASSERT_LT(X_WS.p.z(), kRampHeight) << "the lidar must be below the ramp's top to see its slope";
   const double x_hit = kRampStart + X_WS.p.z() / kSlope;
   int checked = 0;
@@ -195,7 +195,7 @@ TEST(SdfWorld, SkidSteerDrivesUpTheMeshRamp) {
   t.linear = Vec3(0.3, 0, 0);
   const SimTime end = sim.time() + SimTime::from_seconds(20);
   while (sim.time() < end && sim.state().robots[0].base.X_WB.p.x() < kRampStart + 1.2) {
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     sim.step();
   }
   const Pose3 X = sim.state().robots[0].base.X_WB;

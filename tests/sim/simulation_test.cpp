@@ -35,7 +35,7 @@ void drive(Simulation& sim, double v, double w, double seconds) {
     msg::Twist t;
     t.linear.x() = v;
     t.angular.z() = w;
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     sim.step_until(std::min(end, sim.time() + SimTime::from_ms(100)));
   }
 }
@@ -195,11 +195,11 @@ TEST(Simulation, NonFiniteCommandsAreRejected) {
   Simulation sim = make_sim(room_spec());
   msg::Twist t;
   t.linear.x() = std::nan("");
-  EXPECT_FALSE(sim.command_velocity(0, t));
-  EXPECT_FALSE(sim.command_head(0, {0, 0, INFINITY, 0}));
-  EXPECT_FALSE(sim.command_head(0, {0, 0}));  // wrong count
-  EXPECT_FALSE(sim.command_velocity(3, msg::Twist{}));
-  EXPECT_TRUE(sim.command_head(0, {0.1, 0, 1.5, -1.2}));
+  EXPECT_FALSE(sim.command_velocity(RobotIndex(0), t));
+  EXPECT_FALSE(sim.command_head(RobotIndex(0), {0, 0, INFINITY, 0}));
+  EXPECT_FALSE(sim.command_head(RobotIndex(0), {0, 0}));  // wrong count
+  EXPECT_FALSE(sim.command_velocity(RobotIndex(3), msg::Twist{}));
+  EXPECT_TRUE(sim.command_head(RobotIndex(0), {0.1, 0, 1.5, -1.2}));
 }
 
 TEST(Simulation, CommandTimeoutStopsTheRobot) {
@@ -237,8 +237,8 @@ TEST(Simulation, DiscardedCommandsAreNeverApplied) {
   Simulation sim = make_sim(room_spec());
   msg::Twist t;
   t.linear.x() = 0.5;
-  ASSERT_TRUE(sim.command_velocity(0, t));
-  ASSERT_TRUE(sim.command_head(0, {0.4, 0, 1.5, -1.2}));
+  ASSERT_TRUE(sim.command_velocity(RobotIndex(0), t));
+  ASSERT_TRUE(sim.command_head(RobotIndex(0), {0.4, 0, 1.5, -1.2}));
   EXPECT_EQ(sim.discard_commands(), 2u);
   EXPECT_EQ(sim.discard_commands(), 0u);
   sim.step_until(SimTime::from_seconds(0.5));
@@ -257,7 +257,7 @@ TEST(Simulation, ASynchronousRunWaitsForTheControllersCommand) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     msg::Twist t;
     t.linear.x() = 0.2;
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
   });
   EXPECT_TRUE(sim.wait_for_velocity_commands(before + 1, std::chrono::seconds(10)));
   controller.join();
@@ -265,7 +265,7 @@ TEST(Simulation, ASynchronousRunWaitsForTheControllersCommand) {
   // a refused command (NaN) is not an answer
   msg::Twist bad;
   bad.angular.z() = std::nan("");
-  EXPECT_FALSE(sim.command_velocity(0, bad));
+  EXPECT_FALSE(sim.command_velocity(RobotIndex(0), bad));
   EXPECT_EQ(sim.velocity_commands(), before + 1);
 }
 
@@ -304,8 +304,8 @@ std::pair<std::uint64_t, std::uint64_t> fingerprint(double seconds) {
     msg::Twist t;
     t.linear.x() = 0.5;
     t.angular.z() = k % 40 < 20 ? 0.6 : -0.6;
-    sim.command_velocity(0, t);
-    if (k % 50 == 0) sim.command_head(0, {0.3 * std::sin(k), 0.2, 1.4, -1.0});
+    sim.command_velocity(RobotIndex(0), t);
+    if (k % 50 == 0) sim.command_head(RobotIndex(0), {0.3 * std::sin(k), 0.2, 1.4, -1.0});
     sim.step_until(SimTime::from_ms(100 * (k + 1)));
   }
   return {state_hash(sim.state()), all};

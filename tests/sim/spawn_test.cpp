@@ -38,7 +38,7 @@ const Topic* find_topic(const Bus& bus, const std::string& name) {
 }
 
 /// Holds cmd_vel (v, 0) on `robot` for `seconds`, re-sent every 0.1 s.
-void drive(Simulation& sim, int robot, double v, double seconds) {
+void drive(Simulation& sim, RobotIndex robot, double v, double seconds) {
   const SimTime end = sim.time() + SimTime::from_seconds(seconds);
   while (sim.time() < end) {
     msg::Twist t;
@@ -58,8 +58,8 @@ TEST(Spawn, ASpawnedRobotHasItsTopicsUnderItsNamespaceAndDrives) {
   const SimTime spawned_at = sim.time();
   const std::uint64_t version = sim.bus().layout_version();
 
-  const int p3at = sim.add_robot(spawned_robot("p3at", 3, 3));
-  EXPECT_EQ(p3at, 1);
+  const RobotIndex p3at = sim.add_robot(spawned_robot("p3at", 3, 3));
+  EXPECT_EQ(p3at, RobotIndex(1));
   EXPECT_EQ(sim.world().robots.size(), 2u);
   EXPECT_EQ(sim.state().robots.size(), 2u);
   EXPECT_EQ(layout_calls, 1);
@@ -68,10 +68,10 @@ TEST(Spawn, ASpawnedRobotHasItsTopicsUnderItsNamespaceAndDrives) {
   ASSERT_NE(find_topic(sim.bus(), "/scan"), nullptr);
   const Topic* scan = find_topic(sim.bus(), "/p3at/scan");
   ASSERT_NE(scan, nullptr);
-  EXPECT_EQ(scan->robot, 1);
-  EXPECT_EQ(sim.topic_name(1, "cmd_vel"), "/p3at/cmd_vel");
-  EXPECT_EQ(sim.frame_name(1, "base_link"), "p3at/base_link");
-  EXPECT_EQ(sim.topic_name(0, "cmd_vel"), "/cmd_vel");
+  EXPECT_EQ(scan->robot, RobotIndex(1));
+  EXPECT_EQ(sim.topic_name(RobotIndex(1), "cmd_vel"), "/p3at/cmd_vel");
+  EXPECT_EQ(sim.frame_name(RobotIndex(1), "base_link"), "p3at/base_link");
+  EXPECT_EQ(sim.topic_name(RobotIndex(0), "cmd_vel"), "/cmd_vel");
 
   // its laser is due at once (sampled after the next step, 5 ms on), then on the 0.1 s grid
   // from the spawn: 1.005, 1.1, ..., 2.0 s is 11 scans
@@ -98,10 +98,10 @@ TEST(Spawn, ASpawnedRobotHasItsTopicsUnderItsNamespaceAndDrives) {
 TEST(Spawn, DeletingARobotRetiresItsTopicsAndFrames) {
   Simulation sim = make_sim();
   sim.step_until(SimTime::from_seconds(0.5));
-  const int a = sim.add_robot(spawned_robot("a", 3, 3));
-  const int b = sim.add_robot(spawned_robot("b", -3, -3));
-  ASSERT_EQ(a, 1);
-  ASSERT_EQ(b, 2);
+  const RobotIndex a = sim.add_robot(spawned_robot("a", 3, 3));
+  const RobotIndex b = sim.add_robot(spawned_robot("b", -3, -3));
+  ASSERT_EQ(a, RobotIndex(1));
+  ASSERT_EQ(b, RobotIndex(2));
   sim.step_until(SimTime::from_seconds(1.0));
   std::map<std::string, int> counts;
   std::set<std::string> tf_frames;
@@ -116,7 +116,7 @@ TEST(Spawn, DeletingARobotRetiresItsTopicsAndFrames) {
   EXPECT_EQ(sim.world().robots[1].name, "b");
   EXPECT_TRUE(find_topic(sim.bus(), "/a/scan")->retired);
   EXPECT_FALSE(find_topic(sim.bus(), "/b/scan")->retired);
-  EXPECT_EQ(find_topic(sim.bus(), "/b/scan")->robot, 1);  // b moved down one index
+  EXPECT_EQ(find_topic(sim.bus(), "/b/scan")->robot, RobotIndex(1));  // b moved down one index
   sim.step_until(SimTime::from_seconds(2.0));
   EXPECT_EQ(counts["/a/scan"], 0);
   EXPECT_EQ(counts["/b/scan"], 10);
@@ -124,11 +124,11 @@ TEST(Spawn, DeletingARobotRetiresItsTopicsAndFrames) {
   EXPECT_EQ(tf_frames.count("b/base_link"), 1u);
   // b still drives, by its new index
   const double x = sim.state().robots[1].base.X_WB.p.x();
-  drive(sim, 1, 0.3, 2.0);
+  drive(sim, RobotIndex(1), 0.3, 2.0);
   EXPECT_GT(sim.state().robots[1].base.X_WB.p.x() - x, 0.4);
   // a scenario robot cannot be removed; a name comes back after its robot went
-  EXPECT_DEATH_IF_SUPPORTED(sim.remove_robot(0), "spawned robot");
-  EXPECT_EQ(sim.add_robot(spawned_robot("a", 3, 3)), 2);
+  EXPECT_DEATH_IF_SUPPORTED(sim.remove_robot(RobotIndex(0)), "spawned robot");
+  EXPECT_EQ(sim.add_robot(spawned_robot("a", 3, 3)), RobotIndex(2));
   EXPECT_FALSE(find_topic(sim.bus(), "/a/scan")->retired);
 }
 
@@ -159,7 +159,7 @@ std::uint64_t spawning_run(int threads) {
   set_worker_threads(threads);
   Simulation sim = make_sim();
   sim.step_until(SimTime::from_seconds(0.5));
-  const int r = sim.add_robot(spawned_robot("p3at", 2, -2));
+  const RobotIndex r = sim.add_robot(spawned_robot("p3at", 2, -2));
   drive(sim, r, 0.4, 1.0);
   DynamicObject box;
   box.name = "box";
@@ -207,7 +207,7 @@ TEST(Spawn, RestoringTheStartRemovesWhatWasSpawned) {
 
 TEST(BusLayout, RetiredTopicsDropTheirLatchedMessageAndComeBackWhenAdvertisedAgain) {
   Bus bus;
-  const TopicId t = bus.advertise("/a/robot_description", "std_msgs/String", 0, true, 1);
+  const TopicId t = bus.advertise("/a/robot_description", "std_msgs/String", 0, true, RobotIndex(1));
   msg::String s;
   s.data = "<robot/>";
   bus.publish(t, s);
@@ -217,9 +217,9 @@ TEST(BusLayout, RetiredTopicsDropTheirLatchedMessageAndComeBackWhenAdvertisedAga
   const SubscriptionId sub = bus.subscribe("/a/robot_description", [&](const Topic&, const msg::Message&) { ++late; });
   EXPECT_EQ(late, 0);  // nothing latched any more
   bus.unsubscribe(sub);
-  EXPECT_EQ(bus.advertise("/a/robot_description", "std_msgs/String", 0, true, 2), t);
+  EXPECT_EQ(bus.advertise("/a/robot_description", "std_msgs/String", 0, true, RobotIndex(2)), t);
   EXPECT_FALSE(bus.topic(t).retired);
-  EXPECT_EQ(bus.topic(t).robot, 2);
+  EXPECT_EQ(bus.topic(t).robot, RobotIndex(2));
   std::vector<int> calls;
   const SubscriptionId w1 = bus.watch_layout([&] { calls.push_back(1); });
   bus.watch_layout([&] { calls.push_back(2); });

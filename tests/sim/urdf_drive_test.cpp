@@ -59,7 +59,7 @@ void drive(Simulation& sim, double v, double w, double seconds) {
   t.angular = Vec3(0, 0, w);
   const SimTime end = sim.time() + SimTime::from_seconds(seconds);
   while (sim.time() < end) {
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     sim.step();
   }
 }
@@ -100,7 +100,7 @@ TEST(UrdfDrive, BurgerTurnsAtTheCommandedRate) {
   msg::Twist t;
   t.angular = Vec3(0, 0, 1.0);
   while (sim.time() < end) {
-    sim.command_velocity(0, t);
+    sim.command_velocity(RobotIndex(0), t);
     sim.step();
     const double yaw = sim.state().robots[0].base.X_WB.yaw();
     turned += std::remainder(yaw - last, 2 * M_PI);

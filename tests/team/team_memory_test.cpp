@@ -37,7 +37,7 @@ TEST(TeamMemory, ACopyThroughTheFieldListIsTheOriginal) {
   TeamMemory a;
   a.members.resize(2);
   TeamMember& m = a.members[1];
-  m.pending.push_back({2, Vec3(1, 2, 0.3), std::nullopt});
+  m.pending.push_back({VictimIndex(2), Vec3(1, 2, 0.3), std::nullopt});
   m.known = {false, true, false};
   m.found_W = {Vec2(4, 5)};
   m.next_report = SimTime::from_seconds(7);
@@ -58,7 +58,7 @@ TEST(TeamMemory, ACopyThroughTheFieldListIsTheOriginal) {
   ASSERT_EQ(b.members.size(), 2u);
   const TeamMember& c = b.members[1];
   ASSERT_EQ(c.pending.size(), 1u);
-  EXPECT_EQ(c.pending[0].victim, 2);
+  EXPECT_EQ(c.pending[0].victim, VictimIndex(2));
   EXPECT_EQ(c.pending[0].p_W, Vec3(1, 2, 0.3));
   EXPECT_EQ(c.known, m.known);
   EXPECT_EQ(c.found_W, m.found_W);

@@ -78,14 +78,15 @@ std::string stamp_problem(SimTime stamp, SimTime now) {
       stamp.seconds(), (stamp - now).seconds(), now.seconds(), kFutureStampTolerance.seconds());
 }
 
-CommandOutcome CommandGate::velocity_stamped(int robot, const std::string& topic, SimTime stamp, SimTime now, const msg::Twist& twist) {
+CommandOutcome CommandGate::velocity_stamped(RobotIndex robot, const std::string& topic, SimTime stamp, SimTime now,
+                                             const msg::Twist& twist) {
   if (const std::string problem = stamp_problem(stamp, now); !problem.empty()) return reject(topic, "stamp", problem);
   return velocity(robot, topic, twist);
 }
 
-CommandOutcome CommandGate::velocity(int robot, const std::string& topic, const msg::Twist& t) {
+CommandOutcome CommandGate::velocity(RobotIndex robot, const std::string& topic, const msg::Twist& t) {
   if (const std::string problem = twist_problem(t); !problem.empty()) return reject(topic, "finite", problem);
-  const DriveSpec& d = host_.world().robots.at(static_cast<std::size_t>(robot)).spec.drive;
+  const DriveSpec& d = host_.world().robots.at(robot.slot()).spec.drive;
   if (std::abs(t.linear.x()) > d.max_linear) {
     warn(topic + "#linear", fmt::format("{} linear.x = {:g} m/s is beyond the robot's max_linear: clamped to {:g} m/s", topic, t.linear.x(),
                                         std::copysign(d.max_linear, t.linear.x())));
@@ -99,8 +100,8 @@ CommandOutcome CommandGate::velocity(int robot, const std::string& topic, const 
   return CommandOutcome::ok();
 }
 
-CommandOutcome CommandGate::head(int robot, const std::string& topic, const std::vector<double>& positions) {
-  const RobotSpec& spec = host_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+CommandOutcome CommandGate::head(RobotIndex robot, const std::string& topic, const std::vector<double>& positions) {
+  const RobotSpec& spec = host_.world().robots.at(robot.slot()).spec;
   if (const std::string problem = head_problem(spec, positions); !problem.empty()) {
     return reject(topic, positions.size() != spec.head_joints.size() ? "size" : "finite", problem);
   }
@@ -122,8 +123,8 @@ CommandOutcome CommandGate::head(int robot, const std::string& topic, const std:
   return CommandOutcome::ok();
 }
 
-CommandOutcome CommandGate::flippers(int robot, const std::string& topic, const std::vector<double>& positions) {
-  const RobotSpec& spec = host_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+CommandOutcome CommandGate::flippers(RobotIndex robot, const std::string& topic, const std::vector<double>& positions) {
+  const RobotSpec& spec = host_.world().robots.at(robot.slot()).spec;
   if (positions.size() != spec.flipper_joints.size()) {
     return reject(topic, "size",
                   fmt::format("{} positions, expected {} (rad, in the order {})", positions.size(), spec.flipper_joints.size(),
@@ -141,10 +142,10 @@ CommandOutcome CommandGate::input(std::size_t index, const std::string& topic, c
   return CommandOutcome::ok();
 }
 
-CommandOutcome CommandGate::joints(int robot, const std::string& topic, const msg::JointState& command) {
+CommandOutcome CommandGate::joints(RobotIndex robot, const std::string& topic, const msg::JointState& command) {
   if (const CommandOutcome r = host_.command_joints(robot, command); !r) return reject(topic, "joints", r.reason);
   // accepted: say which position targets were clamped to their joint's limits
-  const RobotSpec& spec = host_.world().robots.at(static_cast<std::size_t>(robot)).spec;
+  const RobotSpec& spec = host_.world().robots.at(robot.slot()).spec;
   for (std::size_t i = 0; i < command.name.size() && i < command.position.size(); ++i) {
     const int j = spec.joint_index(command.name[i]);
     if (j < 0) continue;

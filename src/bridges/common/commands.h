@@ -46,23 +46,23 @@ class CommandGate {
   /// cmd_vel (m/s, rad/s in the robot's base frame) for `robot`, received on `topic`. Refused
   /// when a component is not finite; speeds beyond the drive's max_linear / max_angular are
   /// accepted and clamped by the drive, with a warning.
-  CommandOutcome velocity(int robot, const std::string& topic, const msg::Twist& twist);
+  CommandOutcome velocity(RobotIndex robot, const std::string& topic, const msg::Twist& twist);
   /// A stamped cmd_vel (TwistStamped) at the transport's latest sim time `now`: refused when its
   /// stamp is ahead of `now` (stamp_problem), else as velocity().
-  CommandOutcome velocity_stamped(int robot, const std::string& topic, SimTime stamp, SimTime now, const msg::Twist& twist);
+  CommandOutcome velocity_stamped(RobotIndex robot, const std::string& topic, SimTime stamp, SimTime now, const msg::Twist& twist);
   /// Head joint targets (rad), one per RobotSpec::head_joints entry, in that order. Refused for
   /// a wrong count or a non-finite value; targets beyond a joint's limits are clamped by the
   /// head controller, with a warning.
-  CommandOutcome head(int robot, const std::string& topic, const std::vector<double>& positions);
+  CommandOutcome head(RobotIndex robot, const std::string& topic, const std::vector<double>& positions);
   /// Targets for commandable joints by name (sensor_msgs/JointState on joint_command). Refused
   /// when the host says so (an unknown or uncommandable joint, a missing or non-finite value,
   /// arrays of the wrong length); position targets beyond a joint's limits are clamped, with a
   /// warning.
-  CommandOutcome joints(int robot, const std::string& topic, const msg::JointState& command);
+  CommandOutcome joints(RobotIndex robot, const std::string& topic, const msg::JointState& command);
   /// Flipper targets (rad), one per RobotSpec::flipper_joints entry, in that order
   /// (std_msgs/Float64MultiArray on flippers/command): a joint command for those joints, so
   /// refused for a wrong count or a non-finite value and clamped to the limits with a warning.
-  CommandOutcome flippers(int robot, const std::string& topic, const std::vector<double>& positions);
+  CommandOutcome flippers(RobotIndex robot, const std::string& topic, const std::vector<double>& positions);
   /// A message for the host's inputs()[index] (a mission's report, datagram or relay drop),
   /// received on `topic`; the host checks its content when it hands it over.
   CommandOutcome input(std::size_t index, const std::string& topic, const msg::Message& message);

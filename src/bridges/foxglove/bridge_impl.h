@@ -84,7 +84,7 @@ struct CommandTarget {
   /// cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
   enum class Kind { twist, head, joints, flippers, host };
   Kind kind = Kind::twist;
-  int robot = 0;                            ///< -1: none (no target, a host input of no robot, or the robot was deleted)
+  RobotIndex robot{0};                      ///< invalid: none (no target, a host input of no robot, or the robot was deleted)
   std::size_t host_input = 0;               ///< Kind::host: the index in BridgeHost::inputs()
   const msg::TypeSupport* type = nullptr;   ///< Kind::host: the input's message type
   ClientChannel channel;
@@ -181,7 +181,7 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   void reply(ClientId client, StatusLevel level, const std::string& message);
   void reject(ClientId client, const std::string& message);
   /// The topics robot `robot` takes (commands and its host inputs), with their types, for status errors.
-  std::string accepted_topics(std::size_t robot) const;
+  std::string accepted_topics(RobotIndex robot) const;
   /// Every topic a client may publish on, with its type.
   std::string accepted_topics() const;
   // I/O thread: service calls (service_calls.cpp)
@@ -228,10 +228,10 @@ class FoxgloveBridge final : public Bridge, private ServerHandler {
   std::map<ClientId, ClientState> clients_;
 
   // per robot now (rebuilt when the layout changes), under mutex_
-  std::vector<std::string> twist_topics_, head_topics_, joint_topics_, flipper_topics_;
-  std::vector<std::size_t> flipper_sizes_;
-  std::vector<std::size_t> head_sizes_;
-  std::vector<bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
+  IndexedVector<RobotTag, std::string> twist_topics_, head_topics_, joint_topics_, flipper_topics_;
+  IndexedVector<RobotTag, std::size_t> flipper_sizes_;
+  IndexedVector<RobotTag, std::size_t> head_sizes_;
+  IndexedVector<RobotTag, bool> joints_commandable_;  ///< per robot: has joints that joint_command may drive
   std::vector<HostInput> host_inputs_;    ///< what the host takes beyond commands (a mission's reports, datagrams, maps)
   std::atomic<std::uint64_t> received_{0}, rejected_{0};
   std::unique_ptr<CommandGate> gate_;  ///< checks client commands, hands them to the host, warns (as ROS 1 and 2 do)

@@ -32,13 +32,13 @@ std::pair<std::string, std::string> schema_names(const CommandTarget& target) {
 
 }  // namespace
 
-std::string FoxgloveBridge::accepted_topics(std::size_t robot) const {
+std::string FoxgloveBridge::accepted_topics(RobotIndex robot) const {
   std::string t = twist_topics_[robot] + " (geometry_msgs/msg/Twist)";
   if (head_sizes_[robot] > 0) t += ", " + head_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
   if (joints_commandable_[robot]) t += ", " + joint_topics_[robot] + " (sensor_msgs/msg/JointState)";
   if (flipper_sizes_[robot] > 0) t += ", " + flipper_topics_[robot] + " (std_msgs/msg/Float64MultiArray)";
   for (const HostInput& in : host_inputs_) {
-    if (in.robot != static_cast<int>(robot)) continue;
+    if (in.robot != robot) continue;
     const msg::TypeSupport* type = msg::find_type(in.type);
     t += ", " + in.topic + " (" + (type ? type->ros2_name : in.type) + ")";
   }
@@ -47,10 +47,10 @@ std::string FoxgloveBridge::accepted_topics(std::size_t robot) const {
 
 std::string FoxgloveBridge::accepted_topics() const {
   std::string all;
-  for (std::size_t r = 0; r < twist_topics_.size(); ++r) all += (all.empty() ? "" : ", ") + accepted_topics(r);
+  for (RobotIndex r : twist_topics_.indices()) all += (all.empty() ? "" : ", ") + accepted_topics(r);
   for (const HostInput& in : host_inputs_) {
     const msg::TypeSupport* type = msg::find_type(in.type);
-    if (in.robot < 0) all += ", " + in.topic + " (" + (type ? type->ros2_name : in.type) + ")";
+    if (!in.robot.valid()) all += ", " + in.topic + " (" + (type ? type->ros2_name : in.type) + ")";
   }
   return all;
 }
@@ -212,14 +212,15 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
         continue;
       }
       // a robot whose moving joints are all driven otherwise (wheels, head) or not at all
-      if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[static_cast<std::size_t>(target.robot)]) {
-        const auto robot = static_cast<std::size_t>(target.robot);
+      if (target.kind == CommandTarget::Kind::joints && !joints_commandable_[target.robot]) {
+        const RobotIndex robot = target.robot;
         // the world may be a step ahead of the command topics (a robot deleted, the layout
         // watchers not called yet)
         const World& world = host_->world();
-        errors.push_back(where + "robot '" + (robot < world.robots.size() ? world.robots[robot].name : ch.topic) +
+        errors.push_back(where + "robot '" + (world.has_robot(robot) ? world.robot(robot).name : ch.topic) +
                          "' has no joints that joint_command can drive (drive wheels take cmd_vel, head joints head/command; fixed, "
-                         "passive and mimic joints take nothing); it takes " + accepted_topics(robot));
+                         "passive and mimic joints take nothing); it takes " +
+                         accepted_topics(robot));
         continue;
       }
       const auto [ros2, ros1] = schema_names(target);
@@ -234,7 +235,7 @@ void FoxgloveBridge::client_advertise(ClientId client, const ClientAdvertise& a)
 }
 
 bool FoxgloveBridge::robot_command(const std::string& topic, CommandTarget& target) const {
-  for (std::size_t r = 0; r < twist_topics_.size(); ++r) {
+  for (RobotIndex r : twist_topics_.indices()) {
     const bool twist = topic == twist_topics_[r];
     const bool head = topic == head_topics_[r] && head_sizes_[r] > 0;
     const bool joints = topic == joint_topics_[r];
@@ -244,7 +245,7 @@ bool FoxgloveBridge::robot_command(const std::string& topic, CommandTarget& targ
                   : head     ? CommandTarget::Kind::head
                   : flippers ? CommandTarget::Kind::flippers
                              : CommandTarget::Kind::joints;
-    target.robot = static_cast<int>(r);
+    target.robot = r;
     return true;
   }
   return false;
@@ -286,7 +287,7 @@ void FoxgloveBridge::on_binary(ClientId client, std::span<const std::uint8_t> by
     if (cit == clients_.end()) return;
     const auto it = cit->second.publishers.find(m.channel);
     if (it != cit->second.publishers.end()) target = it->second;
-    if (target && target->kind != CommandTarget::Kind::host && target->robot < 0) {
+    if (target && target->kind != CommandTarget::Kind::host && !target->robot.valid()) {
       gone = target->channel.topic + ": rescuesim does not take this topic now (its robot was deleted); it takes " + accepted_topics();
     }
   }

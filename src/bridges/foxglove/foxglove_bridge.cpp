@@ -50,12 +50,12 @@ void FoxgloveBridge::start(BridgeHost& host) {
   if (!options_.scene_topic.empty() && bus.find(options_.scene_topic) == kNoTopic) {
     SceneFrames frames;
     if (!host.frames().publish_map_to_odom && !world.robots.empty()) {
-      frames.world_frame = host.frame_name(0, "odom");
+      frames.world_frame = host.frame_name(RobotIndex(0), "odom");
       frames.X_FW = host.frames().tf_from_ground_truth ? Pose3{} : world.robots[0].X_W_start.inverse();
     }
     for (std::size_t r = 0; r < world.robots.size(); ++r) {
       std::vector<std::string> links;
-      for (const LinkSpec& l : world.robots[r].spec.links) links.push_back(host.frame_name(static_cast<int>(r), l.name));
+      for (const LinkSpec& l : world.robots[r].spec.links) links.push_back(host.frame_name(RobotIndex::at(r), l.name));
       frames.link_frames.push_back(std::move(links));
     }
     scene_ = std::make_unique<SceneBuilder>(world, frames);
@@ -256,8 +256,8 @@ void FoxgloveBridge::refresh_commands() {
       if (target.kind == CommandTarget::Kind::host) continue;  // the host's inputs are fixed
       CommandTarget now;
       const bool found = robot_command(target.channel.topic, now) && now.kind == target.kind &&
-                         (now.kind != CommandTarget::Kind::joints || joints_commandable_[static_cast<std::size_t>(now.robot)]);
-      target.robot = found ? now.robot : -1;
+                         (now.kind != CommandTarget::Kind::joints || joints_commandable_[now.robot]);
+      target.robot = found ? now.robot : RobotIndex();
     }
   }
 }
@@ -270,14 +270,14 @@ void FoxgloveBridge::set_command_topics(const World& world) {
   head_sizes_.clear();
   flipper_sizes_.clear();
   joints_commandable_.clear();
-  for (std::size_t r = 0; r < world.robots.size(); ++r) {
-    twist_topics_.push_back(host_->topic_name(static_cast<int>(r), "cmd_vel"));
-    head_topics_.push_back(host_->topic_name(static_cast<int>(r), "head/command"));
-    head_sizes_.push_back(world.robots[r].spec.head_joints.size());
-    joint_topics_.push_back(host_->topic_name(static_cast<int>(r), "joint_command"));
-    flipper_topics_.push_back(host_->topic_name(static_cast<int>(r), "flippers/command"));
-    flipper_sizes_.push_back(world.robots[r].spec.flipper_joints.size());
-    joints_commandable_.push_back(has_commandable_joints(world.robots[r].spec));
+  for (RobotIndex r : world.robot_indices()) {
+    twist_topics_.push_back(host_->topic_name(r, "cmd_vel"));
+    head_topics_.push_back(host_->topic_name(r, "head/command"));
+    head_sizes_.push_back(world.robot(r).spec.head_joints.size());
+    joint_topics_.push_back(host_->topic_name(r, "joint_command"));
+    flipper_topics_.push_back(host_->topic_name(r, "flippers/command"));
+    flipper_sizes_.push_back(world.robot(r).spec.flipper_joints.size());
+    joints_commandable_.push_back(has_commandable_joints(world.robot(r).spec));
   }
 }
 

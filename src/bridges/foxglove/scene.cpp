@@ -120,11 +120,11 @@ std::string inner(const json& array) {
 SceneBuilder::SceneBuilder(const World& world, SceneFrames frames) : frames_(std::move(frames)) {
   // static world geometry, grouped by kind; each victim's body is its own entity
   std::map<std::string, Primitives> groups;
-  std::map<int, Primitives> victims;
+  std::map<VictimIndex, Primitives> victims;
   for (const StaticObject& o : world.statics) {
     const Vec3 rgb = world.materials.at(static_cast<std::size_t>(o.material)).color;
     const Pose3 X_FO = frames_.X_FW * o.X_WO;
-    if (o.victim >= 0) {
+    if (o.victim.valid()) {
       add_shape(victims[o.victim], o.geometry, X_FO, rgb);
     } else {
       add_shape(groups[group_of(o.kind)], o.geometry, X_FO, rgb);
@@ -133,7 +133,7 @@ SceneBuilder::SceneBuilder(const World& world, SceneFrames frames) : frames_(std
   json all = json::array();
   for (auto& [name, p] : groups) all.push_back(entity(name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", name}}));
   for (auto& [v, p] : victims) {
-    const Victim& victim = world.victims.at(static_cast<std::size_t>(v));
+    const Victim& victim = world.victim(v);
     all.push_back(
         entity("victim/" + victim.name, frames_.world_frame, SimTime{}, false, std::move(p), {{"kind", "victim"}, {"name", victim.name}}));
   }

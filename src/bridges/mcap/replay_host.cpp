@@ -6,27 +6,27 @@ ReplayHost::ReplayHost(const World& world, std::uint64_t seed) : world_(world), 
 
 // names as a simulation of this world with automatic namespacing gives them (prefixed only
 // when there are two robots or more), so bridges take in and send the recorded names
-std::string ReplayHost::topic_name(int robot, const std::string& relative) const {
+std::string ReplayHost::topic_name(RobotIndex robot, const std::string& relative) const {
   if (!relative.empty() && relative[0] == '/') return relative;
-  return world_.robots.size() > 1 ? "/" + world_.robots[static_cast<std::size_t>(robot)].name + "/" + relative : "/" + relative;
+  return world_.robots.size() > 1 ? "/" + world_.robot(robot).name + "/" + relative : "/" + relative;
 }
 
-std::string ReplayHost::frame_name(int robot, const std::string& frame) const {
+std::string ReplayHost::frame_name(RobotIndex robot, const std::string& frame) const {
   if (frame == "map" || frame.empty()) return frame;
-  return world_.robots.size() > 1 ? world_.robots[static_cast<std::size_t>(robot)].name + "/" + frame : frame;
+  return world_.robots.size() > 1 ? world_.robot(robot).name + "/" + frame : frame;
 }
 
-CommandOutcome ReplayHost::command_velocity(int, const msg::Twist&) {
+CommandOutcome ReplayHost::command_velocity(RobotIndex, const msg::Twist&) {
   ++discarded_;
   return CommandOutcome::ok();
 }
 
-CommandOutcome ReplayHost::command_head(int, const std::vector<double>&) {
+CommandOutcome ReplayHost::command_head(RobotIndex, const std::vector<double>&) {
   ++discarded_;
   return CommandOutcome::ok();
 }
 
-CommandOutcome ReplayHost::command_joints(int, const msg::JointState&) {
+CommandOutcome ReplayHost::command_joints(RobotIndex, const msg::JointState&) {
   ++discarded_;
   return CommandOutcome::ok();
 }

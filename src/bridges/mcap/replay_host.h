@@ -27,12 +27,12 @@ class ReplayHost final : public BridgeHost {
   SimTime time() const override { return state_.time; }
   std::uint64_t seed() const override { return seed_; }
   HostFrames frames() const override { return {}; }
-  std::string topic_name(int robot, const std::string& relative) const override;
-  std::string frame_name(int robot, const std::string& frame) const override;
+  std::string topic_name(RobotIndex robot, const std::string& relative) const override;
+  std::string frame_name(RobotIndex robot, const std::string& frame) const override;
   /// Counted and discarded (accepted: a replay has nothing to apply them to, and says so once).
-  CommandOutcome command_velocity(int robot, const msg::Twist& twist) override;
-  CommandOutcome command_head(int robot, const std::vector<double>& positions) override;
-  CommandOutcome command_joints(int robot, const msg::JointState& command) override;
+  CommandOutcome command_velocity(RobotIndex robot, const msg::Twist& twist) override;
+  CommandOutcome command_head(RobotIndex robot, const std::vector<double>& positions) override;
+  CommandOutcome command_joints(RobotIndex robot, const msg::JointState& command) override;
 
  private:
   const World& world_;

@@ -106,7 +106,7 @@ class Ros1Bridge final : public Bridge {
     /// cmd_vel, head/command, joint_command, flippers/command, BridgeHost::inputs()
     enum class Kind { velocity, head, joints, flippers, host };
     std::string topic;
-    int robot = 0;                            ///< index into world().robots; the layout watcher keeps it current
+    RobotIndex robot{0};  ///< index into world().robots; the layout watcher keeps it current
     Kind kind = Kind::velocity;
     const msg::TypeSupport* type = nullptr;
     ros::Subscriber sub;                      ///< like every field, under inputs_mutex_ after start
@@ -126,7 +126,7 @@ class Ros1Bridge final : public Bridge {
   /// The Output of a Bus topic, not yet advertised to ROS (warns when it has no serialiser).
   static Output make_output(const Topic& t);
   /// Appends world.robots[robot]'s command inputs to inputs_ (not yet subscribed); inputs_mutex_ held or no other thread yet.
-  void add_robot_inputs(const World& world, int robot);
+  void add_robot_inputs(const World& world, RobotIndex robot);
   void advertise(Output& o);
   void advertise_all();
   void set_parameters();
@@ -234,10 +234,10 @@ void Ros1Bridge::start(BridgeHost& host) {
     // every Bus topic goes out under its own name and type
     for (const Topic& t : host.bus().topics()) outputs_.push_back(make_output(t));
     // commands: each robot's cmd_vel and head/command, and joint_command when it has joints to command
-    for (int r = 0; r < static_cast<int>(host.world().robots.size()); ++r) {
+    for (RobotIndex r : host.world().robot_indices()) {
       add_robot_inputs(host.world(), r);
       // (robots spawned before the bridge started: their description parameter as the watcher keeps it)
-      const RobotInstance& robot = host.world().robots[static_cast<std::size_t>(r)];
+      const RobotInstance& robot = host.world().robot(r);
       if (robot.spawned && !robot.spec.description.empty()) {
         spawned_params_[robot.name] = {host.topic_name(r, "robot_description"), robot.spec.description};
       }
@@ -305,8 +305,8 @@ Ros1Bridge::Output Ros1Bridge::make_output(const Topic& t) {
   return o;
 }
 
-void Ros1Bridge::add_robot_inputs(const World& world, int r) {
-  const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+void Ros1Bridge::add_robot_inputs(const World& world, RobotIndex r) {
+  const RobotInstance& robot = world.robot(r);
   const BridgeHost& host = *host_;
   const auto add = [&](Input in) {
     in.robot_name = robot.name;
@@ -383,10 +383,10 @@ void Ros1Bridge::follow_layout() {
   // command subscriptions follow the robots by name: the gone lose theirs, those after them
   // move down an index, the new get theirs
   const World& world = host_->world();
-  std::map<std::string, int> index_of;
-  for (int r = 0; r < static_cast<int>(world.robots.size()); ++r) index_of[world.robots[static_cast<std::size_t>(r)].name] = r;
+  std::map<std::string, RobotIndex> index_of;
+  for (RobotIndex r : world.robot_indices()) index_of[world.robot(r).name] = r;
   std::vector<ros::Subscriber> gone;
-  std::vector<int> added;
+  std::vector<RobotIndex> added;
   {
     std::lock_guard lock(inputs_mutex_);
     std::set<std::string> served;
@@ -411,7 +411,7 @@ void Ros1Bridge::follow_layout() {
       if (served.count(name) == 0) added.push_back(r);
     }
     std::sort(added.begin(), added.end());
-    for (const int r : added) add_robot_inputs(world, r);
+    for (const RobotIndex r : added) add_robot_inputs(world, r);
     for (auto it = inputs_.lower_bound(first_new); it != inputs_.end(); ++it) subscribe(it->first, it->second);
   }
   // outside the lock: roscpp waits for a callback of the subscription under way, which may be
@@ -430,8 +430,8 @@ void Ros1Bridge::follow_layout() {
         ++it;
       }
     }
-    for (const int r : added) {
-      const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+    for (const RobotIndex r : added) {
+      const RobotInstance& robot = world.robot(r);
       if (robot.spec.description.empty()) continue;
       set.emplace_back(host_->topic_name(r, "robot_description"), robot.spec.description);
       spawned_params_[robot.name] = set.back();
@@ -484,8 +484,8 @@ void Ros1Bridge::set_parameters() {
   // runs on the spinner thread, as the layout watcher recorded them)
   const BridgeHost& host = *host_;
   const World& world = host.world();
-  for (int r = 0; r < static_cast<int>(world.robots.size()); ++r) {
-    const RobotInstance& robot = world.robots[static_cast<std::size_t>(r)];
+  for (RobotIndex r : world.robot_indices()) {
+    const RobotInstance& robot = world.robot(r);
     if (robot.spawned) continue;
     if (!robot.spec.description.empty()) ros::param::set(host.topic_name(r, "robot_description"), robot.spec.description);
   }
@@ -749,7 +749,7 @@ void Ros1Bridge::on_velocity(std::uint64_t key, const ros::M_string& connection,
   // which of the two types this publisher sends, by its connection header
   const std::string connected_type = header("type");
   std::string topic;
-  int robot = 0;
+  RobotIndex robot{0};
   {
     std::lock_guard lock(inputs_mutex_);
     const auto it = inputs_.find(key);

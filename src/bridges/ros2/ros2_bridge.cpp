@@ -80,7 +80,7 @@ class Ros2Bridge final : public Bridge {
     /// cmd_vel (Twist), cmd_vel (TwistStamped), head/command, joint_command, flippers/command, BridgeHost::inputs()
     enum class Kind { velocity, velocity_stamped, head, joints, flippers, host };
     int reader;
-    int robot;
+    RobotIndex robot;
     Kind kind;
     std::string topic;  ///< ROS name, for warnings
     std::string robot_name;                       ///< whose commands (the host's own inputs: "")
@@ -98,7 +98,7 @@ class Ros2Bridge final : public Bridge {
   /// A writer for Bus topic `t` when ROS 2 knows its type (out_ grows to hold it). Under layout_mutex_.
   void add_writer(const Topic& t);
   /// The command readers of robot `robot` (cmd_vel twice, head, joints, flippers as it has them). Under layout_mutex_.
-  void add_robot_readers(int robot);
+  void add_robot_readers(RobotIndex robot);
   /// Bus::watch_layout: writers for topics new or back, none for retired ones; readers follow the robots.
   void on_layout();
   void send_loop();
@@ -149,7 +149,7 @@ void Ros2Bridge::start(BridgeHost& host) {
   {
     std::lock_guard lock(layout_mutex_);
     for (const Topic& t : host.bus().topics()) add_writer(t);
-    for (std::size_t r = 0; r < host.world().robots.size(); ++r) add_robot_readers(static_cast<int>(r));
+    for (RobotIndex r : host.world().robot_indices()) add_robot_readers(r);
   }
 
   // the host's own inputs (a mission's reports, datagrams, relay drops)
@@ -280,9 +280,9 @@ void Ros2Bridge::add_writer(const Topic& t) {
   node_.writers.push_back(dds_->writer_guid(o.writer));
 }
 
-void Ros2Bridge::add_robot_readers(int robot) {
+void Ros2Bridge::add_robot_readers(RobotIndex robot) {
   const BridgeHost& host = *host_;
-  const RobotInstance& r = host.world().robots[static_cast<std::size_t>(robot)];
+  const RobotInstance& r = host.world().robot(robot);
   const auto add = [&](Input::Kind kind, const std::string& topic, int reader) {
     inputs_.push_back({reader, robot, kind, topic, r.name});
     node_.readers.push_back(dds_->reader_guid(reader));
@@ -336,8 +336,8 @@ void Ros2Bridge::on_layout() {
   }
   // command readers follow their robots by name: gone with them, moved down with them
   const World& world = host_->world();
-  std::map<std::string, int> index;
-  for (std::size_t r = 0; r < world.robots.size(); ++r) index[world.robots[r].name] = static_cast<int>(r);
+  std::map<std::string, RobotIndex> index;
+  for (RobotIndex r : world.robot_indices()) index[world.robot(r).name] = r;
   std::set<std::string> served;
   for (auto it = inputs_.begin(); it != inputs_.end();) {
     if (it->robot_name.empty()) {

@@ -726,7 +726,7 @@ void GlRenderer::render_shadow_map() {
   glDisable(GL_CULL_FACE);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.5f, 2.0f);
-  draw_scene(depth_, depth_model_, (to_clip * to_map).cast<float>(), {-1, true});
+  draw_scene(depth_, depth_model_, (to_clip * to_map).cast<float>(), {RobotIndex(), true});
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   for (const Program* p : color_programs()) {

@@ -126,7 +126,7 @@ void GpuScene::draw(GLuint program, GLint model_location, const DrawFilter& filt
   const Range& statics = filter.casters_only ? statics_casters_ : statics_all_;
   if (statics.count > 0) glDrawElements(GL_TRIANGLES, statics.count, GL_UNSIGNED_INT, nullptr);
   for (const Movable& m : movables_) {
-    if ((filter.casters_only && !m.casts_shadows) || (m.robot >= 0 && m.robot == filter.hide_robot) || m.range.count == 0) continue;
+    if ((filter.casters_only && !m.casts_shadows) || (m.robot.valid() && m.robot == filter.hide_robot) || m.range.count == 0) continue;
     glProgramUniformMatrix4fv(program, model_location, 1, GL_FALSE, m.model.data());
     glDrawElementsBaseVertex(GL_TRIANGLES, m.range.count, GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(m.range.first * sizeof(std::uint32_t)), m.range.base_vertex);

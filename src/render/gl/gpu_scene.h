@@ -15,7 +15,7 @@ namespace rescuesim::gl {
 
 /// Which items a pass draws.
 struct DrawFilter {
-  int hide_robot = -1;         ///< robot whose links are skipped, -1 none
+  RobotIndex hide_robot;       ///< robot whose links are skipped; invalid: none
   bool casters_only = false;   ///< only items that cast shadows
 };
 
@@ -39,7 +39,7 @@ class GpuScene {
   };
   struct Movable {
     Range range;
-    int robot = -1;
+    RobotIndex robot;
     bool casts_shadows = true;
     Eigen::Matrix4f model = Eigen::Matrix4f::Identity();  ///< item → world
     Eigen::AlignedBox3d local_bounds;                      ///< item frame (m)

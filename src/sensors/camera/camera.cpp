@@ -84,11 +84,11 @@ msg::Image make_image(const msg::Header& header, int w, int h, const char* encod
 
 Intrinsics camera_intrinsics(const CameraSpec& c) { return Intrinsics::from_hfov(c.width, c.height, c.hfov); }
 
-CameraView camera_view(const World& world, const State& state, int robot, const SensorSpec& spec) {
-  const int link = world.robots[static_cast<std::size_t>(robot)].spec.link_index(spec.link);
+CameraView camera_view(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec) {
+  const int link = world.robot(robot).spec.link_index(spec.link);
   if (link < 0) throw Error({"", 0, "sensor " + spec.name}, "is mounted on link '" + spec.link + "', which the robot does not have");
   CameraView v;
-  v.X_WC = state.robots[static_cast<std::size_t>(robot)].X_WL[static_cast<std::size_t>(link)] * spec.X_LS;
+  v.X_WC = state.robot(robot).X_WL[static_cast<std::size_t>(link)] * spec.X_LS;
   v.k = camera_intrinsics(spec.camera);
   v.near_clip = spec.camera.near_clip;
   v.far_clip = spec.camera.far_clip;

@@ -15,7 +15,7 @@ namespace rescuesim {
 
 /// Where a robot's camera sensor looks from, for the renderer (the robot is not hidden: a head
 /// camera may see its own chassis, as a real one would).
-CameraView camera_view(const World& world, const State& state, int robot, const SensorSpec& spec);
+CameraView camera_view(const World& world, const State& state, RobotIndex robot, const SensorSpec& spec);
 
 /// The pinhole intrinsics of a camera spec.
 Intrinsics camera_intrinsics(const CameraSpec& c);

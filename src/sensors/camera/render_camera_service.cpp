@@ -117,12 +117,12 @@ RenderCameraService::~RenderCameraService() {
   if (thread_.joinable()) thread_.join();
 }
 
-bool RenderCameraService::detects_victims(int robot) const { return thermal_robot_[static_cast<std::size_t>(robot)]; }
+bool RenderCameraService::detects_victims(RobotIndex robot) const { return thermal_robot_[robot.slot()]; }
 
 void RenderCameraService::sample(const World& world, const State& state, const SensorInstance& sensor, SensorSlot& slot) {
   auto job = std::make_shared<Job>();
   job->sensor = sensor;
-  job->spec = &world.robots[static_cast<std::size_t>(sensor.robot)].spec.sensors[static_cast<std::size_t>(sensor.index)];
+  job->spec = &world.robot(sensor.robot).spec.sensors[static_cast<std::size_t>(sensor.index)];
   job->stamp = state.time;
   const SimTime latency = options_.latency < 0 ? sensor.period : SimTime::from_seconds(options_.latency);
   job->due = state.time + latency;
@@ -167,7 +167,7 @@ void RenderCameraService::deliver(const World& world, State& state, SimTime now,
       publish(topic, std::move(m));
     }
     for (int v : job->victims_seen) {
-      const auto r = static_cast<std::size_t>(job->sensor.robot);
+      const auto r = job->sensor.robot.slot();
       state.victims[static_cast<std::size_t>(v)].saw(r, world.robots.size(), world.robots[r].name, job->stamp);
     }
   }
@@ -175,7 +175,7 @@ void RenderCameraService::deliver(const World& world, State& state, SimTime now,
 
 std::vector<RenderCameraService::LastFrame> RenderCameraService::last_frames() const { return last_; }
 
-const msg::Image* RenderCameraService::last_frame(int robot, const std::string& sensor) const {
+const msg::Image* RenderCameraService::last_frame(RobotIndex robot, const std::string& sensor) const {
   for (const LastFrame& f : last_) {
     if (f.robot == robot && f.sensor == sensor) return &f.image;
   }

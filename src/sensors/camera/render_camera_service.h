@@ -45,20 +45,20 @@ class RenderCameraService : public CameraService {
   void deliver(const World& world, State& state, SimTime now, const std::function<void(TopicId, msg::Message)>& publish) override;
   /// True when this service finds `robot`'s victims in its thermal images (it has an enabled
   /// thermal camera): Session then picks ThermalImageDetector (sensors/victim_detector.h).
-  bool detects_victims(int robot) const;
+  bool detects_victims(RobotIndex robot) const;
 
   /// The GL device in use, e.g. "llvmpipe (…) via EGL surfaceless".
   std::string device() const { return device_; }
   /// The last frame of each camera sensor, by sensor name (for run outputs).
   struct LastFrame {
-    int robot = -1;
+    RobotIndex robot;
     std::string sensor;
     msg::Image image;
   };
   std::vector<LastFrame> last_frames() const;
   /// The last frame of robot `robot`'s camera `sensor`, or nullptr before its first; valid until
   /// the next deliver().
-  const msg::Image* last_frame(int robot, const std::string& sensor) const;
+  const msg::Image* last_frame(RobotIndex robot, const std::string& sensor) const;
 
   struct Job;
   /// The frames sampled and not yet delivered, as what to render (the State each shows, its

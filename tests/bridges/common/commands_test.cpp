@@ -29,7 +29,7 @@ TEST_F(CommandGateTest, AFiniteTwistReachesTheRobotAtTheNextStep) {
   msg::Twist t;
   t.linear.x() = 0.3;
   t.angular.z() = -0.5;
-  EXPECT_TRUE(gate_.velocity(0, "/cmd_vel", t));
+  EXPECT_TRUE(gate_.velocity(RobotIndex(0), "/cmd_vel", t));
   EXPECT_EQ(gate_.received(), 1u);
   EXPECT_EQ(gate_.rejected(), 0u);
   sim_.step();
@@ -41,10 +41,10 @@ TEST_F(CommandGateTest, NonFiniteTwistsAreRefusedWithTheTopicAndTheValue) {
   testing::LogCapture log(100);
   msg::Twist t;
   t.linear.x() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(gate_.velocity(0, "/cmd_vel", t));
+  EXPECT_FALSE(gate_.velocity(RobotIndex(0), "/cmd_vel", t));
   t.linear.x() = 0;
   t.angular.y() = std::numeric_limits<double>::infinity();  // even a component the drive ignores
-  EXPECT_FALSE(gate_.velocity(0, "/cmd_vel", t));
+  EXPECT_FALSE(gate_.velocity(RobotIndex(0), "/cmd_vel", t));
   EXPECT_EQ(gate_.rejected(), 2u);
   EXPECT_EQ(gate_.received(), 0u);
   sim_.step();
@@ -60,7 +60,7 @@ TEST_F(CommandGateTest, SpeedsBeyondTheLimitsAreAcceptedWithAClampWarning) {
   msg::Twist t;
   t.linear.x() = 5.0;
   t.angular.z() = -9.0;
-  EXPECT_TRUE(gate_.velocity(0, "/cmd_vel", t));
+  EXPECT_TRUE(gate_.velocity(RobotIndex(0), "/cmd_vel", t));
   const std::string text = log.text();
   EXPECT_NE(text.find("/cmd_vel linear.x = 5 m/s is beyond the robot's max_linear: clamped to 1 m/s"), std::string::npos) << text;
   EXPECT_NE(text.find("/cmd_vel angular.z = -9 rad/s is beyond the robot's max_angular: clamped to -2 rad/s"), std::string::npos) << text;
@@ -70,11 +70,11 @@ TEST_F(CommandGateTest, HeadCommandsNeedOnePositionPerHeadJoint) {
   testing::LogCapture log(100);
   const std::size_t n = sim_.world().robots[0].spec.head_joints.size();
   ASSERT_EQ(n, 4u);
-  EXPECT_FALSE(gate_.head(0, "/head/command", {0.1}));
+  EXPECT_FALSE(gate_.head(RobotIndex(0), "/head/command", {0.1}));
   EXPECT_NE(log.text().find("rejected a command on /head/command: 1 positions, expected 4 (rad, in the order mast_yaw"), std::string::npos)
       << log.text();
-  EXPECT_FALSE(gate_.head(0, "/head/command", {0.1, NAN, 0, 0}));
-  EXPECT_TRUE(gate_.head(0, "/head/command", {0.1, 0.2, -0.3, 0.4}));
+  EXPECT_FALSE(gate_.head(RobotIndex(0), "/head/command", {0.1, NAN, 0, 0}));
+  EXPECT_TRUE(gate_.head(RobotIndex(0), "/head/command", {0.1, 0.2, -0.3, 0.4}));
   EXPECT_EQ(gate_.rejected(), 2u);
   EXPECT_EQ(gate_.received(), 1u);
   sim_.step();
@@ -83,7 +83,7 @@ TEST_F(CommandGateTest, HeadCommandsNeedOnePositionPerHeadJoint) {
 
 TEST_F(CommandGateTest, HeadTargetsBeyondAJointsLimitsAreClampedWithAWarning) {
   testing::LogCapture log(100);
-  EXPECT_TRUE(gate_.head(0, "/head/command", {0, 0, 0, 9.0}));
+  EXPECT_TRUE(gate_.head(RobotIndex(0), "/head/command", {0, 0, 0, 9.0}));
   EXPECT_NE(log.text().find("/head/command data[3] (head_tilt) = 9 rad (516 deg) is beyond the joint's limits: clamped to"),
             std::string::npos)
       << log.text();
@@ -103,14 +103,14 @@ TEST(CommandGateJoints, RefusalsSayWhichJointAndWhyAndClampsAreReported) {
   msg::JointState wheel;
   wheel.name = {"wheel"};
   wheel.velocity = {1.0};
-  EXPECT_FALSE(gate.joints(0, "/joint_command", wheel));
+  EXPECT_FALSE(gate.joints(RobotIndex(0), "/joint_command", wheel));
   EXPECT_NE(log.text().find("ROS 1: rejected a command on /joint_command: 'wheel' is a drive wheel (use cmd_vel): not commandable"),
             std::string::npos)
       << log.text();
   msg::JointState lift;
   lift.name = {"lift"};
   lift.position = {0.5};
-  EXPECT_TRUE(gate.joints(0, "/joint_command", lift));
+  EXPECT_TRUE(gate.joints(RobotIndex(0), "/joint_command", lift));
   EXPECT_NE(log.text().find("/joint_command position of lift = 0.5 is beyond the joint's limits [-0.1, 0.2]: clamped to 0.2"),
             std::string::npos)
       << log.text();
@@ -126,12 +126,12 @@ TEST(CommandGateFlippers, FlipperPositionsBecomeJointTargetsAndAWrongCountIsRefu
   Simulation sim(compile_world(spec, builtin_models()));
   CommandGate gate(sim, "ROS 2");
   testing::LogCapture log(100);
-  EXPECT_FALSE(gate.flippers(0, "/flippers/command", {0.3}));
+  EXPECT_FALSE(gate.flippers(RobotIndex(0), "/flippers/command", {0.3}));
   EXPECT_NE(log.text().find("/flippers/command: 1 positions, expected 2 (rad, in the order left_flipper_joint, right_flipper_joint)"),
             std::string::npos)
       << log.text();
-  EXPECT_FALSE(gate.flippers(0, "/flippers/command", {0.3, std::nan("")}));
-  EXPECT_TRUE(gate.flippers(0, "/flippers/command", {0.3, 4.0}));  // 4 rad is clamped to 170 degrees
+  EXPECT_FALSE(gate.flippers(RobotIndex(0), "/flippers/command", {0.3, std::nan("")}));
+  EXPECT_TRUE(gate.flippers(RobotIndex(0), "/flippers/command", {0.3, 4.0}));  // 4 rad is clamped to 170 degrees
   EXPECT_NE(log.text().find("clamped to 2.96706"), std::string::npos) << log.text();
   EXPECT_EQ(gate.received(), 1u);
   EXPECT_EQ(gate.rejected(), 2u);

@@ -333,9 +333,9 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
   std::map<std::string, RobotSpec> models = builtin_models();
   models["slider"] = testing::slider_robot();
   Simulation sim(compile_world(spec, models));
-  const int slider = sim.robot_index("slider");
-  ASSERT_GE(slider, 0);
-  const RobotSpec& slider_spec = sim.world().robots[static_cast<std::size_t>(slider)].spec;
+  const RobotIndex slider = sim.robot_index("slider");
+  ASSERT_TRUE(slider.valid());
+  const RobotSpec& slider_spec = sim.world().robot(slider).spec;
   const auto lift = static_cast<std::size_t>(slider_spec.joint_index("lift"));
   FoxgloveOptions options;
   options.port = free_local_port();
@@ -354,7 +354,7 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(45);
   while (!done && std::chrono::steady_clock::now() < deadline) {
     sim.step();
-    const RobotState& rs = sim.state().robots[static_cast<std::size_t>(slider)];
+    const RobotState& rs = sim.state().robot(slider);
     if (lift < rs.joint_target.size() && rs.joint_target[lift] == 0.15 && std::abs(rs.q[lift] - 0.15) < 1e-3) held_json_target = true;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
@@ -369,7 +369,7 @@ TEST_F(FoxgloveServer, JointCommandsInJsonAndCdrMoveAJointAndRefusalsSayWhy) {
   EXPECT_TRUE(held_json_target);
   EXPECT_TRUE(d["phases"]["json"]["reached"].get<bool>()) << d["phases"];
   EXPECT_TRUE(d["phases"]["cdr"]["reached"].get<bool>()) << d["phases"];
-  const RobotState& rs = sim.state().robots[static_cast<std::size_t>(slider)];
+  const RobotState& rs = sim.state().robot(slider);
   ASSERT_GT(rs.joint_target.size(), lift);
   EXPECT_EQ(rs.joint_target[lift], -0.05);
   EXPECT_NEAR(rs.q[lift], -0.05, 1e-3);

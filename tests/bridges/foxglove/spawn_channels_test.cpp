@@ -93,7 +93,7 @@ TEST_F(FoxgloveSpawn, ASpawnedRobotsChannelsAreAdvertisedAndADeletedOnesUnadvert
   // spawned; no step until the client has subscribed to its scan and has its latched
   // description, so it sees every scan
   const SimTime spawned_at = sim.time();
-  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 1.5, -1.5, urdf)), 1);
+  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 1.5, -1.5, urdf)), RobotIndex(1));
   EXPECT_TRUE(wait_until([&] { return status()["ready"].get<bool>(); }, done)) << status();
   // 1 s of sim time: its laser is due at once (sampled after the next step, 5 ms on), then on
   // the 0.1 s grid from the spawn: 11 scans
@@ -103,11 +103,11 @@ TEST_F(FoxgloveSpawn, ASpawnedRobotsChannelsAreAdvertisedAndADeletedOnesUnadvert
   }
   EXPECT_TRUE(wait_until([&] { return status()["scans"].get<int>() >= 11; }, done)) << status();
   // deleted: its channels are unadvertised
-  sim.remove_robot(1);
+  sim.remove_robot(RobotIndex(1));
   EXPECT_TRUE(wait_until([&] { return status()["unadvertised"].get<bool>(); }, done)) << status();
   for (int i = 0; i < 40; ++i) sim.step();  // nothing more on its channels
   // and spawned again: advertised again
-  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 1.5, -1.5, urdf)), 1);
+  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 1.5, -1.5, urdf)), RobotIndex(1));
   client.join();
   bridge->stop();
 
@@ -173,21 +173,21 @@ TEST_F(FoxgloveSpawn, CmdVelOfASpawnedRobotFollowsItsIndexAndIsRefusedOnceItIsDe
   const auto cmd_x = [&](std::size_t robot) { return sim.state().robots[robot].cmd_linear.x(); };
 
   // a (index 1), then b (index 2): the client drives b at 0.25 m/s once /b/scan is advertised
-  ASSERT_EQ(sim.add_robot(spawned_robot("a", -1.5, -1.5)), 1);
-  ASSERT_EQ(sim.add_robot(spawned_robot("b", 1.5, -1.5)), 2);
+  ASSERT_EQ(sim.add_robot(spawned_robot("a", -1.5, -1.5)), RobotIndex(1));
+  ASSERT_EQ(sim.add_robot(spawned_robot("b", 1.5, -1.5)), RobotIndex(2));
   ASSERT_TRUE(sim.wait_for_velocity_commands(1, std::chrono::seconds(30)));
   sim.step();
   EXPECT_EQ(cmd_x(2), 0.25);
   EXPECT_EQ(cmd_x(1), 0.0);
   EXPECT_EQ(cmd_x(0), 0.0);
   // a deleted: b is robot 1 now, and the client's /b/cmd_vel channel goes there
-  sim.remove_robot(1);
+  sim.remove_robot(RobotIndex(1));
   ASSERT_TRUE(sim.wait_for_velocity_commands(2, std::chrono::seconds(30)));
   sim.step();
   EXPECT_EQ(cmd_x(1), 0.5);
   EXPECT_EQ(cmd_x(0), 0.0);
   // b deleted: its cmd_vel is refused
-  sim.remove_robot(1);
+  sim.remove_robot(RobotIndex(1));
   client.join();
   bridge->stop();
 

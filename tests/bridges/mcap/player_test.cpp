@@ -112,8 +112,8 @@ TEST_F(Player, TheReplayHostHasNoSimulationAndDiscardsCommands) {
   BridgeHost& host = player.host();
   EXPECT_EQ(host.time().ns, 0);
   EXPECT_EQ(host.world().robots.size(), 1u);
-  EXPECT_EQ(host.topic_name(0, "cmd_vel"), "/cmd_vel");  // one robot: no namespace
-  EXPECT_EQ(host.frame_name(0, "base_link"), "base_link");
+  EXPECT_EQ(host.topic_name(RobotIndex(0), "cmd_vel"), "/cmd_vel");  // one robot: no namespace
+  EXPECT_EQ(host.frame_name(RobotIndex(0), "base_link"), "base_link");
   EXPECT_EQ(host.seed(), 7u);
   // the state is the world's start: one record per rubble body and victim, none found
   EXPECT_EQ(host.state().dynamics.size(), host.world().dynamics.size());
@@ -122,8 +122,8 @@ TEST_F(Player, TheReplayHostHasNoSimulationAndDiscardsCommands) {
   // commands are taken (a bridge counts them received) and discarded: nothing is simulated
   msg::Twist t;
   t.linear.x() = 0.5;
-  EXPECT_TRUE(host.command_velocity(0, t));
-  EXPECT_TRUE(host.command_head(0, {0, 0, 0, 0}));
+  EXPECT_TRUE(host.command_velocity(RobotIndex(0), t));
+  EXPECT_TRUE(host.command_head(RobotIndex(0), {0, 0, 0, 0}));
   EXPECT_EQ(player.host().discarded(), 2u);
   // the clock is the log time of the message being published
   std::int64_t clock_at_last_scan = -1;

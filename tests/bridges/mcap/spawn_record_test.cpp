@@ -35,11 +35,11 @@ TEST(McapSpawn, ASpawnedRobotIsRecordedOnItsOwnChannelsUntilItIsDeleted) {
   McapRecorder recorder(o);
   recorder.start(sim);
   sim.step_until(SimTime::from_seconds(1.0));
-  ASSERT_EQ(sim.add_robot(spawned_p3at()), 1);
+  ASSERT_EQ(sim.add_robot(spawned_p3at()), RobotIndex(1));
   sim.step_until(SimTime::from_seconds(2.0));
-  sim.remove_robot(1);
+  sim.remove_robot(RobotIndex(1));
   sim.step_until(SimTime::from_seconds(2.5));
-  ASSERT_EQ(sim.add_robot(spawned_p3at()), 1);
+  ASSERT_EQ(sim.add_robot(spawned_p3at()), RobotIndex(1));
   sim.step_until(SimTime::from_seconds(3.0));
   recorder.stop();
   EXPECT_EQ(recorder.recording().dropped, 0u);

@@ -63,7 +63,7 @@ TEST(Ros1Spawn, ASpawnedRobotIsPublishedAndDrivenAndADeletedOneGoes) {
   for (int i = 0; i < 20; ++i) sim.step();
 
   // p3at comes (robot 1, with a description) and settles on its wheels for 1 s
-  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 3, 3, kP3atDescription)), 1);
+  ASSERT_EQ(sim.add_robot(spawned_robot("p3at", 3, 3, kP3atDescription)), RobotIndex(1));
   for (int i = 0; i < 200; ++i) sim.step();
 
   const CommandResult list = master.run("rostopic list", kToolSeconds);
@@ -83,7 +83,7 @@ TEST(Ros1Spawn, ASpawnedRobotIsPublishedAndDrivenAndADeletedOneGoes) {
   EXPECT_NE(master.run("rosparam get /p3at/robot_description", kToolSeconds).out.find("p3at"), std::string::npos);
 
   // scout comes after it (robot 2), and settles
-  ASSERT_EQ(sim.add_robot(spawned_robot("scout", 3, -3)), 2);
+  ASSERT_EQ(sim.add_robot(spawned_robot("scout", 3, -3)), RobotIndex(2));
   for (int i = 0; i < 200; ++i) sim.step();
   EXPECT_NE(master.run("rostopic list", kToolSeconds).out.find("/scout/scan\n"), std::string::npos);
 
@@ -129,7 +129,7 @@ TEST(Ros1Spawn, ASpawnedRobotIsPublishedAndDrivenAndADeletedOneGoes) {
 
   // p3at goes: its publishers and its cmd_vel subscription with it (the master may still list
   // the topics, but nothing of this node is on them); scout is robot 1 now
-  sim.remove_robot(1);
+  sim.remove_robot(RobotIndex(1));
   ASSERT_EQ(sim.world().robots.size(), 2u);
   ASSERT_EQ(sim.world().robots[1].name, "scout");
   for (const char* topic : {"/p3at/scan", "/p3at/odom", "/p3at/robot_description"}) {

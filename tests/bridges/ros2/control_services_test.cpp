@@ -335,7 +335,7 @@ TEST_F(ControlServicesGzNamesV2Test, ServicesLiveUnderTheNamespaceAndTheFlagsPic
   ServiceClient root(*client_, ros2::service_topics("/reset_simulation", "simulation_interfaces/srv/ResetSimulation"));
   EXPECT_FALSE(root.wait_for_server(1s));
   // 100 steps with the robot driving forward at 0.3 m/s, so it has a twist to keep or to lose
-  ASSERT_TRUE(session_->sim().command_velocity(0, msg::Twist{Vec3(0.3, 0, 0), Vec3::Zero()}));
+  ASSERT_TRUE(session_->sim().command_velocity(RobotIndex(0), msg::Twist{Vec3(0.3, 0, 0), Vec3::Zero()}));
   EXPECT_TRUE(call<iface::StepSimulation>("/gzserver/step_simulation", {100}, WireVersion::v2).is_ok());
   const auto moving = call<iface::GetEntityState>("/gzserver/get_entity_state", {"robot"}, WireVersion::v2);
   ASSERT_GT(moving.state.linear.norm(), 0.05);

@@ -19,21 +19,21 @@ TEST(DdsTopicName, PrefixesRtAndDropsTheLeadingSlash) {
 }
 
 TEST(WriterQos, ReliableVolatileExceptLatchedAndClock) {
-  Topic scan{TopicId{0}, "/scan", "sensor_msgs/LaserScan", 10, false, 0};
+  Topic scan{TopicId{0}, "/scan", "sensor_msgs/LaserScan", 10, false, RobotIndex(0)};
   EXPECT_EQ(writer_qos(scan), (EndpointQos{Reliability::reliable, Durability::volatile_local, 10}));
-  Topic tf_static{TopicId{1}, "/tf_static", "tf2_msgs/TFMessage", 0, true, -1};
+  Topic tf_static{TopicId{1}, "/tf_static", "tf2_msgs/TFMessage", 0, true, RobotIndex()};
   EXPECT_EQ(writer_qos(tf_static), (EndpointQos{Reliability::reliable, Durability::transient_local, 1}));
-  Topic clock{TopicId{2}, "/clock", "rosgraph_msgs/Clock", 200, false, -1};
+  Topic clock{TopicId{2}, "/clock", "rosgraph_msgs/Clock", 200, false, RobotIndex()};
   EXPECT_EQ(writer_qos(clock), (EndpointQos{Reliability::reliable, Durability::volatile_local, 1}));
   EXPECT_EQ(command_reader_qos().reliability, Reliability::best_effort);
   EXPECT_EQ(discovery_qos(), (EndpointQos{Reliability::reliable, Durability::transient_local, 1}));
 }
 
 TEST(QueueCapacity, AboutOneSecondOfEachTopicWithinBounds) {
-  const Topic clock{TopicId{0}, "/clock", "rosgraph_msgs/Clock", 200, false, -1};
-  const Topic image{TopicId{1}, "/camera/color/image_raw", "sensor_msgs/Image", 10, false, 0};
-  const Topic slow{TopicId{2}, "/slow", "sensor_msgs/Range", 0.5, false, 0};
-  const Topic tf_static{TopicId{3}, "/tf_static", "tf2_msgs/TFMessage", 0, true, -1};
+  const Topic clock{TopicId{0}, "/clock", "rosgraph_msgs/Clock", 200, false, RobotIndex()};
+  const Topic image{TopicId{1}, "/camera/color/image_raw", "sensor_msgs/Image", 10, false, RobotIndex(0)};
+  const Topic slow{TopicId{2}, "/slow", "sensor_msgs/Range", 0.5, false, RobotIndex(0)};
+  const Topic tf_static{TopicId{3}, "/tf_static", "tf2_msgs/TFMessage", 0, true, RobotIndex()};
   EXPECT_EQ(queue_capacity(clock, 64), 64u);
   EXPECT_EQ(queue_capacity(image, 64), 10u);
   EXPECT_EQ(queue_capacity(slow, 64), 4u);

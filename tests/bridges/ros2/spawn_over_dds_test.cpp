@@ -59,10 +59,10 @@ TEST(Ros2Spawn, ASpawnedRobotIsOnTheWireDrivenAndGoneWhenDeleted) {
   auto bridge = make_ros2_bridge(o);
   bridge->start(sim);
   sim.step_until(SimTime::from_seconds(0.5));
-  const int a = sim.add_robot(spawned_robot("a", 3, -3));
-  const int b = sim.add_robot(spawned_robot("b", 3, 3));
-  ASSERT_EQ(a, 1);
-  ASSERT_EQ(b, 2);
+  const RobotIndex a = sim.add_robot(spawned_robot("a", 3, -3));
+  const RobotIndex b = sim.add_robot(spawned_robot("b", 3, 3));
+  ASSERT_EQ(a, RobotIndex(1));
+  ASSERT_EQ(b, RobotIndex(2));
 
   DdsParticipant ros(domain, ros2::participant_user_data());
   const int odom_a = ros.create_reader("rt/a/odom", "nav_msgs::msg::dds_::Odometry_", {});

@@ -78,7 +78,8 @@ TEST(CameraDepth, WallTwoMetresAwayReadsTwoMetres) {
   Scene s = wall_scene(cam);
   NEED_GL(s);
   Rng rng(1, "t");
-  const msg::Image m = depth_message(s.renderer->depth(camera_view(s.world, s.state, 0, cam)), cam, {SimTime{}, "cam_optical"}, rng);
+  const msg::Image m =
+      depth_message(s.renderer->depth(camera_view(s.world, s.state, RobotIndex(0), cam)), cam, {SimTime{}, "cam_optical"}, rng);
   EXPECT_EQ(m.encoding, "32FC1");
   // the wall is a plane 2.000 m along the optical axis: every pixel of the centre region reads it
   for (int y = 30; y < 90; y += 3) {
@@ -91,7 +92,7 @@ TEST(CameraDepth, PointCloudLiesOnTheWallPlane) {
   Scene s = wall_scene(cam);
   NEED_GL(s);
   Rng rng(1, "t");
-  const msg::Image depth = depth_message(s.renderer->depth(camera_view(s.world, s.state, 0, cam)), cam, {}, rng);
+  const msg::Image depth = depth_message(s.renderer->depth(camera_view(s.world, s.state, RobotIndex(0), cam)), cam, {}, rng);
   const msg::PointCloud2 pc = depth_cloud(depth, cam);
   ASSERT_EQ(pc.width * pc.height, 80u * 60u);
   int on_plane = 0;
@@ -111,13 +112,13 @@ TEST(CameraDepth, MillimetresAndOutOfRange) {
   Scene s = wall_scene(cam);
   NEED_GL(s);
   Rng rng(1, "t");
-  const msg::Image mm = depth_message(s.renderer->depth(camera_view(s.world, s.state, 0, cam)), cam, {}, rng);
+  const msg::Image mm = depth_message(s.renderer->depth(camera_view(s.world, s.state, RobotIndex(0), cam)), cam, {}, rng);
   std::uint16_t v;
   std::memcpy(&v, &mm.data[(30 * 80 + 40) * 2], 2);
   EXPECT_NEAR(v, 2000, 2);
   // the same wall beyond max_range is no data: 0 in 16UC1
   cam.camera.max_range = 1.5;
-  const msg::Image none = depth_message(s.renderer->depth(camera_view(s.world, s.state, 0, cam)), cam, {}, rng);
+  const msg::Image none = depth_message(s.renderer->depth(camera_view(s.world, s.state, RobotIndex(0), cam)), cam, {}, rng);
   std::memcpy(&v, &none.data[(30 * 80 + 40) * 2], 2);
   EXPECT_EQ(v, 0);
 }
@@ -128,7 +129,7 @@ TEST(CameraDepth, QuadraticNoiseGrowsWithDistance) {
   Scene s = wall_scene(cam);
   NEED_GL(s);
   Rng rng(3, "t");
-  const msg::Image m = depth_message(s.renderer->depth(camera_view(s.world, s.state, 0, cam)), cam, {}, rng);
+  const msg::Image m = depth_message(s.renderer->depth(camera_view(s.world, s.state, RobotIndex(0), cam)), cam, {}, rng);
   double sum = 0, sum2 = 0;
   int n = 0;
   for (int y = 30; y < 90; ++y) {
@@ -172,7 +173,7 @@ TEST(CameraThermal, UniformSurfaceDecodesWithinATenthOfAKelvin) {
   }();
   NEED_GL(s);
   Rng rng(1, "t");
-  const msg::Image m = thermal_mono16(s.renderer->thermal(camera_view(s.world, s.state, 0, cam), 0), cam, {}, rng);
+  const msg::Image m = thermal_mono16(s.renderer->thermal(camera_view(s.world, s.state, RobotIndex(0), cam), 0), cam, {}, rng);
   EXPECT_EQ(m.encoding, "mono16");
   std::uint16_t c;
   std::memcpy(&c, &m.data[(20 * 80 + 40) * 2], 2);  // above the horizon: the wall
@@ -195,7 +196,7 @@ TEST(CameraThermal, VictimIsHotterThanTheWallAndFoundWhenVisible) {
   spec.victims.push_back(v);
   Scene s = wall_scene(cam, spec);
   NEED_GL(s);
-  const CameraView view = camera_view(s.world, s.state, 0, cam);
+  const CameraView view = camera_view(s.world, s.state, RobotIndex(0), cam);
   Rng rng(1, "t");
   const msg::Image m = thermal_mono16(s.renderer->thermal(view, cam.camera.blur_sigma), cam, {}, rng);
   // the victim's torso projects into the image; after the blur it is still well above the wall
@@ -218,7 +219,7 @@ TEST(CameraThermal, VictimBehindAWallIsNotFound) {
   spec.victims.push_back(v);
   Scene s = wall_scene(cam, spec);
   NEED_GL(s);
-  const CameraView view = camera_view(s.world, s.state, 0, cam);
+  const CameraView view = camera_view(s.world, s.state, RobotIndex(0), cam);
   Rng rng(1, "t");
   const msg::Image m = thermal_mono16(s.renderer->thermal(view, 1.5), cam, {}, rng);
   EXPECT_TRUE(victims_in_thermal_image(s.world, view, cam, m, 4.0).empty());
@@ -244,7 +245,7 @@ TEST(CameraColor, DistortionKeepsTheCentreAndNoiseIsRepeatable) {
   SensorSpec cam = camera(SensorSpec::Type::color_camera, 160, 120, 60);
   Scene s = wall_scene(cam);
   NEED_GL(s);
-  const ColorImage img = s.renderer->color(camera_view(s.world, s.state, 0, cam));
+  const ColorImage img = s.renderer->color(camera_view(s.world, s.state, RobotIndex(0), cam));
   Rng a(1, "t");
   cam.camera.distortion = {-0.2, 0.05, 0, 0, 0};
   const msg::Image d = color_message(img, cam, {}, a);
