@@ -75,13 +75,28 @@ test-asan: deps
 
 # the suites that run threads under ThreadSanitizer (RelWithDebInfo, build-tsan): the worker
 # pool (core), the bus, the bridges' shared parts, the camera renderer (EGL on llvmpipe), the
-# simulation, and the session (the camera render thread, RunControl's posted tasks). Under TSan
-# the pool runs on std::threads and Embree builds on the calling thread (docs/building.md), and
-# llvmpipe rasterises on the calling thread (LP_NUM_THREADS=0), so every hand-over TSan checks
-# is ours; its suppressions name third-party frames only (scripts/tsan.supp). A GL test without
-# a context fails here instead of skipping (RESCUESIM_REQUIRE_GL=1).
+# simulation and the session (the camera render thread, RunControl's posted tasks). The bridges
+# with threads of their own, foxglove (the WebSocket I/O and serialiser threads) and mcap (the
+# recorder's writer thread), ran clean too (109 tests, 0 reports, TSAN_EXCLUDE below) with
+#   make test-tsan TSAN_SUITES="core bus bridges_common sensors_camera sim session foxglove mcap"
+# but are not in the default list yet: they add about 9 min (6 of cold build) that a timed cold
+# .ci/run has to confirm first. Many of their tests run the TSan-built rescuesim as a child,
+# which inherits TSAN_OPTIONS, so a race there fails the test too. Under TSan the pool
+# runs on std::threads and Embree builds on the calling thread (docs/building.md), and llvmpipe
+# rasterises on the calling thread (LP_NUM_THREADS=0), so every hand-over TSan checks is ours;
+# its suppressions name third-party frames only (scripts/tsan.supp). A GL test without a context
+# fails here instead of skipping (RESCUESIM_REQUIRE_GL=1). Not here: ros1 (6 reports, 4 of them
+# inside roscpp and boost, and 100-300 s per test), ros2 (not measured) and the viewer's loop
+# (app label, ViewSnapshot.*Window*, not run yet).
+# TSAN_EXCLUDE names the tests left out, each for a reason of TSan's own:
+#   FoxgloveProbe.*: runs rescuesim-bench, which this build does not make (RESCUESIM_BENCH=OFF);
+#   FoxgloveServer.ClientDecodesTopicsAndDrivesTheRobot: its client expects > 2 s of sim time and
+#     a scan rate within a wall-clock window, which TSan's slowdown misses on a busy machine;
+#   FoxgloveServer.BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory: bounds the process's
+#     RSS growth to 64 MiB, which TSan's allocator and shadow memory exceed by themselves.
 TSAN_BUILD ?= build-tsan
 TSAN_SUITES ?= core bus bridges_common sensors_camera sim session
+TSAN_EXCLUDE ?= ^FoxgloveProbe\.|^FoxgloveServer\.(ClientDecodesTopicsAndDrivesTheRobot|BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory)$$
 TSAN_JOBS ?= $(JOBS)
 test-tsan: deps
 	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESCUESIM_TSAN=ON -DRESCUESIM_PCH=OFF \
@@ -90,7 +105,8 @@ test-tsan: deps
 	cmake --build $(TSAN_BUILD) -j $(TSAN_JOBS) --target $(addsuffix _tests,$(TSAN_SUITES))
 	LP_NUM_THREADS=0 RESCUESIM_REQUIRE_GL=1 \
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp \
-	  ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^($(subst $() $(),|,$(TSAN_SUITES)))$$'
+	  ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^($(subst $() $(),|,$(TSAN_SUITES)))$$' \
+	  $(if $(TSAN_EXCLUDE),-E '$(TSAN_EXCLUDE)')
 
 # every fuzz target for 20 s (clang + libFuzzer, in build-fuzz); FUZZ_SECONDS to change
 FUZZ_SECONDS ?= 20
