@@ -90,8 +90,9 @@ void MissionSystem::write_outputs(const Simulation&, RunOutputs& out) const {
                 m.victims_found, m.victims, static_cast<unsigned long long>(m.counts[ReportOutcome::false_report]), m.rules.c_str(),
                 m.radio_model.c_str());
   score_plot(m, out.sim_time, title).write_png(out.dir / "score.png");
-  for (const ReportImage& p : mission_.report_images())
+  for (const ReportImage& p : mission_.report_images()) {
     picture_canvas(p.image).write_png(out.dir / report_picture_file(p.about, m.robot_names));
+  }
 }
 
 }  // namespace rescuesim

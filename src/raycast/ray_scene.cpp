@@ -188,7 +188,8 @@ struct RayScene::Impl {
     RTCScene s = rtcNewScene(raycast_detail::embree_device());
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = raycast_detail::new_triangle_geometry(mesh);
-    rtcSetGeometryUserData(g, reinterpret_cast<void*>(static_cast<std::intptr_t>(robot.value())));
+    // the robot's number rides in Embree's user pointer and comes back out in link_filter; never dereferenced
+    rtcSetGeometryUserData(g, reinterpret_cast<void*>(static_cast<std::intptr_t>(robot.value())));  // NOLINT(performance-no-int-to-ptr)
     rtcSetGeometryIntersectFilterFunction(g, link_filter);
     rtcSetGeometryOccludedFilterFunction(g, link_filter);
     rtcCommitGeometry(g);

@@ -30,7 +30,7 @@ Canvas laser_plot(const msg::LaserScan& scan, const std::string& title) {
   const int size = 520, c = size / 2;
   Canvas img(size, size + 24, {255, 255, 255});
   const double max_r = std::min<double>(scan.range_max > 0 ? scan.range_max : 10.0, 10.0);
-  const double scale = (size / 2 - 20) / max_r;
+  const double scale = (size / 2.0 - 20) / max_r;
   for (int ring = 1; ring <= static_cast<int>(max_r); ++ring) img.circle({c, c}, ring * scale, {225, 225, 225}, 1.0);
   img.line({c - 10.0, double(c)}, {c + 10.0, double(c)}, {150, 150, 150});
   img.line({double(c), c - 10.0}, {double(c), c + 10.0}, {150, 150, 150});

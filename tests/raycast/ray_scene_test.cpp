@@ -389,8 +389,9 @@ TEST(RaySceneDeterminism, HitDoesNotDependOnPlaceInTheBatch) {
     scene.cast(shifted, shifted_hits, RobotIndex(0));
     shifted_hits.erase(shifted_hits.begin());
     std::vector<RayHit> single(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i)
+    for (std::size_t i = 0; i < rays.size(); ++i) {
       scene.cast(std::span<const Ray>(&rays[i], 1), std::span<RayHit>(&single[i], 1), RobotIndex(0));
+    }
     EXPECT_TRUE(bitwise_equal(batch, shifted_hits));
     EXPECT_TRUE(bitwise_equal(batch, single));
   }
