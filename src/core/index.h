@@ -79,20 +79,16 @@ class IndexRange {
     using reference = Index<Tag>;
     constexpr iterator() = default;
     constexpr explicit iterator(int i) : i_(i) {}
-    constexpr Index<Tag> operator*() const { return Index<Tag>(i_); }
+    constexpr Index<Tag> operator*() const { return i_; }
     constexpr iterator& operator++() {
       ++i_;
       return *this;
     }
-    constexpr iterator operator++(int) {
-      iterator before = *this;
-      ++i_;
-      return before;
-    }
+    constexpr iterator operator++(int) { return iterator((i_++).value()); }
     friend constexpr bool operator==(iterator, iterator) = default;
 
    private:
-    int i_ = 0;
+    Index<Tag> i_{0};
   };
   constexpr explicit IndexRange(int count) : count_(count) {}
   constexpr iterator begin() const { return iterator(0); }
@@ -124,8 +120,6 @@ class IndexedVector {
 
   IndexedVector() = default;
   explicit IndexedVector(std::size_t count, const T& value = T()) : items_(count, value) {}
-  IndexedVector(std::initializer_list<T> items) : items_(items) {}
-  explicit IndexedVector(std::vector<T> items) : items_(std::move(items)) {}
 
   reference operator[](Index<Tag> i) { return items_[i.slot()]; }
   const_reference operator[](Index<Tag> i) const { return items_[i.slot()]; }
@@ -133,7 +127,7 @@ class IndexedVector {
   reference at(Index<Tag> i) { return items_.at(i.slot()); }
   const_reference at(Index<Tag> i) const { return items_.at(i.slot()); }
   /// Whether `i` names an element.
-  bool contains(Index<Tag> i) const { return i.valid() && static_cast<std::size_t>(i.value()) < items_.size(); }
+  bool contains(Index<Tag> i) const { return i.valid() && i.slot() < items_.size(); }
 
   std::size_t size() const { return items_.size(); }
   bool empty() const { return items_.empty(); }
@@ -145,8 +139,6 @@ class IndexedVector {
   iterator end() { return items_.end(); }
   const_iterator begin() const { return items_.begin(); }
   const_iterator end() const { return items_.end(); }
-  reference front() { return items_.front(); }
-  const_reference front() const { return items_.front(); }
   reference back() { return items_.back(); }
   const_reference back() const { return items_.back(); }
 
@@ -156,20 +148,14 @@ class IndexedVector {
   reference emplace_back(Args&&... args) {
     return items_.emplace_back(std::forward<Args>(args)...);
   }
-  void pop_back() { items_.pop_back(); }
   void resize(std::size_t count) { items_.resize(count); }
   void resize(std::size_t count, const T& value) { items_.resize(count, value); }
-  void reserve(std::size_t count) { items_.reserve(count); }
   void clear() { items_.clear(); }
-  void assign(std::size_t count, const T& value) { items_.assign(count, value); }
   /// Removes element `i`; the ones after it move down one index.
   void erase(Index<Tag> i) { items_.erase(items_.begin() + static_cast<std::ptrdiff_t>(i.slot())); }
-  iterator erase(const_iterator at) { return items_.erase(at); }
 
   std::vector<T>& vector() { return items_; }
   const std::vector<T>& vector() const { return items_; }
-
-  friend bool operator==(const IndexedVector&, const IndexedVector&) = default;
 
  private:
   std::vector<T> items_;
