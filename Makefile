@@ -75,19 +75,17 @@ test-asan: deps
 
 # the suites that run threads under ThreadSanitizer (RelWithDebInfo, build-tsan): the worker
 # pool (core), the bus, the bridges' shared parts, the camera renderer (EGL on llvmpipe), the
-# simulation and the session (the camera render thread, RunControl's posted tasks). The bridges
-# with threads of their own, foxglove (the WebSocket I/O and serialiser threads) and mcap (the
-# recorder's writer thread), ran clean too (109 tests, 0 reports, TSAN_EXCLUDE below) with
-#   make test-tsan TSAN_SUITES="core bus bridges_common sensors_camera sim session foxglove mcap"
-# but are not in the default list yet: they add about 9 min (6 of cold build) that a timed cold
-# .ci/run has to confirm first. Many of their tests run the TSan-built rescuesim as a child,
-# which inherits TSAN_OPTIONS, so a race there fails the test too. Under TSan the pool
-# runs on std::threads and Embree builds on the calling thread (docs/building.md), and llvmpipe
-# rasterises on the calling thread (LP_NUM_THREADS=0), so every hand-over TSan checks is ours;
-# its suppressions name third-party frames only (scripts/tsan.supp). A GL test without a context
-# fails here instead of skipping (RESCUESIM_REQUIRE_GL=1). Not here: ros1 (6 reports, 4 of them
-# inside roscpp and boost, and 100-300 s per test), ros2 (not measured) and the viewer's loop
-# (app label, ViewSnapshot.*Window*, not run yet).
+# simulation and the session (the camera render thread, RunControl's posted tasks), the four
+# bridges with threads of their own (foxglove's WebSocket I/O and serialiser, mcap's writer,
+# ros1's sender, spinner and services, ros2's sender and receiver beside Cyclone's threads) and
+# the viewer's loop (TSAN_APP_TESTS: `rescuesim view` under Xvfb, its simulation thread and
+# render worker beside the window's thread). Many tests run the TSan-built rescuesim as a child,
+# which inherits TSAN_OPTIONS, so a race there fails the test too. Under TSan the pool runs on
+# std::threads and Embree builds on the calling thread (docs/building.md), llvmpipe rasterises
+# on the calling thread (LP_NUM_THREADS=0), and where an uninstrumented library orders our
+# accesses the code says so (core/tsan.h); scripts/tsan.supp names third-party frames only, each
+# with its reason. A GL test without a context fails here instead of skipping
+# (RESCUESIM_REQUIRE_GL=1).
 # TSAN_EXCLUDE names the tests left out, each for a reason of TSan's own:
 #   FoxgloveProbe.*: runs rescuesim-bench, which this build does not make (RESCUESIM_BENCH=OFF);
 #   FoxgloveServer.ClientDecodesTopicsAndDrivesTheRobot: its client expects > 2 s of sim time and
@@ -95,18 +93,22 @@ test-asan: deps
 #   FoxgloveServer.BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory: bounds the process's
 #     RSS growth to 64 MiB, which TSan's allocator and shadow memory exceed by themselves.
 TSAN_BUILD ?= build-tsan
-TSAN_SUITES ?= core bus bridges_common sensors_camera sim session
+TSAN_SUITES ?= core bus bridges_common sensors_camera sim session foxglove mcap ros1 ros2
+TSAN_APP_TESTS ?= ^ViewSnapshot\.(WindowScreenshotShowsMainViewAndFourPanels|TheScenariosControllerDrivesTheRobotInTheWindow)$$
 TSAN_EXCLUDE ?= ^FoxgloveProbe\.|^FoxgloveServer\.(ClientDecodesTopicsAndDrivesTheRobot|BadClientsGetStatusErrorsAndSlowOnesLoseFramesNotMemory)$$
 TSAN_JOBS ?= $(JOBS)
+TSAN_ENV = LP_NUM_THREADS=0 RESCUESIM_REQUIRE_GL=1 \
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp
 test-tsan: deps
 	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRESCUESIM_TSAN=ON -DRESCUESIM_PCH=OFF \
-	  -DRESCUESIM_ROS1=OFF -DRESCUESIM_ROS2=OFF -DRESCUESIM_PYTHON=OFF -DRESCUESIM_BENCH=OFF \
+	  -DRESCUESIM_ROS1=ON -DRESCUESIM_ROS2=ON -DRESCUESIM_PYTHON=OFF -DRESCUESIM_BENCH=OFF \
 	  -DPython_EXECUTABLE=/usr/bin/python3 $(CMAKE_FLAGS)
-	cmake --build $(TSAN_BUILD) -j $(TSAN_JOBS) --target $(addsuffix _tests,$(TSAN_SUITES))
-	LP_NUM_THREADS=0 RESCUESIM_REQUIRE_GL=1 \
-	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp \
-	  ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^($(subst $() $(),|,$(TSAN_SUITES)))$$' \
+	cmake --build $(TSAN_BUILD) -j $(TSAN_JOBS) --target rescuesim $(addsuffix _tests,$(TSAN_SUITES)) \
+	  $(if $(TSAN_APP_TESTS),app_tests)
+	$(TSAN_ENV) ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^($(subst $() $(),|,$(TSAN_SUITES)))$$' \
 	  $(if $(TSAN_EXCLUDE),-E '$(TSAN_EXCLUDE)')
+	$(if $(TSAN_APP_TESTS),$(TSAN_ENV) ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(TSAN_JOBS) -L '^app$$' -R '$(TSAN_APP_TESTS)' \
+	  --no-tests=error)
 
 # every fuzz target for 20 s (clang + libFuzzer, in build-fuzz); FUZZ_SECONDS to change
 FUZZ_SECONDS ?= 20

@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/thread.h"
 
 namespace rescuesim {
 
@@ -217,7 +218,8 @@ BatchRunStats run_in_threads(const Scenario& scenario, const ModelMap& models, c
     }
   };
   std::vector<std::thread> threads;
-  for (int j = 0; j < run.jobs; ++j) threads.emplace_back(worker);
+  threads.reserve(static_cast<std::size_t>(run.jobs));
+  for (int j = 0; j < run.jobs; ++j) threads.push_back(start_named_thread("batch-trials", worker));
   for (auto& t : threads) t.join();
   stats.interrupted = stats.recorded < static_cast<int>(trials.size());
   return stats;

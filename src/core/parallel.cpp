@@ -1,5 +1,8 @@
 #include "core/parallel.h"
 
+#include "core/thread.h"
+#include "core/tsan.h"
+
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -7,12 +10,8 @@
 // ThreadSanitizer cannot see how Debian's (uninstrumented) TBB hands a task's writes back to the
 // caller, so under TSan the pool is std::threads with a mutex and condition variables it does
 // see (PlainPool below); every other build uses TBB's.
-#if defined(__SANITIZE_THREAD__)
+#if defined(RESCUESIM_UNDER_TSAN)
 #define RESCUESIM_PLAIN_POOL 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define RESCUESIM_PLAIN_POOL 1
-#endif
 #endif
 
 #if defined(RESCUESIM_PLAIN_POOL)
@@ -57,7 +56,7 @@ struct Job {
 class PlainPool {
  public:
   explicit PlainPool(int workers) {
-    for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
+    for (int i = 0; i < workers; ++i) threads_.push_back(start_named_thread("pool", [this] { work(); }));
   }
   ~PlainPool() {
     // in a child forked after the pool started (batch trials) its threads do not exist and a

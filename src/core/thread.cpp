@@ -1,6 +1,7 @@
 #include "core/thread.h"
 
 #include <pthread.h>
+#include <spdlog/spdlog.h>
 
 #include <cstring>
 
@@ -12,5 +13,11 @@ void name_this_thread(const char* name) {
   cut[sizeof cut - 1] = '\0';
   pthread_setname_np(pthread_self(), cut);
 }
+
+namespace detail {
+
+void before_thread_start() { (void)spdlog::default_logger_raw(); }
+
+}  // namespace detail
 
 }  // namespace rescuesim

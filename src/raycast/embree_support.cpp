@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/tsan.h"
 
 namespace rescuesim::raycast_detail {
 
@@ -20,17 +21,7 @@ void on_embree_error(void*, RTCError code, const char* text) {
 /// releases the scene would look like a race. Under TSan, "threads=1" caps TBB at one thread,
 /// so every build runs on the thread that commits, and each scene passes between our threads
 /// only through the worker pool's mutex (core/parallel.cpp) or the caller's own locks.
-#if defined(__SANITIZE_THREAD__)
-constexpr const char* kDeviceConfig = "threads=1";
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-constexpr const char* kDeviceConfig = "threads=1";
-#else
-constexpr const char* kDeviceConfig = nullptr;
-#endif
-#else
-constexpr const char* kDeviceConfig = nullptr;
-#endif
+constexpr const char* kDeviceConfig = kUnderTsan ? "threads=1" : nullptr;
 
 /// Owns the device for the life of the process; scenes retain it themselves, so static
 /// destruction order does not matter.

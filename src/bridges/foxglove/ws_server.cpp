@@ -137,12 +137,7 @@ class Server final : public WsServer {
     }
     port_ = acceptor_.local_endpoint().port();
     accept();
-    // spdlog's default logger is made on first use, in libspdlog.so behind a static ThreadSanitizer
-    // cannot see through: make it here, so the I/O thread's first log line finds it made before
-    // the thread started (a program that set the log level first has made it already)
-    (void)spdlog::default_logger_raw();
-    thread_ = std::thread([this] {
-      name_this_thread("fox-io");
+    thread_ = start_named_thread("fox-io", [this] {
       for (;;) {
         try {
           ioc_.run();

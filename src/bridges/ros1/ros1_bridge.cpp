@@ -132,6 +132,11 @@ class Ros1Bridge final : public Bridge {
   void set_parameters();
   /// (Re)makes the subscription of inputs_[key]; inputs_mutex_ held or no other thread yet.
   void subscribe(std::uint64_t key, Input& in);
+  /// Makes the subscriptions of `keys` afresh (spin thread): shuts the old ones down without
+  /// inputs_mutex_ (roscpp's shutdown takes the lock its callbacks run under, and a callback
+  /// under way may be waiting for inputs_mutex_), then subscribes under it. Keys gone meanwhile
+  /// are skipped; with `keep_checks` the inputs keep their count of unconnected checks.
+  void renew_subscriptions(const std::vector<std::uint64_t>& keys, bool keep_checks);
   /// The layout watcher (simulation thread, Bus locked): publishers and command subscriptions
   /// follow the topics and robots that came and went (follow_layout); what roscpp throws is
   /// logged, not passed to the simulation.
@@ -476,6 +481,29 @@ void Ros1Bridge::subscribe(std::uint64_t i, Input& in) {
   in.unconnected_checks = 0;
 }
 
+void Ros1Bridge::renew_subscriptions(const std::vector<std::uint64_t>& keys, bool keep_checks) {
+  if (keys.empty()) return;
+  std::vector<ros::Subscriber> old;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    for (const std::uint64_t key : keys) {
+      const auto it = inputs_.find(key);
+      if (it == inputs_.end()) continue;
+      old.push_back(it->second.sub);
+      it->second.sub = ros::Subscriber();
+    }
+  }
+  for (ros::Subscriber& s : old) s.shutdown();
+  std::lock_guard lock(inputs_mutex_);
+  for (const std::uint64_t key : keys) {
+    const auto it = inputs_.find(key);
+    if (it == inputs_.end()) continue;
+    const int checks = it->second.unconnected_checks;
+    subscribe(key, it->second);
+    if (keep_checks) it->second.unconnected_checks = checks;
+  }
+}
+
 void Ros1Bridge::set_parameters() {
   if (options_.use_sim_time) ros::param::set("/use_sim_time", true);
   // robot_state_publisher and RViz's RobotModel read a robot's URDF from the parameter server
@@ -521,17 +549,21 @@ bool Ros1Bridge::register_again() {
   }
   // roscpp's own log topic
   if (!call("registerPublisher", "/rosout", "rosgraph_msgs/Log", payload)) return false;
-  std::lock_guard lock(inputs_mutex_);
-  for (auto& [key, in] : inputs_) {
-    if (!call("registerSubscriber", in.topic, in.type->ros1_name, payload)) return false;
-    // publishers that found the new master first are only named in this answer (the master
-    // tells subscribers of later ones): subscribing anew connects to them
-    bool others = false;
-    for (int i = 0; payload.getType() == XmlRpc::XmlRpcValue::TypeArray && i < payload.size(); ++i) {
-      if (std::string(payload[i]) != api) others = true;
+  std::vector<std::uint64_t> renew;
+  {
+    std::lock_guard lock(inputs_mutex_);
+    for (auto& [key, in] : inputs_) {
+      if (!call("registerSubscriber", in.topic, in.type->ros1_name, payload)) return false;
+      // publishers that found the new master first are only named in this answer (the master
+      // tells subscribers of later ones): subscribing anew connects to them
+      bool others = false;
+      for (int i = 0; payload.getType() == XmlRpc::XmlRpcValue::TypeArray && i < payload.size(); ++i) {
+        if (std::string(payload[i]) != api) others = true;
+      }
+      if (others) renew.push_back(key);
     }
-    if (others) subscribe(key, in);
   }
+  renew_subscriptions(renew, false);
   return !services_ || services_->register_again();
 }
 
@@ -667,7 +699,8 @@ void Ros1Bridge::check_input_publishers() {
   if (ros::master::execute("getTopicTypes", args, result, types, false) && types.getType() == XmlRpc::XmlRpcValue::TypeArray) {
     for (int i = 0; i < types.size(); ++i) registered_type[std::string(types[i][0])] = std::string(types[i][1]);
   }
-  std::lock_guard lock(inputs_mutex_);
+  std::vector<std::uint64_t> renew;  // after the loop, without the lock (renew_subscriptions)
+  std::unique_lock lock(inputs_mutex_);
   for (auto& [key, in] : inputs_) {
     std::vector<std::string> nodes;
     for (int i = 0; i < publishers.size(); ++i) {
@@ -688,11 +721,7 @@ void Ros1Bridge::check_input_publishers() {
       // may have been first and gone since; a retry is one registerSubscriber). The warning
       // below comes when they still do not connect after two checks.
       if (connected > 0) in.adopted = true;
-      if (connected == 0 && (in.adopted || missing)) {
-        const int checks = in.unconnected_checks;
-        subscribe(key, in);
-        in.unconnected_checks = checks;
-      }
+      if (connected == 0 && (in.adopted || missing)) renew.push_back(key);
     }
     in.unconnected_checks = missing ? in.unconnected_checks + 1 : 0;
     if (in.unconnected_checks != 2) continue;  // new publishers take a moment to connect; warn once
@@ -712,6 +741,8 @@ void Ros1Bridge::check_input_publishers() {
               in.topic, nodes.size(), list, connected,
               !type.empty() && !known ? fmt::format("; the master has the topic as {}", type) : std::string(), why);
   }
+  lock.unlock();
+  renew_subscriptions(renew, true);
 }
 
 void Ros1Bridge::on_command(std::uint64_t key, const RawMessage& raw) {

@@ -22,6 +22,7 @@
 
 #include "bridges/ros2/dds_raw_type.h"
 #include "core/error.h"
+#include "core/tsan.h"
 
 #include "ros2_messages.h"
 #include "ros_discovery_humble.h"
@@ -304,15 +305,16 @@ void DdsParticipant::take_with_info(int reader_index,
       for (; released < n; ++released) {
         const dds_sample_info_t& info = infos[static_cast<std::size_t>(released)];
         ddsi_serdata* s = samples[static_cast<std::size_t>(released)];
+        tsan_acquire(s);  // made on one of Cyclone's threads (dds_raw_type.h)
         if (info.valid_data) {
           bytes.resize(ddsi_serdata_size(s));
           ddsi_serdata_to_ser(s, 0, bytes.size(), bytes.data());
           f(bytes, SampleInfo{info.publication_handle, info.source_timestamp});
         }
-        ddsi_serdata_unref(s);
+        detail::unref_seen_by_tsan(s);
       }
     } catch (...) {
-      for (dds_return_t i = released; i < n; ++i) ddsi_serdata_unref(samples[static_cast<std::size_t>(i)]);
+      for (dds_return_t i = released; i < n; ++i) detail::unref_seen_by_tsan(samples[static_cast<std::size_t>(i)]);
       throw;
     }
     if (static_cast<std::uint32_t>(n) < kBatch) return;

@@ -18,6 +18,8 @@
 #include <memory>
 #include <new>
 
+#include "core/tsan.h"
+
 namespace rescuesim::ros2::detail {
 
 namespace {
@@ -38,12 +40,28 @@ struct RawSerdata : ddsi_serdata {
 
 const RawSerdata& raw(const ddsi_serdata* d) { return *static_cast<const RawSerdata*>(d); }
 
+// A serdata passes between Cyclone's threads and ours by a reference count kept with Cyclone's
+// own atomics, which TSan cannot see in Debian's build: an operation that writes or reads the
+// bytes acquires the serdata first and releases it after, and freeing it acquires, so TSan
+// sees the order the count gives (core/tsan.h; no-ops outside TSan).
+struct SeenByTsan {
+  explicit SeenByTsan(const ddsi_serdata* d) : d(d) { tsan_acquire(d); }
+  ~SeenByTsan() { tsan_release(d); }
+  SeenByTsan(const SeenByTsan&) = delete;
+  SeenByTsan& operator=(const SeenByTsan&) = delete;
+  const ddsi_serdata* d;
+};
+
 bool raw_eqkey(const ddsi_serdata*, const ddsi_serdata*) { return true; }  // keyless: one instance
-uint32_t raw_get_size(const ddsi_serdata* d) { return raw(d).size; }
+uint32_t raw_get_size(const ddsi_serdata* d) {
+  const SeenByTsan seen(d);
+  return raw(d).size;
+}
 
 ddsi_serdata* raw_from_ser(const ddsi_sertype* type, ddsi_serdata_kind kind, const nn_rdata* fragchain, size_t size) {
   auto d = std::unique_ptr<RawSerdata>(new (std::nothrow) RawSerdata(type, kind));
   if (!d) return nullptr;
+  const SeenByTsan seen(d.get());
   d->resize(size);
   // fragments may overlap: copy only what each adds beyond the bytes already copied
   std::size_t off = 0;
@@ -61,6 +79,7 @@ ddsi_serdata* raw_from_ser_iov(const ddsi_sertype* type, ddsi_serdata_kind kind,
                                const ddsrt_iovec_t* iov, size_t size) {
   auto d = std::unique_ptr<RawSerdata>(new (std::nothrow) RawSerdata(type, kind));
   if (!d) return nullptr;
+  const SeenByTsan seen(d.get());
   d->resize(size);
   std::size_t off = 0;
   for (ddsrt_msg_iovlen_t i = 0; i < niov && off < size; ++i) {
@@ -71,20 +90,29 @@ ddsi_serdata* raw_from_ser_iov(const ddsi_sertype* type, ddsi_serdata_kind kind,
   return d.release();
 }
 
-ddsi_serdata* raw_from_keyhash(const ddsi_sertype* type, const ddsi_keyhash*) { return new (std::nothrow) RawSerdata(type, SDK_KEY); }
+ddsi_serdata* raw_from_keyhash(const ddsi_sertype* type, const ddsi_keyhash*) {
+  auto* d = new (std::nothrow) RawSerdata(type, SDK_KEY);
+  tsan_release(d);
+  return d;
+}
 
 // writing goes through dds_writecdr only: there is no in-memory sample to serialise
 ddsi_serdata* raw_from_sample(const ddsi_sertype*, ddsi_serdata_kind, const void*) { return nullptr; }
 
-void raw_to_ser(const ddsi_serdata* d, size_t off, size_t sz, void* buf) { std::memcpy(buf, raw(d).bytes.get() + off, sz); }
+void raw_to_ser(const ddsi_serdata* d, size_t off, size_t sz, void* buf) {
+  const SeenByTsan seen(d);
+  std::memcpy(buf, raw(d).bytes.get() + off, sz);
+}
 
 ddsi_serdata* raw_to_ser_ref(const ddsi_serdata* d, size_t off, size_t sz, ddsrt_iovec_t* ref) {
+  const SeenByTsan seen(d);
   ref->iov_base = raw(d).bytes.get() + off;
   ref->iov_len = static_cast<ddsrt_iov_len_t>(sz);
+  const TsanIgnoreAccesses count;  // Cyclone's count, inlined from its header
   return ddsi_serdata_ref(d);
 }
 
-void raw_to_ser_unref(ddsi_serdata* d, const ddsrt_iovec_t*) { ddsi_serdata_unref(d); }
+void raw_to_ser_unref(ddsi_serdata* d, const ddsrt_iovec_t*) { unref_seen_by_tsan(d); }
 
 // nor is there one to deserialise into: readers take the bytes (dds_takecdr)
 bool raw_to_sample(const ddsi_serdata*, void*, void**, void*) { return false; }
@@ -92,14 +120,19 @@ bool raw_to_sample(const ddsi_serdata*, void*, void**, void*) { return false; }
 ddsi_serdata* raw_to_untyped(const ddsi_serdata* d) {
   auto* u = new (std::nothrow) RawSerdata(d->type, SDK_KEY);
   if (u) u->type = nullptr;  // an untyped serdata has no type (ddsi_serdata_to_untyped_t)
+  tsan_release(u);
   return u;
 }
 
 bool raw_untyped_to_sample(const ddsi_sertype*, const ddsi_serdata*, void*, void**, void*) { return true; }
 
-void raw_free(ddsi_serdata* d) { delete static_cast<RawSerdata*>(d); }
+void raw_free(ddsi_serdata* d) {
+  tsan_acquire(d);
+  delete static_cast<RawSerdata*>(d);
+}
 
 size_t raw_print(const ddsi_sertype*, const ddsi_serdata* d, char* buf, size_t size) {
+  const SeenByTsan seen(d);
   const int n = std::snprintf(buf, size, "(%u serialised bytes)", static_cast<unsigned>(raw(d).size));
   return n < 0 ? 0 : static_cast<size_t>(n);
 }
@@ -127,6 +160,7 @@ const ddsi_serdata_ops kRawSerdataOps = [] {
 }();
 
 void raw_type_free(ddsi_sertype* t) {
+  tsan_acquire(t);  // made by make_raw_sertype, maybe on another thread
   ddsi_sertype_fini(t);
   delete t;
 }
@@ -158,6 +192,12 @@ const ddsi_sertype_ops kRawSertypeOps = [] {
 
 }  // namespace
 
+void unref_seen_by_tsan(ddsi_serdata* d) {
+  tsan_release(d);
+  const TsanIgnoreAccesses count;  // Cyclone's count, inlined from its header (may free d here)
+  ddsi_serdata_unref(d);
+}
+
 ddsi_sertype* make_raw_sertype(const std::string& dds_type) {
   auto* t = new ddsi_sertype{};
   ddsi_sertype_init_flags(t, dds_type.c_str(), &kRawSertypeOps, &kRawSerdataOps, DDSI_SERTYPE_FLAG_TOPICKIND_NO_KEY);
@@ -165,6 +205,7 @@ ddsi_sertype* make_raw_sertype(const std::string& dds_type) {
   // and Cyclone refuses a second type on a topic name when the topic QoS differs (TwistStamped
   // beside Twist on cmd_vel). The endpoints themselves ask for XCDR1 (dds_participant.cpp).
   t->allowed_data_representation = DDS_DATA_REPRESENTATION_RESTRICT_DEFAULT;
+  tsan_release(t);  // Cyclone frees it on whichever thread drops the last reference
   return t;
 }
 

@@ -36,8 +36,7 @@ RenderCameraService::RenderCameraService(const World& world, const CameraService
   // the GL context belongs to the render thread: create it there and report how it went
   std::promise<std::string> ready;
   auto started = ready.get_future();
-  thread_ = std::thread([this, &ready] {
-    name_this_thread("render");
+  thread_ = start_named_thread("render", [this, &ready] {
     std::unique_ptr<Renderer> renderer;
     try {
       renderer = Renderer::create_headless(options_.quality);
