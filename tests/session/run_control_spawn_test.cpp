@@ -204,8 +204,9 @@ TEST(RunControlSpawn, BadRequestsGetTheirCodesAndSayWhy) {
   r = request("b", "", X);
   r.resource_string = "<robot name='x'><link name='a'></robot>";
   EXPECT_EQ(code_of(r), code::kResourceParseError);
-  r.resource_string = "<robot name='x'><link name='a'><visual><geometry><mesh "
-                      "filename='package://turtlebot3_description/meshes/none.stl'/></geometry></visual></link></robot>";
+  // a collision mesh that is not there (a visual one is left out with a warning, as in Gazebo)
+  r.resource_string = "<robot name='x'><link name='a'><collision><geometry><mesh "
+                      "filename='package://turtlebot3_description/meshes/none.stl'/></geometry></collision></link></robot>";
   EXPECT_EQ(code_of(r), code::kMissingAssets);
   r.resource_string = "{model: no_such_robot}";
   EXPECT_EQ(code_of(r), code::kResourceParseError);

@@ -18,6 +18,8 @@ struct XmlIndex {
   std::map<std::string, const tinyxml2::XMLElement*> links, joints;
   std::vector<std::string> joint_order;  ///< joint names in document order
   std::vector<std::string> link_order;   ///< link names in document order
+  /// What the XML checks read differently from urdfdom or skipped, for the diagnostics.
+  std::vector<std::pair<SourceRef, std::string>> notes;
 
   SourceRef link(const std::string& name) const;
   SourceRef joint(const std::string& name) const;
@@ -46,7 +48,8 @@ std::string describe(const tinyxml2::XMLElement* e);
 void refuse_xacro(const tinyxml2::XMLElement* robot, const std::string& file);
 
 /// Checks what urdfdom accepts silently or reports without a line: joint types, parents and
-/// children that exist, one tree without loops, positive masses, physical inertias.
+/// children that exist, one tree without loops, masses that are not negative. What urdfdom
+/// accepts, this accepts too; where it reads something differently it adds a note.
 XmlIndex check_structure(const tinyxml2::XMLElement* robot, const std::string& file);
 
 /// Reads <gazebo> extensions: the drive plugin, sensors, and warnings for what is ignored.

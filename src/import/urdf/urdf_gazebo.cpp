@@ -78,6 +78,20 @@ void read_drive_plugin(const XMLElement* plugin, const std::string& filename, co
   std::vector<std::string> right = all_texts(plugin, {"rightJoint", "right_joint", "rightFrontJoint", "rightRearJoint"});
   const double separation = child_number(plugin, {"wheelSeparation", "wheel_separation"}, 0, index);
   const double diameter = child_number(plugin, {"wheelDiameter", "wheel_diameter"}, 0, index);
+  // a wheel joint the file makes fixed (the Pioneer 3-DX's, with "continuous" commented out):
+  // Gazebo merges fixed joints away, so its plugin does not find the joint and the robot loads
+  // without a drive; so it does here, with a warning
+  for (const auto* side : {&left, &right}) {
+    for (const auto& n : *side) {
+      const int j = out.spec.joint_index(n);
+      if (j >= 0 && out.spec.joints[static_cast<std::size_t>(j)].type == JointSpec::Type::fixed) {
+        out.diagnostics.warn(index.at(plugin), "plugin '" + filename + "' is ignored: its wheel joint '" + n +
+                                                   "' is fixed (Gazebo merges fixed joints, so its plugin does not find it either); "
+                                                   "the robot has no drive");
+        return;
+      }
+    }
+  }
   // ROS 1's gazebo_ros_diff_drive turns the wrong way round, so many URDFs name the right wheel
   // its leftJoint to compensate: the sides are taken from where the wheels are
   if (configure_diff_drive(out.spec, left, right, diameter / 2, separation, index.at(plugin), true)) {
@@ -215,17 +229,19 @@ void read_sensor(const XMLElement* sensor, const std::string& link, const XmlInd
 
 namespace {
 
-/// A link's contact friction from Gazebo's <mu1> and <mu2>: its collision shapes get a material
-/// of their own with mu1 as the friction (Bullet's is isotropic), and a differing mu2 becomes an
-/// anisotropic scale along the link's y axis (Gazebo's second friction direction by default).
-void read_friction(const XMLElement* g, const std::string& link, const XmlIndex& index, UrdfRobot& out) {
-  const bool has1 = g->FirstChildElement("mu1") != nullptr, has2 = g->FirstChildElement("mu2") != nullptr;
-  if (!has1 && !has2) return;
-  const double mu1 = child_number(g, {"mu1", "mu2"}, 0, index);
-  const double mu2 = has2 ? child_number(g, {"mu2"}, mu1, index) : mu1;
-  if (!(mu1 >= 0) || !(mu2 >= 0) || mu1 > 1e3 || mu2 > 1e3) {
-    throw Error(index.at(g), "link '" + link + "': <mu1>/<mu2> must be friction coefficients in [0, 1000]");
-  }
+/// The value of a Gazebo extension element as Gazebo's URDF conversion reads it (sdformat's
+/// parser_urdf, GetKeyValueAsString): its `value` attribute when it has one (`<mu1 value="1"/>`,
+/// common in older URDFs), its text otherwise (`<mu1>1</mu1>`).
+double gazebo_number(const XMLElement* e, const XmlIndex& index) {
+  const char* attribute = e->Attribute("value");
+  const std::string text = attribute ? std::string(attribute) : trimmed(e->GetText() ? e->GetText() : "");
+  return numbers_of(text.c_str(), 1, index, e, std::string("<") + e->Name() + ">")[0];
+}
+
+/// Gives a link's collision shapes a contact material of their own with friction `mu1` (Bullet's
+/// is isotropic); a differing `mu2` becomes an anisotropic scale along the link's y axis
+/// (Gazebo's second friction direction by default).
+void set_link_friction(const std::string& link, double mu1, double mu2, UrdfRobot& out) {
   RobotSpec& spec = out.spec;
   MaterialSpec m;
   m.name = spec.model + "/" + link + "_contact";
@@ -239,16 +255,75 @@ void read_friction(const XMLElement* g, const std::string& link, const XmlIndex&
   if (mu1 > 0 && mu2 != mu1) ls.friction_scale = Vec3(1.0, mu2 / mu1, 1.0);
 }
 
+void check_friction(double mu1, double mu2, const XMLElement* where, const std::string& link, const XmlIndex& index) {
+  if (!(mu1 >= 0) || !(mu2 >= 0) || mu1 > 1e3 || mu2 > 1e3) {
+    throw Error(index.at(where), "link '" + link + "': friction coefficients must be in [0, 1000], got " + std::to_string(mu1) +
+                                     (mu2 != mu1 ? " and " + std::to_string(mu2) : std::string()));
+  }
+}
+
+/// A link's contact friction from Gazebo's <mu1> and <mu2> (either form, gazebo_number); true
+/// when the block gives one.
+bool read_friction(const XMLElement* g, const std::string& link, const XmlIndex& index, UrdfRobot& out) {
+  const XMLElement* e1 = g->FirstChildElement("mu1");
+  const XMLElement* e2 = g->FirstChildElement("mu2");
+  if (!e1 && !e2) return false;
+  const double mu1 = gazebo_number(e1 ? e1 : e2, index);
+  const double mu2 = e2 ? gazebo_number(e2, index) : mu1;
+  check_friction(mu1, mu2, g, link, index);
+  set_link_friction(link, mu1, mu2, out);
+  return true;
+}
+
+/// The children of a <gazebo reference="link"> block that rescuesim reads; every other one gets
+/// a note saying it is ignored (Gazebo-classic's kp, kd, minDepth, maxVel, selfCollide,
+/// material, ...: contact stiffness, solver and visual settings rescuesim's physics sets itself).
+const std::set<std::string> kReadInLinkBlock{"mu1", "mu2", "sensor", "plugin"};
+
+/// PyBullet's <contact> block in a <link> (lateral_friction, rolling_friction, stiffness, ...):
+/// lateral_friction is the link's friction, as PyBullet reads it, unless a Gazebo block gave
+/// <mu1>; the rest is ignored, each with a note.
+void read_pybullet_contact(const XMLElement* link, bool gazebo_friction, const XmlIndex& index, UrdfRobot& out) {
+  const XMLElement* contact = link->FirstChildElement("contact");
+  if (!contact) return;
+  const std::string name = link->Attribute("name") ? link->Attribute("name") : "";
+  for (const XMLElement* c = contact->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string what = c->Name();
+    if (what == "lateral_friction") {
+      if (gazebo_friction) {
+        out.diagnostics.warn(index.at(c),
+                             "link '" + name + "': PyBullet's <lateral_friction> is ignored, the <gazebo> block's <mu1> is used");
+        continue;
+      }
+      const double mu = gazebo_number(c, index);
+      check_friction(mu, mu, c, name, index);
+      set_link_friction(name, mu, mu, out);
+    } else {
+      out.diagnostics.warn(index.at(c), "link '" + name + "': PyBullet's <contact> <" + what + "> is ignored (rescuesim sets contact " +
+                                            "stiffness, damping and rolling friction itself)");
+    }
+  }
+}
+
 }  // namespace
 
 void read_gazebo(const XMLElement* robot, const XmlIndex& index, UrdfRobot& out) {
+  std::set<std::string> with_friction;  // links a <gazebo> block gave <mu1>/<mu2>
   for (const XMLElement* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
     const char* reference = g->Attribute("reference");
     if (reference && !index.links.count(reference)) {
       if (index.joints.count(reference)) continue;  // joint settings (e.g. implicitSpringDamper): nothing to honour
-      throw Error(index.at(g), "<gazebo reference=\"" + std::string(reference) + "\"> names no link of the robot");
+      // Gazebo's URDF conversion applies nothing for it either (xacro leftovers of a removed link)
+      out.diagnostics.warn(index.at(g), "<gazebo reference=\"" + std::string(reference) + "\"> names no link of the robot: ignored");
+      continue;
     }
-    if (reference) read_friction(g, reference, index, out);
+    if (reference && index.links.count(reference)) {
+      if (read_friction(g, reference, index, out)) with_friction.insert(reference);
+      for (const XMLElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        if (kReadInLinkBlock.count(c->Name())) continue;
+        out.diagnostics.warn(index.at(c), "link '" + std::string(reference) + "': Gazebo's <" + c->Name() + "> is ignored");
+      }
+    }
     for (const XMLElement* s = g->FirstChildElement("sensor"); s; s = s->NextSiblingElement("sensor")) {
       read_sensor(s, reference ? reference : index.link_order.front(), index, out);
     }
@@ -261,6 +336,7 @@ void read_gazebo(const XMLElement* robot, const XmlIndex& index, UrdfRobot& out)
       }
     }
   }
+  for (const auto& name : index.link_order) read_pybullet_contact(index.links.at(name), with_friction.count(name) > 0, index, out);
 }
 
 }  // namespace rescuesim::urdf_detail

@@ -4,14 +4,17 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <console_bridge/console.h>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <tuple>
+#include <console_bridge/console.h>
 
 #include "core/atomic_file.h"
 #include "import/mesh/mesh.h"
@@ -169,34 +172,50 @@ class Builder {
       ls.shapes.push_back(std::move(sh));
     };
     const std::string what = std::string(collision ? "<collision>" : "<visual>");
+    // a size that is not positive: an error on a collision (the robot would not touch the world
+    // as described), and on a visual a shape left out with a warning, as Gazebo draws nothing
+    // for it (PyBullet's laikago marks its toes with visual spheres of radius 0)
     auto positive = [&](double v, const char* name) {
-      if (!(v > 0) || !std::isfinite(v)) {
-        throw Error(index_.link(ls.name), "link '" + ls.name + "': " + what + " " + name + " must be positive, got " + std::to_string(v));
-      }
+      if (v > 0 && std::isfinite(v)) return true;
+      const std::string message = "link '" + ls.name + "': " + what + " " + name + " must be positive, got " + std::to_string(v);
+      if (collision) throw Error(index_.link(ls.name), message);
+      out_.diagnostics.warn(index_.link(ls.name), message + ": the visual is left out");
+      return false;
     };
     switch (g.type) {
       case urdf::Geometry::BOX: {
         const auto& b = static_cast<const urdf::Box&>(g);
-        positive(b.dim.x, "box size x");
-        positive(b.dim.y, "box size y");
-        positive(b.dim.z, "box size z");
-        add(Geometry::box({b.dim.x, b.dim.y, b.dim.z}), material);
+        if (positive(b.dim.x, "box size x") && positive(b.dim.y, "box size y") && positive(b.dim.z, "box size z")) {
+          add(Geometry::box({b.dim.x, b.dim.y, b.dim.z}), material);
+        }
         return;
       }
       case urdf::Geometry::CYLINDER: {
         const auto& c = static_cast<const urdf::Cylinder&>(g);
-        positive(c.radius, "cylinder radius");
-        positive(c.length, "cylinder length");
-        add(Geometry::cylinder(c.radius, c.length), material);
+        if (positive(c.radius, "cylinder radius") && positive(c.length, "cylinder length")) {
+          add(Geometry::cylinder(c.radius, c.length), material);
+        }
         return;
       }
       case urdf::Geometry::SPHERE:
-        positive(static_cast<const urdf::Sphere&>(g).radius, "sphere radius");
-        add(Geometry::sphere(static_cast<const urdf::Sphere&>(g).radius), material);
+        if (positive(static_cast<const urdf::Sphere&>(g).radius, "sphere radius")) {
+          add(Geometry::sphere(static_cast<const urdf::Sphere&>(g).radius), material);
+        }
         return;
       case urdf::Geometry::MESH: break;
     }
     const auto& m = static_cast<const urdf::Mesh&>(g);
+    if (!collision) {
+      // a visual mesh that cannot be found or read is left out with a warning, as Gazebo and
+      // RViz leave it out with an error line: the robot still moves and senses the same. A
+      // collision mesh must be there (below): without it the robot would not touch the world.
+      try {
+        (void)mesh(m, ls.name);
+      } catch (const Error& e) {
+        out_.diagnostics.warn(e.where(), "visual mesh left out: " + e.message());
+        return;
+      }
+    }
     const MeshFile found = mesh(m, ls.name);
     const LoadedMesh& loaded = found.mesh;
     UrdfMeshReport report;
@@ -357,16 +376,57 @@ class Builder {
   std::map<std::tuple<std::string, double, double, double>, LoadedMesh> meshes_;  // by file and scale
 };
 
-/// Bodies that physics would see without mass (massless links on moving joints) get a token
-/// mass, with a warning: Bullet cannot move a body of zero mass.
-void give_bodies_mass(UrdfRobot& out, const XmlIndex& index) {
+/// The rigid bodies physics sees (links merged through fixed joints) made physical, each with a
+/// warning naming the link and the change; only the merged body matters, so a small link fixed
+/// to a heavier one (a camera on a CAD-exported body) may be anything. A body without mass gets
+/// a token 0.01 kg (Bullet cannot move a body of zero mass). A body whose principal moments are
+/// not all positive, or break the triangle inequality (no rigid body has one moment larger than
+/// the other two together; CAD exports often do), gets their average for each, as MuJoCo's
+/// `balanceinertia` does, or, with none positive, those of a sphere of its mass and 5 cm radius
+/// of gyration. The correction is added to the body's top link, so the merged body is exactly
+/// the corrected one.
+void make_bodies_physical(UrdfRobot& out, const XmlIndex& index) {
   const LumpedRobot lumped = lump_fixed_joints(out.spec);
   for (std::size_t b = 0; b < lumped.spec.links.size(); ++b) {
-    if (lumped.spec.links[b].mass > 0) continue;
-    LinkSpec& top = out.spec.links[static_cast<std::size_t>(out.spec.link_index(lumped.spec.links[b].name))];
-    top.mass = 0.01;
-    top.inertia = Vec3::Constant(1e-5);
-    out.diagnostics.warn(index.link(top.name), "link '" + top.name + "' moves but nothing on it has mass: giving it 0.01 kg");
+    const LinkSpec& body = lumped.spec.links[b];
+    LinkSpec& top = out.spec.links[static_cast<std::size_t>(out.spec.link_index(body.name))];
+    const bool merged = std::count(lumped.body_of_link.begin(), lumped.body_of_link.end(), static_cast<int>(b)) > 1;
+    const std::string what = "link '" + top.name + "'" + (merged ? " (with the links fixed to it)" : "");
+    if (!(body.mass > 0)) {
+      top.mass = 0.01;
+      top.inertia = Vec3::Constant(1e-5);
+      out.diagnostics.warn(index.link(top.name), what + " moves but nothing on it has mass: giving it 0.01 kg");
+      continue;
+    }
+    const Eigen::Matrix3d I = inertia_tensor(body);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+    const Eigen::Vector3d p = eig.eigenvalues();  // ascending
+    const double tolerance = 1e-6 * std::max(std::abs(p[2]), 1e-30);
+    const bool positive = p[0] > 0;
+    const bool triangle = p[0] + p[1] >= p[2] - tolerance;
+    if (positive && triangle) continue;
+    auto num = [](double v) {
+      std::ostringstream s;
+      s << v;
+      return s.str();
+    };
+    const std::string moments = num(p[0]) + ", " + num(p[1]) + ", " + num(p[2]) + " kg m^2";
+    Eigen::Vector3d fixed;
+    std::string why;
+    if (p[2] <= 0) {
+      fixed.setConstant(0.4 * body.mass * 0.05 * 0.05);
+      why = "has no positive principal moment (" + moments + "): using a sphere's of its " + num(body.mass) + " kg and 5 cm radius, " +
+            num(fixed[0]) + " kg m^2 each";
+    } else {
+      const double average = std::max((std::max(p[0], 0.0) + std::max(p[1], 0.0) + p[2]) / 3.0, 1e-12);
+      fixed.setConstant(average);
+      why = std::string(positive ? "breaks the triangle inequality" : "is not positive definite") + " (principal moments " + moments +
+            "), as CAD exports often do: using their average, " + num(average) + " kg m^2, for each, as MuJoCo's balanceinertia does";
+    }
+    const Eigen::Matrix3d V = eig.eigenvectors();
+    const Eigen::Matrix3d target = V * fixed.asDiagonal() * V.transpose();
+    set_inertia_tensor(top, inertia_tensor(top) + (target - I));
+    out.diagnostics.warn(index.link(top.name), what + ": inertia " + why);
   }
 }
 
@@ -389,6 +449,42 @@ SourceRef where_named(const tinyxml2::XMLElement* robot, const std::string& mess
     if (found) return {file, found->GetLineNum(), describe(found)};
   }
   return {file, robot->GetLineNum(), "<robot>"};
+}
+
+/// A robot whose root is an empty link ("world") joined to the real base by a floating joint,
+/// as SolidWorks exports and MuJoCo-minded URDFs write a free base: urdfdom accepts it, and a
+/// rescuesim robot's root moves freely anyway, so the empty link and the joint are dropped from
+/// `doc` with a note. Any other floating or planar joint stays (check_structure refuses it).
+bool drop_free_base(tinyxml2::XMLDocument& doc, const std::string& file, std::vector<std::pair<SourceRef, std::string>>& notes) {
+  tinyxml2::XMLElement* robot = doc.RootElement();
+  std::map<std::string, int> children_as_child;
+  for (auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    if (auto* c = j->FirstChildElement("child"); c && c->Attribute("link")) children_as_child[c->Attribute("link")]++;
+  }
+  for (auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const char* type = j->Attribute("type");
+    const auto* p = j->FirstChildElement("parent");
+    if (!type || std::strcmp(type, "floating") != 0 || !p || !p->Attribute("link")) continue;
+    const std::string parent = p->Attribute("link");
+    if (children_as_child.count(parent)) continue;  // not the root
+    tinyxml2::XMLElement* root = nullptr;
+    int joints_from_root = 0;
+    for (auto* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link")) {
+      if (l->Attribute("name") && parent == l->Attribute("name")) root = l;
+    }
+    for (auto* k = robot->FirstChildElement("joint"); k; k = k->NextSiblingElement("joint")) {
+      const auto* kp = k->FirstChildElement("parent");
+      if (kp && kp->Attribute("link") && parent == kp->Attribute("link")) ++joints_from_root;
+    }
+    if (!root || root->FirstChildElement() || joints_from_root != 1) continue;  // a root with a body of its own
+    notes.emplace_back(SourceRef{file, j->GetLineNum(), describe(j)},
+                       "floating joint '" + std::string(j->Attribute("name") ? j->Attribute("name") : "") + "' from the empty root link '" +
+                           parent + "' is the robot's free base: both are dropped, as a rescuesim robot's root moves freely");
+    robot->DeleteChild(j);
+    robot->DeleteChild(root);
+    return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -435,16 +531,26 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& file, const Urd
                     std::string(name == "sdf" ? " (this is SDF: rescuesim reads SDF models through the scenario's sdf key)" : ""));
   }
   refuse_xacro(robot, file);
-  const XmlIndex index = check_structure(robot, file);
+  std::vector<std::pair<SourceRef, std::string>> base_notes;
+  const bool dropped_base = drop_free_base(doc, file, base_notes);
+  XmlIndex index = check_structure(robot, file);
+  index.notes.insert(index.notes.begin(), base_notes.begin(), base_notes.end());
 
   CollectingHandler urdfdom;
-  const urdf::ModelInterfaceSharedPtr model = parse_with_urdfdom(filled, urdfdom);
+  std::string for_urdfdom = filled;
+  if (dropped_base) {
+    tinyxml2::XMLPrinter printer;
+    doc.Print(&printer);
+    for_urdfdom = printer.CStr();
+  }
+  const urdf::ModelInterfaceSharedPtr model = parse_with_urdfdom(for_urdfdom, urdfdom);
   if (!model || !model->getRoot() || !urdfdom.errors.empty()) {
     throw Error({file, robot->GetLineNum(), "<robot>"},
                 "urdfdom could not read it" + (urdfdom.errors.empty() ? std::string() : ": " + urdfdom.errors));
   }
 
   UrdfRobot out;
+  for (const auto& [where, note] : index.notes) out.diagnostics.warn(where, note);
   // urdfdom's warnings (it repeats some), placed at the element whose name they quote last
   std::vector<std::string> seen;
   for (const auto& w : urdfdom.warnings) {
@@ -457,7 +563,7 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& file, const Urd
   Builder builder(*model, index, options, out);
   builder.build();
   read_gazebo(robot, index, out);
-  give_bodies_mass(out, index);
+  make_bodies_physical(out, index);
   add_standard_sensors(out.spec);
   out.hull_seconds = builder.hull_seconds;
   out.load_seconds = std::chrono::duration<double>(Clock::now() - t0).count() - out.hull_seconds;

@@ -6,7 +6,6 @@
 #include <set>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
 
 #include "import/urdf/urdf_detail.h"
 
@@ -27,40 +26,25 @@ std::string num(double v) {
   return s.str();
 }
 
-/// Checks an <inertial>: positive finite mass, and an inertia that is positive definite with
-/// principal moments obeying the triangle inequality (no real body has one side longer than
-/// the other two together).
+/// Checks an <inertial> as urdfdom reads it: a mass that is not negative, and all six inertia
+/// values (urdfdom drops an incomplete <inertia> with only a log line). Whether the inertia is
+/// physical is judged later, on the rigid bodies physics sees (a link fixed to another only
+/// adds to its body), where an impossible one is corrected with a warning (make_bodies_physical
+/// in urdf_import.cpp).
 void check_inertial(const XMLElement* link, const XMLElement* inertial, const XmlIndex& index) {
   const std::string name = attr(link, "name");
   const XMLElement* mass = inertial->FirstChildElement("mass");
   if (!mass) throw Error(index.at(inertial), "link '" + name + "': <inertial> has no <mass value=...>");
   const double m = numbers_of(mass->Attribute("value"), 1, index, mass, "mass value")[0];
-  if (!(m > 0)) {
-    throw Error(index.at(mass), "link '" + name + "': mass must be positive, got " + num(m) +
-                                    " kg (a link that only marks a frame needs no <inertial> at all)");
-  }
+  if (m < 0) throw Error(index.at(mass), "link '" + name + "': mass must not be negative, got " + num(m) + " kg");
   const XMLElement* in = inertial->FirstChildElement("inertia");
   if (!in) throw Error(index.at(inertial), "link '" + name + "': <inertial> has no <inertia ixx=... iyy=... izz=...>");
-  double v[6];
   const char* keys[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
-  for (int k = 0; k < 6; ++k) {
-    if (!in->Attribute(keys[k])) {
-      throw Error(index.at(in),
-                  "link '" + name + "': <inertia> has no " + keys[k] + " (give all six: ixx ixy ixz iyy iyz izz, 0 for none)");
+  for (const char* key : keys) {
+    if (!in->Attribute(key)) {
+      throw Error(index.at(in), "link '" + name + "': <inertia> has no " + key + " (give all six: ixx ixy ixz iyy iyz izz, 0 for none)");
     }
-    v[k] = numbers_of(in->Attribute(keys[k]), 1, index, in, keys[k])[0];
-  }
-  Eigen::Matrix3d I;
-  I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
-  const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
-  const double scale = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2]), 1e-30});
-  if (!(p[0] > 0)) {
-    throw Error(index.at(in), "link '" + name + "': inertia is not positive definite (principal moments " + num(p[0]) + ", " + num(p[1]) +
-                                  ", " + num(p[2]) + " kg m^2); every principal moment must be > 0");
-  }
-  if (p[0] + p[1] < p[2] - 1e-6 * scale) {
-    throw Error(index.at(in), "link '" + name + "': inertia breaks the triangle inequality (principal moments " + num(p[0]) + " + " +
-                                  num(p[1]) + " < " + num(p[2]) + " kg m^2): no rigid body has these moments");
+    numbers_of(in->Attribute(key), 1, index, in, key);
   }
 }
 
@@ -89,30 +73,31 @@ void check_numbers(const XMLElement* robot, const XmlIndex& index) {
   });
 }
 
-/// Each <visual> and <collision> holds one <geometry> with exactly one shape and the
+/// Each <visual> and <collision> holds a <geometry> whose first element is the shape, with the
 /// attributes that shape needs (urdfdom would drop the element with only a log message).
-void check_geometry(const XMLElement* link, const XmlIndex& index) {
+/// urdfdom, RViz and PyBullet read the first element and ignore the rest (a <material> put
+/// inside <geometry> by some exporters): so does rescuesim, with a note for each one ignored.
+void check_geometry(const XMLElement* link, XmlIndex& index) {
   const std::string name = attr(link, "name");
   for (const char* kind : {"visual", "collision"}) {
     for (const XMLElement* v = link->FirstChildElement(kind); v; v = v->NextSiblingElement(kind)) {
       const XMLElement* g = v->FirstChildElement("geometry");
       if (!g) throw Error(index.at(v), "link '" + name + "': <" + kind + "> has no <geometry>");
-      int shapes = 0;
-      for (const XMLElement* s = g->FirstChildElement(); s; s = s->NextSiblingElement()) {
-        ++shapes;
-        const std::string shape = s->Name();
-        static const std::map<std::string, std::vector<const char*>> needs{
-            {"box", {"size"}}, {"cylinder", {"radius", "length"}}, {"sphere", {"radius"}}, {"mesh", {"filename"}}};
-        const auto it = needs.find(shape);
-        if (it == needs.end()) {
-          throw Error(index.at(s), "link '" + name + "': unknown shape <" + shape + "> (expected box, cylinder, sphere or mesh)");
-        }
-        for (const char* a : it->second) {
-          if (!s->Attribute(a)) throw Error(index.at(s), "link '" + name + "': <" + shape + "> needs a " + a + " attribute");
-        }
+      const XMLElement* s = g->FirstChildElement();
+      if (!s) throw Error(index.at(g), "link '" + name + "': <geometry> holds no shape (expected box, cylinder, sphere or mesh)");
+      const std::string shape = s->Name();
+      static const std::map<std::string, std::vector<const char*>> needs{
+          {"box", {"size"}}, {"cylinder", {"radius", "length"}}, {"sphere", {"radius"}}, {"mesh", {"filename"}}};
+      const auto it = needs.find(shape);
+      if (it == needs.end()) {
+        throw Error(index.at(s), "link '" + name + "': unknown shape <" + shape + "> (expected box, cylinder, sphere or mesh)");
       }
-      if (shapes != 1) {
-        throw Error(index.at(g), "link '" + name + "': <geometry> must hold exactly one shape, it has " + std::to_string(shapes));
+      for (const char* a : it->second) {
+        if (!s->Attribute(a)) throw Error(index.at(s), "link '" + name + "': <" + shape + "> needs a " + a + " attribute");
+      }
+      for (const XMLElement* extra = s->NextSiblingElement(); extra; extra = extra->NextSiblingElement()) {
+        index.notes.emplace_back(index.at(extra), "link '" + name + "': <" + extra->Name() + "> inside <geometry> after the <" + shape +
+                                                      "> is ignored, as urdfdom ignores it (only the first element is the shape)");
       }
     }
   }

@@ -305,7 +305,15 @@ TEST(UrdfImport, EnvironmentIsIgnoredWhenTheResolverSaysSo) {
   urdf_test::ScopedEnv ros("ROS_PACKAGE_PATH", (dir.path() / "catkin/src").string());
   UrdfOptions o;
   o.resolver = ResourceResolver({}, false);
-  EXPECT_THROW(load_urdf(file, o), Error);
+  // a visual mesh not found is left out with a warning (as in Gazebo and RViz); a collision one
+  // is an error
+  const UrdfRobot u = load_urdf(file, o);
+  EXPECT_TRUE(u.meshes.empty());
+  ASSERT_EQ(u.diagnostics.warning_count(), 1);
+  EXPECT_NE(u.diagnostics.items()[0].message.find("visual mesh left out"), std::string::npos);
+  EXPECT_NE(u.diagnostics.items()[0].message.find("package://mypkg/meshes/cube.stl"), std::string::npos);
+  const auto with_collision = dir.write("robot2.urdf", one_mesh_robot("package://mypkg/meshes/cube.stl", true));
+  EXPECT_THROW(load_urdf(with_collision, o), Error);
 }
 
 TEST(UrdfImport, RelativeMeshPathIsTakenFromTheUrdfFolder) {
