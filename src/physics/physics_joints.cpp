@@ -83,6 +83,11 @@ void Physics::Impl::make_constraints(const RobotSpec& full, RobotBody& body) con
     if (!passive || js.friction > 0) {
       const double force = passive ? js.friction : js.max_effort;
       auto motor = std::make_unique<btMultiBodyJointMotor>(body.mb, bt, 0.0f, btScalar(force * options.dt));
+      // its impulse storage now, not at its first solve: a robot with no collision shape at all
+      // (PyBullet's pan-tilt) is never in an island, so Bullet never solves or sizes its motors,
+      // and read_robot would read an impulse that does not exist. The solver finalises a
+      // constraint only when it is not yet, so the motors' numbers are the same either way.
+      motor->finalizeMultiDof();
       if (!passive) body.motors[j] = motor.get();
       body.constraints.push_back(motor.get());
       body.owned_constraints.push_back(std::move(motor));

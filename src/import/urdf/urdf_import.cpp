@@ -564,6 +564,13 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& file, const Urd
   builder.build();
   read_gazebo(robot, index, out);
   make_bodies_physical(out, index);
+  const bool collides = std::any_of(out.spec.links.begin(), out.spec.links.end(), [](const LinkSpec& l) {
+    return std::any_of(l.shapes.begin(), l.shapes.end(), [](const LinkShape& sh) { return sh.collides; });
+  });
+  if (!collides) {
+    out.diagnostics.warn({file, robot->GetLineNum(), "<robot>"},
+                         "the robot has no <collision> shape: nothing holds it up, it falls through the floor (as in Gazebo)");
+  }
   add_standard_sensors(out.spec);
   out.hull_seconds = builder.hull_seconds;
   out.load_seconds = std::chrono::duration<double>(Clock::now() - t0).count() - out.hull_seconds;

@@ -309,7 +309,7 @@ TEST(UrdfImport, EnvironmentIsIgnoredWhenTheResolverSaysSo) {
   // is an error
   const UrdfRobot u = load_urdf(file, o);
   EXPECT_TRUE(u.meshes.empty());
-  ASSERT_EQ(u.diagnostics.warning_count(), 1);
+  ASSERT_EQ(u.diagnostics.warning_count(), 2);  // and that it has no collision shape
   EXPECT_NE(u.diagnostics.items()[0].message.find("visual mesh left out"), std::string::npos);
   EXPECT_NE(u.diagnostics.items()[0].message.find("package://mypkg/meshes/cube.stl"), std::string::npos);
   const auto with_collision = dir.write("robot2.urdf", one_mesh_robot("package://mypkg/meshes/cube.stl", true));
@@ -376,7 +376,9 @@ TEST(UrdfImport, UndefinedMaterialIsAWarningWithItsLine) {
 )";
   const UrdfRobot u = parse_urdf(text, "plain.urdf", no_environment());
   ASSERT_EQ(u.spec.links.at(0).shapes.size(), 1u);
-  ASSERT_EQ(u.diagnostics.warning_count(), 1) << warnings(u);
+  // the material's, and that a robot of visuals only falls through the floor
+  ASSERT_EQ(u.diagnostics.warning_count(), 2) << warnings(u);
+  EXPECT_THAT(u.diagnostics.items()[1].message, HasSubstr("no <collision> shape"));
   EXPECT_THAT(u.diagnostics.items()[0].message, HasSubstr("undefined_colour"));
   EXPECT_EQ(u.diagnostics.items()[0].where.file, "plain.urdf");
   EXPECT_GT(u.diagnostics.items()[0].where.line, 0);
