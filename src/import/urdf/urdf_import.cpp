@@ -400,7 +400,7 @@ void make_bodies_physical(UrdfRobot& out, const XmlIndex& index) {
     }
     const Eigen::Matrix3d I = inertia_tensor(body);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
-    const Eigen::Vector3d p = eig.eigenvalues();  // ascending
+    const Eigen::Vector3d& p = eig.eigenvalues();  // ascending
     const double tolerance = 1e-6 * std::max(std::abs(p[2]), 1e-30);
     const bool positive = p[0] > 0;
     const bool triangle = p[0] + p[1] >= p[2] - tolerance;
@@ -423,7 +423,7 @@ void make_bodies_physical(UrdfRobot& out, const XmlIndex& index) {
       why = std::string(positive ? "breaks the triangle inequality" : "is not positive definite") + " (principal moments " + moments +
             "), as CAD exports often do: using their average, " + num(average) + " kg m^2, for each, as MuJoCo's balanceinertia does";
     }
-    const Eigen::Matrix3d V = eig.eigenvectors();
+    const Eigen::Matrix3d& V = eig.eigenvectors();
     const Eigen::Matrix3d target = V * fixed.asDiagonal() * V.transpose();
     set_inertia_tensor(top, inertia_tensor(top) + (target - I));
     out.diagnostics.warn(index.link(top.name), what + ": inertia " + why);

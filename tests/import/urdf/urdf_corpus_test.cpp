@@ -112,8 +112,9 @@ std::vector<std::string> differences(const urdf::ModelInterface& ros, const Urdf
   for (const auto& [name, link] : ros.links_) {
     const int i = spec.link_index(name);
     if (i < 0) {
-      if (!(free_base && !link->parent_joint && !link->inertial && link->visual_array.empty()))
+      if (!(free_base && !link->parent_joint && !link->inertial && link->visual_array.empty())) {
         out.push_back("link '" + name + "' missing");
+      }
       continue;
     }
     const LinkSpec& l = spec.links[static_cast<std::size_t>(i)];
