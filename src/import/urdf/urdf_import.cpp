@@ -12,6 +12,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <tuple>
 #include <console_bridge/console.h>
@@ -205,23 +206,22 @@ class Builder {
       case urdf::Geometry::MESH: break;
     }
     const auto& m = static_cast<const urdf::Mesh&>(g);
-    if (!collision) {
-      // a visual mesh that cannot be found or read is left out with a warning, as Gazebo and
-      // RViz leave it out with an error line: the robot still moves and senses the same. A
-      // collision mesh must be there (below): without it the robot would not touch the world.
-      try {
-        (void)mesh(m, ls.name);
-      } catch (const Error& e) {
-        out_.diagnostics.warn(e.where(), "visual mesh left out: " + e.message());
-        return;
-      }
+    // a visual mesh that cannot be found or read is left out with a warning, as Gazebo and RViz
+    // leave it out with an error line: the robot still moves and senses the same. A collision
+    // mesh must be there: without it the robot would not touch the world.
+    std::optional<MeshFile> found;
+    try {
+      found.emplace(mesh(m, ls.name));
+    } catch (const Error& e) {
+      if (collision) throw;
+      out_.diagnostics.warn(e.where(), "visual mesh left out: " + e.message());
+      return;
     }
-    const MeshFile found = mesh(m, ls.name);
-    const LoadedMesh& loaded = found.mesh;
+    const LoadedMesh& loaded = found->mesh;
     UrdfMeshReport report;
     report.link = ls.name;
     report.uri = m.filename;
-    report.file = found.file;
+    report.file = found->file;
     report.collision = collision;
     report.triangles = static_cast<int>(loaded.mesh.triangles.size());
     if (!collision) {
@@ -253,7 +253,7 @@ class Builder {
     } catch (const Error& e) {
       throw Error({index_.file, mesh_line(ls.name, m.filename),
                    "<link name=\"" + ls.name + "\"> <collision> <mesh filename=\"" + m.filename + "\">"},
-                  "collision mesh " + found.file + ": " + e.message());
+                  "collision mesh " + found->file + ": " + e.message());
     }
     hull_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     report.pieces = static_cast<int>(pieces.size());

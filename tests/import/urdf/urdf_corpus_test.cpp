@@ -16,14 +16,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "import/urdf/urdf_import.h"
 #include "world/robot_lumping.h"
 
@@ -51,13 +50,6 @@ std::vector<CorpusFile> corpus_urdfs() {
     out.push_back(f);
   }
   return out;
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// urdfdom's model of `text`, or null when it refuses it (as check_urdf would); its console
@@ -192,7 +184,7 @@ TEST(UrdfCorpus, WhatUrdfdomReadsRescuesimReadsTheSame) {
     SCOPED_TRACE(f.name + " (" + f.file + ")");
     const std::filesystem::path path = corpus_dir() / f.file;
     // rescuesim fills TurtleBot3's ${namespace} with "" before urdfdom reads it; so does this
-    const auto ros = urdfdom_model(replace_all(slurp(path), "${namespace}", ""));
+    const auto ros = urdfdom_model(replace_all(read_file(path), "${namespace}", ""));
     std::optional<UrdfRobot> ours;
     std::string error;
     try {
